@@ -1,0 +1,21 @@
+execute_process(COMMAND git -C "${SOURCE_DIR}" rev-parse HEAD
+                OUTPUT_VARIABLE rev OUTPUT_STRIP_TRAILING_WHITESPACE
+                RESULT_VARIABLE rc ERROR_QUIET)
+if(NOT rc EQUAL 0 OR rev STREQUAL "")
+  set(rev "unknown")
+else()
+  execute_process(COMMAND git -C "${SOURCE_DIR}" status --porcelain --untracked-files=no
+                  OUTPUT_VARIABLE dirty OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+  if(NOT dirty STREQUAL "")
+    set(rev "${rev}-dirty")
+  endif()
+endif()
+set(content "#pragma once\n#define TAEBP_GIT_REVISION \"${rev}\"\n#define TAEBP_VERSION \"${VERSION}\"\n")
+if(EXISTS "${OUTPUT}")
+  file(READ "${OUTPUT}" old)
+else()
+  set(old "")
+endif()
+if(NOT old STREQUAL content)
+  file(WRITE "${OUTPUT}" "${content}")
+endif()

@@ -1,0 +1,68 @@
+// One policy's simulated run of the figure-8 scenario in SUMO (libsumo), and
+// the whole experiment (every listed policy) with its outputs.
+#pragma once
+
+#include "taebp/controller/config.h"
+#include "taebp/controller/intersection.h"
+#include "taebp/persuasion/outcomes.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace taebp {
+
+// A nudge is realised when SUMO's reported displacement d satisfies
+// s <= d <= s + kNudgeTolerance (the controller aims at s + kNudgeOvershoot).
+inline constexpr double kNudgeTolerance = 1e-3;  // m
+inline constexpr double kNudgeOvershoot = 1e-6;  // m
+
+struct EncounterRecord {
+  double time = 0;          // simulated time the encounter formed (s)
+  std::string av, hv;
+  bool intent_go = false;
+  double commanded = 0;     // commanded nudge s (0: no nudge)
+  double observed = 0;      // displacement SUMO reported when the HV decided
+  double hv_trust = 0;      // the HV's true theta
+  double posterior = 0;     // HV's p_theta(Go | observed)
+  bool hv_dc = false;       // HV action: drive if clear (else drive recklessly)
+  bool av_first = false;    // AV action: go first (else wait)
+  bool collision = false;   // SUMO reported a collision between the two
+  double decided_at = 0;    // when the HV decided (after the nudge)
+};
+
+struct PolicyRun {
+  std::string policy;
+  persuasion::CommittedScheme scheme;     // what the AV committed to
+  persuasion::PredictedOutcome theory;    // library prediction for this run
+  std::vector<EncounterRecord> encounters;
+  double simulated_seconds = 0;
+  long crossings_av = 0, crossings_hv = 0;
+  double wait_sum = 0, wait_max = 0;      // stop-line waits (s) over crossings
+  long other_collisions = 0;              // collisions outside AV-HV encounters
+  long teleports = 0;
+  double longest_gap_without_crossing = 0;  // s, a deadlock indicator
+  std::string sumo_version;
+};
+
+// Paths of the scenario's SUMO files.
+struct ScenarioFiles {
+  std::string net;  // .net.xml
+};
+
+// The built-in figure-8 network built with the project (build/sumo_net).
+std::string DefaultNetworkPath();
+
+// Resolves scenario.network (relative to `config_dir` when relative) or the
+// default; throws ConfigError naming the key and value when the file is missing.
+ScenarioFiles ResolveScenarioFiles(const ExperimentConfig& config, const std::string& config_dir);
+
+// Runs one policy for scenario.duration simulated seconds. Throws SumoError
+// (SUMO failed) or ConfigError (scenario does not fit the network).
+PolicyRun RunPolicy(const ExperimentConfig& config, persuasion::Policy policy,
+                    const ScenarioFiles& files);
+
+// The HV likelihood model named by the config.
+std::unique_ptr<persuasion::LikelihoodModel> MakeLikelihood(const LikelihoodConfig& config);
+
+}  // namespace taebp

@@ -1,0 +1,100 @@
+// Decision logic at the two-way stop, free of SUMO so it can be unit-tested:
+// right of way between the two approach heads, the AV's draw of intent and
+// signal, the HV's reading of the observed nudge, the encounter's sequence of
+// releases, and the creep profile of a nudge.
+#pragma once
+
+#include "taebp/persuasion/outcomes.h"
+
+#include <cstdint>
+#include <optional>
+#include <random>
+#include <vector>
+
+namespace taebp {
+
+enum class VehicleKind { kAV, kHV };
+
+// ---------------------------------------------------------------- right of way
+// A vehicle held at the stop line of one approach (the head of its queue).
+struct Head {
+  int vehicle = -1;      // caller's index
+  VehicleKind kind = VehicleKind::kHV;
+  int approach = 0;      // 0 or 1
+  double arrival = 0.0;  // time it came to a stop at the line
+  double ready = 0.0;    // max(arrival, time the junction last became free)
+};
+
+struct RightOfWay {
+  enum class Kind { kWait, kRelease, kEncounter };
+  Kind kind = Kind::kWait;
+  int first = -1;   // kRelease: the vehicle to release; kEncounter: the AV
+  int second = -1;  // kEncounter: the HV
+};
+
+// Called when the junction is free. A head is released once it has been ready
+// for `window` seconds with no head ready on the other approach (it looks both
+// ways); if the other head becomes ready within `window` of the first, the two
+// meet: an AV and an HV form an encounter, two of a kind cross by arrival time
+// (earlier arrival first; ties: approach 0 first).
+RightOfWay DecideRightOfWay(const std::optional<Head>& a, const std::optional<Head>& b,
+                            double now, double window);
+
+// ---------------------------------------------------------------- randomness
+// A portable uniform draw in [0, 1) from a 64-bit Mersenne twister (the
+// standard distributions are implementation-defined; this is not).
+double Uniform01(std::mt19937_64& rng);
+
+// ---------------------------------------------------------------- AV and HV
+struct AvDraw {
+  bool intent_go = false;
+  bool nudge = false;
+  double nudge_distance = 0.0;  // commanded s (0 when not nudging)
+  bool goes_first = false;      // intent Go and the scheme lets the AV go
+};
+// Draws intent ~ Bernoulli(lambda), then the signal from the committed scheme.
+// Always consumes exactly two uniforms so policies share random streams.
+AvDraw DrawAv(const persuasion::CommittedScheme& scheme, double prior_go, std::mt19937_64& rng);
+
+struct HvReading {
+  double observed = 0.0;   // displacement SUMO reported (m)
+  double posterior = 0.0;  // p_theta(Go | observed)
+  bool drives_if_clear = false;
+};
+// The HV reads the observed displacement with its intuitive likelihood model
+// (clamped to [0, s_max]: a nudge past s_max reads as s_max) and its own trust.
+HvReading ReadNudge(const persuasion::AvHvParams& params, double theta,
+                    const persuasion::LikelihoodModel& model, double observed);
+
+// ---------------------------------------------------------------- encounter
+// The order of releases once the HV has decided.
+//   AV goes:  AV at once; HV DR at once (they collide), HV DC after the AV cleared.
+//   AV waits: HV DR at once; HV DC after `confirm_delay`; the AV after the HV cleared.
+class EncounterSequence {
+ public:
+  struct Release {
+    bool av = false;       // true: the AV, false: the HV
+    bool reckless = false; // HV driving recklessly (junction checks off)
+  };
+  EncounterSequence(bool av_goes, bool hv_drives_if_clear, double decided_at,
+                    double confirm_delay);
+  // Releases due at `now`, given which vehicles have cleared the junction.
+  std::vector<Release> Update(double now, bool av_cleared, bool hv_cleared);
+  bool Done(bool av_cleared, bool hv_cleared) const { return av_cleared && hv_cleared; }
+
+ private:
+  bool av_goes_, hv_dc_;
+  double decided_at_, confirm_delay_;
+  bool av_released_ = false, hv_released_ = false;
+};
+
+// ---------------------------------------------------------------- creep
+// Speed to command for the next step of a nudge of `target` metres, having
+// covered `covered` at speed `speed`: accelerate at most `accel` per second up
+// to `creep_speed`, brake so as to stop at the target with at most `decel`,
+// and land on it exactly (remaining / dt) on the last step. Returns 0 once
+// the target is reached.
+double CreepSpeed(double target, double covered, double speed, double dt, double accel,
+                  double decel, double creep_speed);
+
+}  // namespace taebp

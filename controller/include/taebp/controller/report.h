@@ -1,0 +1,44 @@
+// Results of an experiment: statistics, summary.json, encounters.csv and the
+// Table I printout. Outputs are deterministic (no timing inside them).
+#pragma once
+
+#include "taebp/controller/experiment.h"
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace taebp {
+
+struct Interval {
+  double low = 0, high = 0;
+};
+// 95% Wilson score interval for k successes out of n (n = 0 -> [0, 1]).
+Interval Wilson95(long k, long n);
+
+struct Provenance {
+  std::string config_path;
+  std::string config_json;  // the resolved config (ToJson)
+  std::uint64_t seed = 0;
+  std::string git_revision;
+  std::string sumo_version;
+  std::string taebp_version;
+};
+// The git revision the binary was built from ("unknown" outside a checkout).
+std::string BuildGitRevision();
+std::string TaebpVersion();
+
+// summary.json text (pretty, stable key order).
+std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& provenance);
+// encounters.csv text: one row per AV-HV encounter, policy first.
+std::string EncountersCsv(const std::vector<PolicyRun>& runs, const Provenance& provenance);
+// Paper-style table: one row per metric, one column per policy, theory beside simulation.
+void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs);
+
+// Writes `files` (name -> content) into `dir` atomically: each is written to a
+// temporary file in `dir` and renamed into place only after all were written,
+// so a failure never leaves a half-written result. Creates `dir`.
+void WriteFilesAtomically(const std::string& dir,
+                          const std::vector<std::pair<std::string, std::string>>& files);
+
+}  // namespace taebp

@@ -1,0 +1,361 @@
+// The one place that uses yaml-cpp: loading (with unknown-key rejection and
+// --set overrides) and saving of every config struct, through the structs'
+// Serialize() schema.
+#include "taebp/controller/config.h"
+
+#include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <type_traits>
+
+namespace taebp {
+namespace {
+
+// Where a key came from, for error messages: the file, or the --set that wrote it.
+class Origins {
+ public:
+  Origins(std::string file) : file_(std::move(file)) {}
+  void AddOverride(const std::string& key, const std::string& text) { overrides_[key] = text; }
+  // "--set a.b=1" if `key` or one of its parents was overridden, else the file.
+  std::string For(const std::string& key) const {
+    for (const auto& [k, text] : overrides_) {
+      if (key == k || key.rfind(k + ".", 0) == 0 || k.rfind(key + ".", 0) == 0)
+        return "--set " + text;
+    }
+    return file_;
+  }
+  std::string Locate(const std::string& key, const YAML::Node& node) const {
+    std::string where = For(key);
+    if (where == file_ && node.IsDefined() && node.Mark().line >= 0)
+      where += ":" + std::to_string(node.Mark().line + 1);
+    return where;
+  }
+
+ private:
+  std::string file_;
+  std::map<std::string, std::string> overrides_;
+};
+
+std::string Join(const std::string& prefix, const std::string& name) {
+  return prefix.empty() ? name : prefix + "." + name;
+}
+
+std::string Show(const YAML::Node& node) {
+  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsNull()) return "null";
+  YAML::Emitter out;
+  out << YAML::Flow << node;
+  return out.c_str();
+}
+
+template <typename T>
+struct IsVector : std::false_type {};
+template <typename T>
+struct IsVector<std::vector<T>> : std::true_type {};
+template <typename T>
+struct IsOptional : std::false_type {};
+template <typename T>
+struct IsOptional<std::optional<T>> : std::true_type {};
+
+class YamlReader {
+ public:
+  YamlReader(const YAML::Node& node, std::string prefix, const Origins* origins,
+             bool require_all)
+      : node_(node), prefix_(std::move(prefix)), origins_(origins), require_all_(require_all) {}
+
+  template <typename T>
+  void Visit(const char* name, T* value) {
+    visited_.insert(name);
+    const YAML::Node child = node_[name];
+    const std::string key = Join(prefix_, name);
+    if (!child.IsDefined()) {
+      if (require_all_) Fail(key, node_, "missing required key '" + key + "'");
+      return;
+    }
+    Read(child, key, value);
+  }
+
+  // Any key in the map that the schema did not visit is an error.
+  void RejectUnknown() const {
+    for (const auto& kv : node_) {
+      const std::string name = kv.first.as<std::string>();
+      if (!visited_.count(name)) {
+        std::string known;
+        for (const auto& v : visited_) known += (known.empty() ? "" : ", ") + v;
+        Fail(Join(prefix_, name), kv.first,
+             "unknown key '" + Join(prefix_, name) + "' (known keys here: " + known + ")");
+      }
+    }
+  }
+
+  template <typename T>
+  static void Read(const YAML::Node& node, const std::string& key, T* value,
+                   const Origins* origins, bool require_all) {
+    YamlReader r(node, "", origins, require_all);
+    r.Read(node, key, value);
+  }
+
+ private:
+  [[noreturn]] void Fail(const std::string& key, const YAML::Node& node,
+                         const std::string& what) const {
+    throw ConfigError(origins_->Locate(key, node) + ": " + what);
+  }
+
+  void ReadScalarCheck(const YAML::Node& node, const std::string& key, const char* expected) {
+    if (!node.IsScalar())
+      Fail(key, node, "key '" + key + "' expects " + expected + ", got " + Show(node));
+  }
+
+  void Read(const YAML::Node& node, const std::string& key, int* value) {
+    ReadScalarCheck(node, key, "an integer");
+    long long v = 0;
+    if (!YAML::convert<long long>::decode(node, v) || v < std::numeric_limits<int>::min() ||
+        v > std::numeric_limits<int>::max())
+      Fail(key, node, "key '" + key + "' expects an integer, got " + Show(node));
+    *value = static_cast<int>(v);
+  }
+  void Read(const YAML::Node& node, const std::string& key, std::uint64_t* value) {
+    ReadScalarCheck(node, key, "a non-negative integer");
+    const std::string& s = node.Scalar();
+    if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos)
+      Fail(key, node, "key '" + key + "' expects a non-negative integer, got " + Show(node));
+    try {
+      *value = std::stoull(s);
+    } catch (const std::exception&) {
+      Fail(key, node, "key '" + key + "' expects a non-negative integer, got " + Show(node));
+    }
+  }
+  void Read(const YAML::Node& node, const std::string& key, double* value) {
+    ReadScalarCheck(node, key, "a number");
+    double v = 0;
+    const std::string& s = node.Scalar();
+    bool is_bool_word = s == "true" || s == "false" || s == "yes" || s == "no";
+    if (is_bool_word || !YAML::convert<double>::decode(node, v) || std::isnan(v))
+      Fail(key, node, "key '" + key + "' expects a number, got " + Show(node));
+    *value = v;
+  }
+  void Read(const YAML::Node& node, const std::string& key, bool* value) {
+    ReadScalarCheck(node, key, "true or false");
+    if (!YAML::convert<bool>::decode(node, *value))
+      Fail(key, node, "key '" + key + "' expects true or false, got " + Show(node));
+  }
+  void Read(const YAML::Node& node, const std::string& key, std::string* value) {
+    ReadScalarCheck(node, key, "a string");
+    *value = node.Scalar();
+  }
+  template <typename T>
+  void Read(const YAML::Node& node, const std::string& key, std::optional<T>* value) {
+    if (node.IsNull()) {
+      value->reset();
+      return;
+    }
+    T v{};
+    Read(node, key, &v);
+    *value = v;
+  }
+  template <typename T>
+  void Read(const YAML::Node& node, const std::string& key, std::vector<T>* value) {
+    if (!node.IsSequence())
+      Fail(key, node, "key '" + key + "' expects a list, got " + Show(node));
+    value->clear();
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      T v{};
+      Read(node[i], key + "[" + std::to_string(i) + "]", &v);
+      value->push_back(std::move(v));
+    }
+  }
+  // Nested config struct.
+  template <typename T, typename = decltype(std::declval<T&>().Serialize(
+                            static_cast<YamlReader*>(nullptr)))>
+  void Read(const YAML::Node& node, const std::string& key, T* value) {
+    if (!node.IsMap()) Fail(key, node, "key '" + key + "' expects a map, got " + Show(node));
+    YamlReader sub(node, key, origins_, require_all_);
+    value->Serialize(&sub);
+    sub.RejectUnknown();
+  }
+
+  YAML::Node node_;
+  std::string prefix_;
+  const Origins* origins_;
+  bool require_all_;
+  std::set<std::string> visited_;
+};
+
+// Writes a struct through the same schema into nlohmann::ordered_json.
+class JsonWriter {
+ public:
+  explicit JsonWriter(nlohmann::ordered_json* out) : out_(out) {}
+  template <typename T>
+  void Visit(const char* name, T* value) {
+    Write(&(*out_)[name], *value);
+  }
+
+ private:
+  template <typename T>
+  static void Write(nlohmann::ordered_json* j, const T& v) {
+    if constexpr (IsOptional<T>::value) {
+      if (v) Write(j, *v); else *j = nullptr;
+    } else if constexpr (IsVector<T>::value) {
+      *j = nlohmann::ordered_json::array();
+      for (const auto& e : v) {
+        nlohmann::ordered_json item;
+        Write(&item, e);
+        j->push_back(item);
+      }
+    } else if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>) {
+      *j = v;
+    } else {
+      *j = nlohmann::ordered_json::object();
+      JsonWriter sub(j);
+      const_cast<T&>(v).Serialize(&sub);
+    }
+  }
+  nlohmann::ordered_json* out_;
+};
+
+void EmitJson(YAML::Emitter& out, const nlohmann::ordered_json& j) {
+  if (j.is_object()) {
+    out << YAML::BeginMap;
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      out << YAML::Key << it.key() << YAML::Value;
+      EmitJson(out, it.value());
+    }
+    out << YAML::EndMap;
+  } else if (j.is_array()) {
+    out << YAML::Flow << YAML::BeginSeq;
+    for (const auto& e : j) EmitJson(out, e);
+    out << YAML::EndSeq;
+  } else if (j.is_null()) {
+    out << YAML::Null;
+  } else if (j.is_string()) {
+    out << j.get<std::string>();
+  } else if (j.is_boolean()) {
+    out << j.get<bool>();
+  } else if (j.is_number_unsigned()) {
+    out << j.get<std::uint64_t>();
+  } else if (j.is_number_integer()) {
+    out << j.get<long long>();
+  } else {
+    out << YAML::Precision(17) << j.get<double>();
+  }
+}
+
+YAML::Node ParseYaml(const std::string& text, const std::string& origin) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(origin + ":" + std::to_string(e.mark.line + 1) +
+                      ": malformed YAML: " + e.msg);
+  }
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path + ": cannot open the file (does it exist?)");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Sets root[a][b][c] = value for key "a.b.c", creating maps on the way.
+void SetPath(YAML::Node node, const std::vector<std::string>& parts, std::size_t i,
+             const YAML::Node& value, const std::string& text) {
+  if (!node.IsMap() && !node.IsNull())
+    throw ConfigError("--set " + text + ": '" + parts[i - 1] + "' is not a map");
+  if (i + 1 == parts.size()) {
+    node[parts[i]] = value;
+    return;
+  }
+  YAML::Node child = node[parts[i]];
+  if (!child.IsDefined() || child.IsNull()) {
+    node[parts[i]] = YAML::Node(YAML::NodeType::Map);
+    child = node[parts[i]];
+  }
+  SetPath(child, parts, i + 1, value, text);
+}
+
+void ApplyOverride(YAML::Node& root, const std::string& text, Origins* origins) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw ConfigError("--set " + text + ": expected KEY=VALUE (e.g. scenario.avs=4)");
+  const std::string key = text.substr(0, eq);
+  const std::string value_text = text.substr(eq + 1);
+  std::vector<std::string> parts;
+  std::stringstream ss(key);
+  for (std::string part; std::getline(ss, part, '.');) {
+    if (part.empty()) throw ConfigError("--set " + text + ": empty component in key '" + key + "'");
+    parts.push_back(part);
+  }
+  YAML::Node value;
+  try {
+    value = value_text.empty() ? YAML::Node(YAML::NodeType::Null) : YAML::Load(value_text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError("--set " + text + ": value is not valid YAML: " + e.msg);
+  }
+  if (!root.IsDefined() || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  SetPath(root, parts, 0, value, text);
+  origins->AddOverride(key, text);
+}
+
+template <typename T>
+T ReadRoot(const YAML::Node& root, const Origins& origins, const std::string& origin,
+           bool require_all) {
+  T config;
+  if (!root.IsDefined() || root.IsNull()) {
+    if (require_all) throw ConfigError(origin + ": the file is empty");
+    return config;
+  }
+  if (!root.IsMap()) throw ConfigError(origin + ": expected a map of keys at the top level");
+  YamlReader reader(root, "", &origins, require_all);
+  config.Serialize(&reader);
+  reader.RejectUnknown();
+  return config;
+}
+
+}  // namespace
+
+ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& origin,
+                                       const std::vector<std::string>& overrides) {
+  YAML::Node root = ParseYaml(yaml_text, origin);
+  Origins origins(origin);
+  for (const std::string& o : overrides) ApplyOverride(root, o, &origins);
+  ExperimentConfig config = ReadRoot<ExperimentConfig>(root, origins, origin, false);
+  std::string why;
+  if (!config.IsValid(&why)) {
+    const std::string key = why.substr(0, why.find_first_of(" :"));
+    throw ConfigError(origins.For(key) + ": " + why);
+  }
+  return config;
+}
+
+ExperimentConfig LoadExperimentConfig(const std::string& path,
+                                      const std::vector<std::string>& overrides) {
+  return ParseExperimentConfig(ReadFile(path), path, overrides);
+}
+
+std::string ToJson(const ExperimentConfig& config) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  JsonWriter w(&j);
+  const_cast<ExperimentConfig&>(config).Serialize(&w);
+  return j.dump();
+}
+
+std::string ToYaml(const ExperimentConfig& config) {
+  YAML::Emitter out;
+  EmitJson(out, nlohmann::ordered_json::parse(ToJson(config)));
+  return std::string(out.c_str()) + "\n";
+}
+
+ProblemConfig LoadProblemConfig(const std::string& path) {
+  YAML::Node root = ParseYaml(ReadFile(path), path);
+  Origins origins(path);
+  return ReadRoot<ProblemConfig>(root, origins, path, true);
+}
+
+}  // namespace taebp

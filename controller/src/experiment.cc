@@ -1,0 +1,422 @@
+#include "taebp/controller/experiment.h"
+
+#include "taebp/controller/sumo_adapter.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#ifndef TAEBP_DEFAULT_NET
+#define TAEBP_DEFAULT_NET "sumo_net/figure8.net.xml"
+#endif
+
+namespace taebp {
+namespace {
+
+namespace fs = std::filesystem;
+using persuasion::Policy;
+
+// The figure-8: lap C_E, E_C, C_W, W_C. Approach 0 arrives on E_C and leaves
+// on C_W; approach 1 arrives on W_C and leaves on C_E.
+constexpr std::array<const char*, 4> kLap = {"C_E", "E_C", "C_W", "W_C"};
+constexpr std::array<const char*, 2> kIncoming = {"E_C", "W_C"};
+constexpr std::array<const char*, 2> kOutgoing = {"C_W", "C_E"};
+constexpr const char* kCentre = "C";
+constexpr double kHoldDuration = 1e9;  // s; released explicitly
+
+// Speed modes (bits: 1 safe speed, 2 max accel, 4 max decel, 8 right of way,
+// 16 red light, 32 ignore foes already in the junction).
+constexpr int kModeReleased = 55;  // controller decides the junction; keep car-following
+constexpr int kModeCreep = 0;      // exact commanded speeds during a nudge
+
+enum class Phase { kApproaching, kWaiting, kNudging, kHolding, kCrossing };
+
+struct Veh {
+  std::string id;
+  VehicleKind kind = VehicleKind::kHV;
+  int approach = 0;  // approach of the next (or current) stop
+  Phase phase = Phase::kApproaching;
+  double arrival = 0;
+  double hold_odometer = 0;
+  double trust = 0;  // HV's true theta
+  bool speed_controlled = false;  // setSpeed active (nudge)
+};
+
+struct ActiveEncounter {
+  int av = -1, hv = -1;
+  EncounterRecord record;
+  double target = 0;       // commanded + overshoot
+  double creep_speed = 0;  // last commanded creep speed
+  std::optional<EncounterSequence> sequence;
+  bool av_cleared = false, hv_cleared = false;
+};
+
+double Dist(const XY& a, const XY& b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+std::string Fmt(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+class Run {
+ public:
+  Run(const ExperimentConfig& config, Policy policy, const ScenarioFiles& files)
+      : cfg_(config), sc_(config.scenario), policy_(policy), files_(files),
+        model_(MakeLikelihood(config.model.likelihood)),
+        rng_(config.scenario.seed) {
+    params_.prior_go = config.model.prior_go;
+    params_.collision_penalty = config.model.collision_penalty;
+    const double theta = config.model.trust;
+    const double theta_hat = config.model.assumed_trust.value_or(theta);
+    out_.policy = persuasion::ToString(policy);
+    out_.scheme = persuasion::CommitScheme(policy, params_, theta_hat, *model_);
+    out_.theory = persuasion::PredictOutcome(out_.scheme, params_, theta, *model_);
+  }
+
+  PolicyRun Execute() {
+    Start();
+    try {
+      Loop();
+    } catch (...) {
+      sumo::Close();
+      throw;
+    }
+    sumo::Close();
+    return std::move(out_);
+  }
+
+ private:
+  void Start() {
+    const fs::path net = files_.net;
+    std::ostringstream dt, seed;
+    dt.precision(17);
+    dt << sc_.step_length;
+    seed << (sc_.seed % 2147483647ULL);
+    sumo::Start({"sumo", "-n", net.string(), "--step-length", dt.str(), "--seed", seed.str(),
+                 "--collision.check-junctions", "true", "--collision.action", "warn",
+                 "--collision.mingap-factor", "0", "--time-to-teleport", "-1",
+                 "--no-step-log", "true", "--no-warnings", "true",
+                 "--duration-log.disable", "true", "--xml-validation", "never"});
+    out_.sumo_version = sumo::Version();
+    ReadNetwork();
+    sumo::AddVehicleType({"AV", sc_.cruise_speed, sc_.min_gap, sc_.vehicle_length,
+                          sc_.vehicle_width, sc_.accel, sc_.decel, 0, 0, 255});
+    sumo::AddVehicleType({"HV", sc_.cruise_speed, sc_.min_gap, sc_.vehicle_length,
+                          sc_.vehicle_width, sc_.accel, sc_.decel, 255, 0, 0});
+    PlaceVehicles();
+  }
+
+  void ReadNetwork() {
+    const XY centre = sumo::JunctionPosition(kCentre);
+    for (int i = 0; i < 4; ++i) lap_len_[i] = sumo::LaneLength(std::string(kLap[i]) + "_0");
+    for (int k = 0; k < 2; ++k) {
+      const std::string lane = std::string(kIncoming[k]) + "_0";
+      const std::vector<XY> shape = sumo::LaneShape(lane);
+      const double line_to_centre = Dist(shape.back(), centre);
+      const double len = sumo::LaneLength(lane);
+      if (sc_.stop_distance < line_to_centre)
+        throw ConfigError("scenario.stop_distance = " + Fmt(sc_.stop_distance) +
+                          " is inside the junction: the stop line of " + kIncoming[k] +
+                          " is " + Fmt(line_to_centre) + " m from the centre");
+      hold_pos_[k] = len - (sc_.stop_distance - line_to_centre);
+      if (hold_pos_[k] < sc_.vehicle_length + 1.0)
+        throw ConfigError("scenario.stop_distance = " + Fmt(sc_.stop_distance) +
+                          " does not fit on edge " + kIncoming[k] + " (" + Fmt(len) + " m)");
+    }
+  }
+
+  // Spreads the vehicles evenly over the lap (types interleaved), avoiding the
+  // hold zone before the stop line and the first vehicle length of each edge.
+  void PlaceVehicles() {
+    const int n = sc_.avs + sc_.hvs;
+    double lap = 0;
+    for (double l : lap_len_) lap += l;
+    const double spacing = lap / n;
+    const double need = sc_.vehicle_length + sc_.min_gap;
+    if (spacing < need + 0.5)
+      throw ConfigError("scenario.avs + scenario.hvs = " + std::to_string(n) +
+                        " vehicles do not fit on the " + Fmt(lap) + " m track (each needs " +
+                        Fmt(need) + " m); raise scenario.loop_length or use fewer vehicles");
+    const int reps = static_cast<int>(std::ceil(sc_.duration * sc_.cruise_speed / lap)) + 3;
+    for (int start = 0; start < 4; ++start) {
+      std::vector<std::string> edges;
+      for (int r = 0; r < reps; ++r)
+        for (int i = 0; i < 4; ++i) edges.push_back(kLap[(start + i) % 4]);
+      sumo::AddRoute("lap" + std::to_string(start), edges);
+    }
+    int avs_placed = 0;
+    double last_pos = -1e9;
+    for (int k = 0; k < n; ++k) {
+      // Bresenham interleaving: AV whenever the AV quota advances.
+      const bool is_av = (static_cast<long>(k + 1) * sc_.avs) / n > (static_cast<long>(k) * sc_.avs) / n;
+      double pos = std::max(k * spacing + sc_.vehicle_length + 0.5, last_pos + need);
+      int edge = 0;
+      double on_edge = 0;
+      for (;;) {
+        double acc = 0;
+        edge = 0;
+        while (edge < 4 && pos >= acc + lap_len_[edge]) acc += lap_len_[edge++];
+        if (edge >= 4)
+          throw ConfigError("scenario.avs + scenario.hvs = " + std::to_string(n) +
+                            " vehicles do not fit on the track; raise scenario.loop_length");
+        on_edge = pos - acc;
+        const bool incoming = (edge == 1 || edge == 3);
+        const double hold = incoming ? hold_pos_[edge == 1 ? 0 : 1] : 1e18;
+        if (on_edge < sc_.vehicle_length + 0.5) {
+          pos = acc + sc_.vehicle_length + 0.5;
+        } else if (incoming && on_edge > hold - 2.0) {
+          pos = acc + lap_len_[edge] + sc_.vehicle_length + 0.5;
+        } else {
+          break;
+        }
+      }
+      last_pos = pos;
+      Veh v;
+      v.kind = is_av ? VehicleKind::kAV : VehicleKind::kHV;
+      v.id = (is_av ? "av" : "hv") + std::to_string(is_av ? avs_placed : k - avs_placed);
+      if (is_av) ++avs_placed;
+      v.approach = (edge == 0 || edge == 1) ? 0 : 1;
+      v.trust = cfg_.model.trust;
+      sumo::AddVehicle(v.id, "lap" + std::to_string(edge), is_av ? "AV" : "HV", on_edge);
+      vehs_.push_back(v);
+    }
+  }
+
+  void SetNextStop(Veh& v) {
+    sumo::SetStop(v.id, kIncoming[v.approach], hold_pos_[v.approach], kHoldDuration);
+    v.phase = Phase::kApproaching;
+  }
+
+  int IndexOf(const std::string& id) const {
+    for (std::size_t i = 0; i < vehs_.size(); ++i)
+      if (vehs_[i].id == id) return static_cast<int>(i);
+    return -1;
+  }
+
+  void Loop() {
+    const double dt = sc_.step_length;
+    const long steps = std::lround(sc_.duration / dt);
+    sumo::Step();  // inserts every vehicle at t = 0 + dt
+    for (Veh& v : vehs_) SetNextStop(v);
+    double junction_free_since = sumo::Time();
+    double last_crossing = junction_free_since;
+    for (long k = 1; k < steps; ++k) {
+      sumo::Step();
+      const double now = sumo::Time();
+      if (sumo::TeleportNumber() > 0) ++out_.teleports;
+
+      // Arrivals at the stop line.
+      if (sumo::StopStartingNumber() > 0) {
+        for (const std::string& id : sumo::StopStartingIDs()) {
+          const int i = IndexOf(id);
+          if (i < 0) continue;
+          Veh& v = vehs_[i];
+          v.phase = Phase::kWaiting;
+          v.arrival = now;
+          v.hold_odometer = sumo::Distance(id);
+          head_[v.approach] = i;
+        }
+      }
+
+      if (sumo::CollidingNumber() > 0) AttributeCollisions();
+
+      // Crossing vehicles: cleared once the rear is on the outgoing edge.
+      for (auto it = crossing_.begin(); it != crossing_.end();) {
+        Veh& v = vehs_[*it];
+        const int exit_approach = 1 - v.approach;  // approach index was advanced at release
+        const std::string road = sumo::RoadID(v.id);
+        if (road == kOutgoing[exit_approach] &&
+            sumo::LanePosition(v.id) >= sc_.vehicle_length) {
+          if (enc_ && *it == enc_->av) enc_->av_cleared = true;
+          if (enc_ && *it == enc_->hv) enc_->hv_cleared = true;
+          it = crossing_.erase(it);
+          last_crossing = now;
+          if (crossing_.empty()) junction_free_since = now;
+        } else {
+          ++it;
+        }
+      }
+
+      if (enc_) {
+        StepEncounter(now);
+        if (enc_ && enc_->av_cleared && enc_->hv_cleared) {
+          out_.encounters.push_back(enc_->record);
+          enc_.reset();
+          junction_free_since = now;
+        }
+      }
+
+      if (!enc_ && crossing_.empty()) {
+        std::optional<Head> heads[2];
+        for (int a = 0; a < 2; ++a) {
+          if (head_[a] < 0) continue;
+          const Veh& v = vehs_[head_[a]];
+          heads[a] = Head{head_[a], v.kind, a, v.arrival, std::max(v.arrival, junction_free_since)};
+        }
+        const RightOfWay row = DecideRightOfWay(heads[0], heads[1], now, sc_.arrival_window);
+        if (row.kind == RightOfWay::Kind::kRelease) {
+          Release(row.first, now, false);
+        } else if (row.kind == RightOfWay::Kind::kEncounter) {
+          BeginEncounter(row.first, row.second, now);
+        }
+      }
+      out_.longest_gap_without_crossing =
+          std::max(out_.longest_gap_without_crossing, now - last_crossing);
+    }
+    out_.simulated_seconds = sumo::Time();
+  }
+
+  void Release(int i, double now, bool reckless) {
+    Veh& v = vehs_[i];
+    (void)reckless;  // both DR and controller releases ignore SUMO's junction logic
+    if (v.speed_controlled) {
+      sumo::SetSpeed(v.id, -1);
+      v.speed_controlled = false;
+    } else {
+      sumo::Resume(v.id);
+    }
+    sumo::SetSpeedMode(v.id, kModeReleased);
+    head_[v.approach] = -1;
+    const double wait = now - v.arrival;
+    out_.wait_sum += wait;
+    out_.wait_max = std::max(out_.wait_max, wait);
+    (v.kind == VehicleKind::kAV ? out_.crossings_av : out_.crossings_hv) += 1;
+    v.approach = 1 - v.approach;  // next stop is on the other approach
+    SetNextStop(v);
+    v.phase = Phase::kCrossing;
+    crossing_.push_back(i);
+  }
+
+  void BeginEncounter(int av, int hv, double now) {
+    enc_.emplace();
+    enc_->av = av;
+    enc_->hv = hv;
+    EncounterRecord& r = enc_->record;
+    r.time = now;
+    r.av = vehs_[av].id;
+    r.hv = vehs_[hv].id;
+    r.hv_trust = vehs_[hv].trust;
+    const AvDraw draw = DrawAv(out_.scheme, params_.prior_go, rng_);
+    r.intent_go = draw.intent_go;
+    r.commanded = draw.nudge_distance;
+    r.av_first = draw.goes_first;
+    if (draw.nudge) {
+      Veh& v = vehs_[av];
+      enc_->target = draw.nudge_distance + kNudgeOvershoot;
+      sumo::Resume(v.id);
+      sumo::SetSpeedMode(v.id, kModeCreep);
+      v.speed_controlled = true;
+      v.phase = Phase::kNudging;
+      enc_->creep_speed = CreepSpeed(enc_->target, 0.0, 0.0, sc_.step_length, sc_.accel,
+                                     sc_.decel, sc_.creep_speed);
+      sumo::SetSpeed(v.id, enc_->creep_speed);
+    } else {
+      Decide(now, 0.0);
+    }
+  }
+
+  void Decide(double now, double observed) {
+    EncounterRecord& r = enc_->record;
+    const HvReading reading = ReadNudge(params_, r.hv_trust, *model_, observed);
+    r.observed = observed;
+    r.posterior = reading.posterior;
+    r.hv_dc = reading.drives_if_clear;
+    r.decided_at = now;
+    enc_->sequence.emplace(r.av_first, r.hv_dc, now, sc_.confirm_delay);
+  }
+
+  void StepEncounter(double now) {
+    ActiveEncounter& e = *enc_;
+    Veh& av = vehs_[e.av];
+    if (av.phase == Phase::kNudging) {
+      const double covered = sumo::Distance(av.id) - av.hold_odometer;
+      const double v = CreepSpeed(e.target, covered, e.creep_speed, sc_.step_length,
+                                  sc_.accel, sc_.decel, sc_.creep_speed);
+      if (v <= 0.0 && e.creep_speed <= 0.0) {
+        av.phase = Phase::kHolding;
+        Decide(now, covered);
+      } else {
+        e.creep_speed = v;
+        sumo::SetSpeed(av.id, v);
+        return;
+      }
+    }
+    if (!e.sequence) return;
+    for (const auto& rel : e.sequence->Update(now, e.av_cleared, e.hv_cleared)) {
+      Release(rel.av ? e.av : e.hv, now, rel.reckless);
+    }
+  }
+
+  void AttributeCollisions() {
+    for (const SumoCollision& c : sumo::Collisions()) {
+      if (enc_) {
+        const std::string& a = vehs_[enc_->av].id;
+        const std::string& h = vehs_[enc_->hv].id;
+        if ((c.collider == a && c.victim == h) || (c.collider == h && c.victim == a)) {
+          enc_->record.collision = true;
+          continue;
+        }
+      }
+      ++out_.other_collisions;
+    }
+  }
+
+  const ExperimentConfig& cfg_;
+  const ScenarioConfig& sc_;
+  Policy policy_;
+  ScenarioFiles files_;
+  std::unique_ptr<persuasion::LikelihoodModel> model_;
+  persuasion::AvHvParams params_;
+  std::mt19937_64 rng_;
+  PolicyRun out_;
+
+  std::array<double, 4> lap_len_{};
+  std::array<double, 2> hold_pos_{};
+  std::vector<Veh> vehs_;
+  int head_[2] = {-1, -1};
+  std::vector<int> crossing_;
+  std::optional<ActiveEncounter> enc_;
+};
+
+}  // namespace
+
+std::string DefaultNetworkPath() { return TAEBP_DEFAULT_NET; }
+
+ScenarioFiles ResolveScenarioFiles(const ExperimentConfig& config, const std::string& config_dir) {
+  ScenarioFiles files;
+  if (config.scenario.network.empty()) {
+    files.net = DefaultNetworkPath();
+    if (!fs::exists(files.net))
+      throw ConfigError("the built-in network " + files.net +
+                        " is missing: build the project (tools/run or tools/test) first");
+    return files;
+  }
+  fs::path p = config.scenario.network;
+  if (p.is_relative() && !config_dir.empty()) p = fs::path(config_dir) / p;
+  if (!fs::is_regular_file(p))
+    throw ConfigError("scenario.network = '" + config.scenario.network + "': no such file (" +
+                      p.string() + ")");
+  files.net = p.string();
+  return files;
+}
+
+std::unique_ptr<persuasion::LikelihoodModel> MakeLikelihood(const LikelihoodConfig& c) {
+  if (c.type == "logistic")
+    return std::make_unique<persuasion::LogisticLikelihood>(c.s_max, c.steepness, c.midpoint);
+  return std::make_unique<persuasion::LinearLikelihood>(c.s_max);
+}
+
+PolicyRun RunPolicy(const ExperimentConfig& config, Policy policy, const ScenarioFiles& files) {
+  Run run(config, policy, files);
+  return run.Execute();
+}
+
+}  // namespace taebp

@@ -1,0 +1,112 @@
+#include "taebp/controller/intersection.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace taebp {
+
+RightOfWay DecideRightOfWay(const std::optional<Head>& a, const std::optional<Head>& b,
+                            double now, double window) {
+  RightOfWay out;
+  if (!a && !b) return out;
+  if (!a || !b) {
+    const Head& h = a ? *a : *b;
+    if (now >= h.ready + window) {
+      out.kind = RightOfWay::Kind::kRelease;
+      out.first = h.vehicle;
+    }
+    return out;
+  }
+  // Both heads present: they meet if they became ready within `window`.
+  const Head& early = (a->ready <= b->ready) ? *a : *b;
+  const Head& late = (a->ready <= b->ready) ? *b : *a;
+  if (late.ready - early.ready > window) {
+    // The early one had looked long enough before the other arrived.
+    out.kind = RightOfWay::Kind::kRelease;
+    out.first = early.vehicle;
+    return out;
+  }
+  if (a->kind != b->kind) {
+    out.kind = RightOfWay::Kind::kEncounter;
+    out.first = (a->kind == VehicleKind::kAV) ? a->vehicle : b->vehicle;
+    out.second = (a->kind == VehicleKind::kAV) ? b->vehicle : a->vehicle;
+    return out;
+  }
+  // Two of a kind: by arrival time, then approach 0 first.
+  const Head* first = a.operator->();
+  if (b->arrival < a->arrival || (b->arrival == a->arrival && b->approach < a->approach))
+    first = b.operator->();
+  out.kind = RightOfWay::Kind::kRelease;
+  out.first = first->vehicle;
+  return out;
+}
+
+double Uniform01(std::mt19937_64& rng) {
+  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+
+AvDraw DrawAv(const persuasion::CommittedScheme& scheme, double prior_go, std::mt19937_64& rng) {
+  AvDraw d;
+  const double u_intent = Uniform01(rng);
+  const double u_signal = Uniform01(rng);
+  d.intent_go = u_intent < prior_go;
+  const double p_nudge = d.intent_go ? scheme.a : scheme.b;
+  d.nudge = scheme.nudge > 0.0 && u_signal < p_nudge;
+  d.nudge_distance = d.nudge ? scheme.nudge : 0.0;
+  d.goes_first = d.intent_go && scheme.av_may_go;
+  return d;
+}
+
+HvReading ReadNudge(const persuasion::AvHvParams& params, double theta,
+                    const persuasion::LikelihoodModel& model, double observed) {
+  HvReading r;
+  r.observed = observed;
+  const double s = std::clamp(observed, 0.0, model.SMax());
+  r.posterior = persuasion::HvPosteriorGo(params, theta, model, s);
+  r.drives_if_clear = persuasion::HvDrivesIfClear(params, r.posterior);
+  return r;
+}
+
+EncounterSequence::EncounterSequence(bool av_goes, bool hv_drives_if_clear, double decided_at,
+                                     double confirm_delay)
+    : av_goes_(av_goes),
+      hv_dc_(hv_drives_if_clear),
+      decided_at_(decided_at),
+      confirm_delay_(confirm_delay) {}
+
+std::vector<EncounterSequence::Release> EncounterSequence::Update(double now, bool av_cleared,
+                                                                  bool hv_cleared) {
+  std::vector<Release> out;
+  auto release = [&](bool av, bool reckless) {
+    out.push_back({av, reckless});
+    (av ? av_released_ : hv_released_) = true;
+  };
+  if (av_goes_) {
+    if (!av_released_) release(true, false);
+    if (!hv_released_) {
+      if (!hv_dc_) release(false, true);
+      else if (av_cleared) release(false, false);
+    }
+  } else {
+    if (!hv_released_) {
+      if (!hv_dc_) release(false, true);
+      else if (now >= decided_at_ + confirm_delay_ - 1e-9) release(false, false);
+    }
+    if (!av_released_ && hv_cleared) release(true, false);
+  }
+  return out;
+}
+
+double CreepSpeed(double target, double covered, double speed, double dt, double accel,
+                  double decel, double creep_speed) {
+  const double remaining = target - covered;
+  if (remaining <= 1e-12) return 0.0;
+  const double v_accel = std::min(creep_speed, speed + accel * dt);
+  // Largest v with v*dt/2 + v^2/(2 decel) <= remaining: after this step the
+  // vehicle can still stop within the target braking at `decel`.
+  const double v_brake = decel * (-dt / 2 + std::sqrt(dt * dt / 4 + 2 * remaining / decel));
+  const double v_land = remaining / dt;
+  return std::max(0.0, std::min({v_accel, v_brake, v_land}));
+}
+
+}  // namespace taebp

@@ -1,0 +1,307 @@
+// taebp: the command-line program. Subcommands: theory, solve, run.
+#include "taebp/controller/config.h"
+#include "taebp/controller/experiment.h"
+#include "taebp/controller/report.h"
+#include "taebp/controller/sumo_adapter.h"
+#include "taebp/persuasion/av_hv.h"
+#include "taebp/persuasion/lp.h"
+#include "taebp/persuasion/outcomes.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+namespace {
+
+using nlohmann::ordered_json;
+namespace per = taebp::persuasion;
+namespace fs = std::filesystem;
+
+constexpr int kExitConfig = 2;
+constexpr int kExitSumo = 3;
+
+ordered_json Num(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  if (std::isnan(v)) return nullptr;
+  return v;
+}
+
+// ------------------------------------------------------------------ theory
+struct TheoryOptions {
+  double prior = 0.2, penalty = 3.0, trust = 0.6, s_max = 2.0;
+  std::optional<double> assumed_trust;
+  std::string likelihood = "linear";
+  double steepness = 4.0, midpoint = 1.0;
+  bool json = false;
+};
+
+int Theory(const TheoryOptions& o) {
+  per::AvHvParams params{o.prior, o.penalty};
+  params.Validate();
+  if (!(o.trust >= 0 && o.trust <= 1))
+    throw per::InvalidArgument("--trust theta = " + std::to_string(o.trust) + " is outside [0, 1]");
+  taebp::LikelihoodConfig lc{o.likelihood, o.s_max, o.steepness, o.midpoint};
+  if (o.likelihood != "linear" && o.likelihood != "logistic")
+    throw per::InvalidArgument("--likelihood '" + o.likelihood + "' is not linear or logistic");
+  const auto model = taebp::MakeLikelihood(lc);
+  const double theta_hat = o.assumed_trust.value_or(o.trust);
+  const per::TaebpDesign d = per::DesignTaebp(params, theta_hat, *model);
+  const per::PredictedOutcome predicted =
+      per::PredictOutcome(per::Policy::kTaEbp, params, o.trust, *model, theta_hat);
+  ordered_json policies;
+  for (per::Policy p : {per::Policy::kNoEbp, per::Policy::kNoTrust, per::Policy::kTaEbp,
+                        per::Policy::kFullReveal}) {
+    const per::PredictedOutcome out = per::PredictOutcome(p, params, o.trust, *model, theta_hat);
+    policies[per::ToString(p)] = {{"dc_rate", out.dc_rate},
+                                  {"collision_rate", out.collision_rate},
+                                  {"nudge_rate", out.nudge_rate}};
+  }
+  if (o.json) {
+    ordered_json j;
+    j["prior_go"] = o.prior;
+    j["collision_penalty"] = o.penalty;
+    j["trust"] = o.trust;
+    j["assumed_trust"] = theta_hat;
+    j["likelihood"] = model->Name();
+    j["s_max"] = o.s_max;
+    j["p_star"] = d.p_star;
+    j["theta_star"] = d.theta_star;
+    j["persuadable"] = d.persuadable;
+    j["s_star"] = d.s_star;
+    j["a"] = d.a;
+    j["b"] = d.b;
+    j["p_nudge"] = d.p_nudge;
+    j["dc_rate"] = predicted.dc_rate;
+    j["collision_rate"] = predicted.collision_rate;
+    j["policies"] = policies;
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << std::setprecision(10);
+  std::cout << "TA-EBP theory (" << model->Name() << " likelihood, s in [0, " << o.s_max
+            << "] m)\n"
+            << "  prior lambda = p0(Go)            " << o.prior << "\n"
+            << "  collision penalty r              " << o.penalty << "\n"
+            << "  HV trust theta                   " << o.trust << "\n"
+            << "  AV's assumed trust theta_hat     " << theta_hat << "\n"
+            << "  indifference posterior p*        " << d.p_star << "   (eq:ppp)\n"
+            << "  minimum persuadable trust theta* " << d.theta_star << "   (eq:tt / eq:theta_star)\n"
+            << "  persuadable (theta_hat >= theta*) " << (d.persuadable ? "yes" : "no: always yield")
+            << "\n"
+            << "  minimal nudge s*                 " << d.s_star << " m   (eq:s^*)\n"
+            << "  pi(s*|Go) = a                    " << d.a << "\n"
+            << "  pi(s*|Stop) = b                  " << d.b << "   (eq:b)\n"
+            << "  P(nudge) = lambda + (1-lambda) b " << d.p_nudge << "\n\n"
+            << "Predicted per AV-HV encounter, HV of true trust " << o.trust << ":\n"
+            << "  policy        DC rate       collision rate\n";
+  for (auto it = policies.begin(); it != policies.end(); ++it) {
+    std::cout << "  " << std::left << std::setw(14) << it.key() << std::setw(14)
+              << it.value()["dc_rate"].get<double>() << it.value()["collision_rate"].get<double>()
+              << "\n";
+  }
+  return 0;
+}
+
+// ------------------------------------------------------------------ solve
+int Solve(const std::string& path, bool json) {
+  const taebp::ProblemConfig pc = taebp::LoadProblemConfig(path);
+  per::Game g;
+  g.states = pc.states;
+  g.actions = pc.actions;
+  const auto n = static_cast<Eigen::Index>(pc.states.size());
+  const auto m = static_cast<Eigen::Index>(pc.actions.size());
+  auto matrix = [&](const std::vector<std::vector<double>>& rows, const char* key) {
+    if (static_cast<Eigen::Index>(rows.size()) != n)
+      throw taebp::ConfigError(path + ": key '" + key + "' has " + std::to_string(rows.size()) +
+                               " rows but there are " + std::to_string(n) + " states");
+    Eigen::MatrixXd mat(n, m);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (static_cast<Eigen::Index>(rows[i].size()) != m)
+        throw taebp::ConfigError(path + ": key '" + key + "' row " + std::to_string(i) + " has " +
+                                 std::to_string(rows[i].size()) + " entries but there are " +
+                                 std::to_string(m) + " actions");
+      for (Eigen::Index a = 0; a < m; ++a) mat(i, a) = rows[i][a];
+    }
+    return mat;
+  };
+  if (static_cast<Eigen::Index>(pc.prior.size()) != n)
+    throw taebp::ConfigError(path + ": key 'prior' has " + std::to_string(pc.prior.size()) +
+                             " entries but there are " + std::to_string(n) + " states");
+  g.prior = Eigen::Map<const Eigen::VectorXd>(pc.prior.data(), n);
+  g.receiver_utility = matrix(pc.receiver_utility, "receiver_utility");
+  g.sender_utility = matrix(pc.sender_utility, "sender_utility");
+  std::string why;
+  if (!g.IsValid(&why)) throw taebp::ConfigError(path + ": " + why);
+  if (!(pc.trust >= 0 && pc.trust <= 1))
+    throw taebp::ConfigError(path + ": key 'trust' = " + std::to_string(pc.trust) +
+                             " is outside [0, 1]");
+  const per::LpResult r = per::SolveTrustAwarePersuasion(g, pc.trust);
+  if (json) {
+    ordered_json j;
+    j["status"] = per::ToString(r.status);
+    j["sender_value"] = r.sender_value;
+    j["states"] = g.states;
+    j["actions"] = g.actions;
+    j["trust"] = pc.trust;
+    ordered_json scheme = ordered_json::array(), post = ordered_json::array();
+    for (Eigen::Index i = 0; i < r.scheme.rows(); ++i) {
+      ordered_json row = ordered_json::array();
+      for (Eigen::Index a = 0; a < r.scheme.cols(); ++a) row.push_back(r.scheme(i, a));
+      scheme.push_back(row);
+    }
+    // posteriors: one row per recommended action, one entry per state.
+    for (Eigen::Index a = 0; a < r.posteriors.cols(); ++a) {
+      ordered_json row = ordered_json::array();
+      for (Eigen::Index i = 0; i < r.posteriors.rows(); ++i) row.push_back(Num(r.posteriors(i, a)));
+      post.push_back(row);
+    }
+    j["scheme"] = scheme;
+    j["signal_probability"] = std::vector<double>(r.signal_probability.data(),
+                                                  r.signal_probability.data() + r.signal_probability.size());
+    j["posteriors"] = post;
+    if (!r.message.empty()) j["message"] = r.message;
+    std::cout << j.dump(2) << "\n";
+    return r.status == per::LpResult::Status::kOptimal ? 0 : 1;
+  }
+  std::cout << std::setprecision(8) << "status: " << per::ToString(r.status) << "\n";
+  if (r.status != per::LpResult::Status::kOptimal) {
+    std::cout << r.message << "\n";
+    return 1;
+  }
+  std::cout << "trust theta: " << pc.trust << "\nsender value: " << r.sender_value
+            << "\n\nscheme pi(recommend action | state):\n" << std::left << std::setw(16) << "";
+  for (const auto& a : g.actions) std::cout << std::setw(14) << a;
+  std::cout << "\n";
+  for (Eigen::Index i = 0; i < n; ++i) {
+    std::cout << std::setw(16) << g.states[i];
+    for (Eigen::Index a = 0; a < m; ++a) std::cout << std::setw(14) << r.scheme(i, a);
+    std::cout << "\n";
+  }
+  std::cout << "\ntrust-weighted posterior after each recommendation:\n" << std::setw(16) << "";
+  for (const auto& s : g.states) std::cout << std::setw(14) << s;
+  std::cout << std::setw(14) << "P(signal)" << "\n";
+  for (Eigen::Index a = 0; a < m; ++a) {
+    std::cout << std::setw(16) << g.actions[a];
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double v = r.posteriors(i, a);
+      if (std::isnan(v)) std::cout << std::setw(14) << "-";
+      else std::cout << std::setw(14) << v;
+    }
+    std::cout << std::setw(14) << r.signal_probability(a) << "\n";
+  }
+  return 0;
+}
+
+// ------------------------------------------------------------------ run
+int RunExperiment(const std::string& config_path, const std::vector<std::string>& overrides,
+                  std::string out_dir, bool quiet) {
+  const taebp::ExperimentConfig config = taebp::LoadExperimentConfig(config_path, overrides);
+  const std::string config_dir = fs::path(config_path).parent_path().string();
+  const taebp::ScenarioFiles files = taebp::ResolveScenarioFiles(config, config_dir);
+  if (out_dir.empty()) out_dir = "results/" + fs::path(config_path).stem().string();
+
+  std::vector<taebp::PolicyRun> runs;
+  double wall_total = 0;
+  for (const std::string& name : config.policies) {
+    const auto t0 = std::chrono::steady_clock::now();
+    runs.push_back(taebp::RunPolicy(config, per::ParsePolicy(name), files));
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    wall_total += wall;
+    if (!quiet)
+      std::fprintf(stderr, "taebp: %-12s %.0f simulated s in %.2f s wall, %zu encounters\n",
+                   name.c_str(), runs.back().simulated_seconds, wall,
+                   runs.back().encounters.size());
+  }
+  taebp::Provenance prov;
+  prov.config_path = config_path;
+  prov.config_json = taebp::ToJson(config);
+  prov.seed = config.scenario.seed;
+  prov.git_revision = taebp::BuildGitRevision();
+  prov.sumo_version = runs.empty() ? "" : runs.front().sumo_version;
+  prov.taebp_version = taebp::TaebpVersion();
+  ordered_json timing;
+  timing["wall_seconds_total"] = wall_total;
+  taebp::WriteFilesAtomically(out_dir, {{"summary.json", taebp::SummaryJson(runs, prov)},
+                                        {"encounters.csv", taebp::EncountersCsv(runs, prov)},
+                                        {"config.yaml", taebp::ToYaml(config)},
+                                        {"timing.json", timing.dump(2) + "\n"}});
+  taebp::PrintTable(std::cout, runs);
+  if (!quiet) std::fprintf(stderr, "taebp: results in %s\n", out_dir.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"taebp: Trust-Aware Embodied Bayesian Persuasion in SUMO"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", taebp::TaebpVersion() + " (git " + taebp::BuildGitRevision() + ")");
+
+  TheoryOptions th;
+  CLI::App* theory = app.add_subcommand(
+      "theory", "The TA-EBP design and predicted outcomes for the AV-HV game (paper Sec. IV)");
+  theory->add_option("--prior", th.prior, "prior probability lambda = p0(Go) that the AV goes, in (0, 1)")
+      ->capture_default_str();
+  theory->add_option("--penalty", th.penalty, "collision penalty r > 0 (HV utility -r for DR when the AV goes)")
+      ->capture_default_str();
+  theory->add_option("--trust", th.trust, "the HV's true trust theta in [0, 1]")->capture_default_str();
+  theory->add_option("--assumed-trust", th.assumed_trust,
+                     "the trust theta_hat the AV designs for (default: --trust; no_trust uses 1)");
+  theory->add_option("--s-max", th.s_max, "largest nudge s_max (m) of the likelihood model")
+      ->capture_default_str();
+  theory->add_option("--likelihood", th.likelihood, "HV likelihood model: linear or logistic")
+      ->capture_default_str();
+  theory->add_option("--steepness", th.steepness, "logistic model: steepness k > 0")->capture_default_str();
+  theory->add_option("--midpoint", th.midpoint, "logistic model: midpoint m in [0, s_max]")->capture_default_str();
+  theory->add_flag("--json", th.json, "print one JSON object instead of a table");
+
+  std::string problem;
+  bool solve_json = false;
+  CLI::App* solve = app.add_subcommand(
+      "solve", "Optimal trust-aware signaling scheme for a finite game (linear program, GLPK)");
+  solve->add_option("PROBLEM", problem,
+                    "YAML file with states, actions, prior, receiver_utility, sender_utility, trust")
+      ->required();
+  solve->add_flag("--json", solve_json, "print one JSON object (status, sender_value, scheme, posteriors)");
+
+  std::string config_path, out_dir;
+  std::vector<std::string> overrides;
+  bool quiet = false;
+  CLI::App* run = app.add_subcommand(
+      "run", "Run every listed policy of an experiment config in SUMO and write the results");
+  run->add_option("CONFIG", config_path, "experiment YAML (e.g. configs/paper.yaml)")->required();
+  run->add_option("--set", overrides,
+                  "override a config key, KEY=VALUE with VALUE read as YAML (repeatable), "
+                  "e.g. --set scenario.duration=600 --set policies=[ta_ebp]");
+  run->add_option("--out", out_dir, "output directory (default: results/<config name>)");
+  run->add_flag("--quiet", quiet, "no progress on stderr");
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*theory) return Theory(th);
+    if (*solve) return Solve(problem, solve_json);
+    if (*run) return RunExperiment(config_path, overrides, out_dir, quiet);
+  } catch (const taebp::ConfigError& e) {
+    std::cerr << "taebp: config error: " << e.what() << "\n";
+    return kExitConfig;
+  } catch (const per::InvalidArgument& e) {
+    std::cerr << "taebp: invalid argument: " << e.what() << "\n";
+    return kExitConfig;
+  } catch (const taebp::SumoError& e) {
+    std::cerr << "taebp: " << e.what() << "\n";
+    return kExitSumo;
+  } catch (const std::exception& e) {
+    std::cerr << "taebp: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
