@@ -41,6 +41,18 @@ bool HvDrivesIfClear(const AvHvParams& params, double p_go);
 // eq:s^*). Only meaningful for theta >= theta*: +infinity at theta = theta*.
 double RequiredRatio(const AvHvParams& params, double theta);
 
+// True if the model's strongest nudge s_max persuades an HV with trust theta:
+// HvDrivesIfClear(p_theta(Go | s_max)). Equivalent to theta >= theta*_model.
+bool AvHvPersuadable(const AvHvParams& params, double theta, const LikelihoodModel& model);
+
+// Theorem 1 for the nudges `model` can produce, s in [0, s_max]. eq:pp is monotone
+// in s, so this is MinPersuadableTrust on the two-column signal set
+// {pi(.|0), pi(.|s_max)}: eq:tt when L(s_max) = +infinity (linear model), and
+// (p* - lambda) / (p_FT(Go|s_max) - lambda) for a bounded L (logistic model).
+// For lambda >= p* it returns theta* = 0, persuadable, target DC (no persuasion
+// needed), like AvHvThetaStar.
+TrustThreshold AvHvModelTrustThreshold(const AvHvParams& params, const LikelihoodModel& model);
+
 // Theorem 2 (eq:s^*): the minimal nudge that makes p_theta(Go|s) >= p*.
 // 0 when the required ratio is <= L(0) (no nudge needed). Throws
 // InvalidArgument when theta < theta* or the ratio is unreachable by `model`.

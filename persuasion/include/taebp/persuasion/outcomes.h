@@ -28,17 +28,18 @@ struct CommittedScheme {
   double a = 0.0;          // P(nudge | Go)
   double b = 0.0;          // P(nudge | Stop)
 };
-// theta_hat: the AV's assumed trust (ignored for no_ebp and full_reveal;
-// no_trust forces 1). For no_ebp, av_may_go is true only if the HV would drive
-// if clear after seeing no nudge.
+// theta_hat: the AV's assumed trust (ignored for full_reveal; no_trust forces 1).
+// For no_ebp, av_may_go is true only if the HV would drive if clear after seeing
+// no nudge (s = 0), as predicted with trust theta_hat.
 CommittedScheme CommitScheme(Policy policy, const AvHvParams& params, double theta_hat,
                              const LikelihoodModel& model);
 
 struct PredictedOutcome {
   double dc_rate = 0.0;         // P(HV drives if clear) per encounter
   double collision_rate = 0.0;  // P(AV goes and HV drives recklessly)
-  double nudge_rate = 0.0;      // P(AV nudges)
-  double av_first_rate = 0.0;   // P(AV crosses before the HV)
+  double nudge_rate = 0.0;      // P(AV nudges); 0 when the committed nudge is s = 0
+  double av_first_rate = 0.0;   // P(AV crosses before the HV): AV goes and HV drives
+                                // if clear (collisions are not counted)
 };
 PredictedOutcome PredictOutcome(const CommittedScheme& scheme, const AvHvParams& params,
                                 double theta_true, const LikelihoodModel& hv_model);

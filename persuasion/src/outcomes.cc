@@ -1,0 +1,123 @@
+// Per-encounter outcome prediction for the policies of Section V-B (plus full
+// revelation), the theory behind the paper's Table "sim_results".
+#include "taebp/persuasion/outcomes.h"
+
+#include "internal.h"
+
+#include <string>
+
+namespace taebp::persuasion {
+
+const char* ToString(Policy policy) {
+  switch (policy) {
+    case Policy::kNoEbp:
+      return "no_ebp";
+    case Policy::kNoTrust:
+      return "no_trust";
+    case Policy::kTaEbp:
+      return "ta_ebp";
+    case Policy::kFullReveal:
+      return "full_reveal";
+  }
+  return "unknown";
+}
+
+Policy ParsePolicy(const std::string& name) {
+  for (Policy policy : {Policy::kNoEbp, Policy::kNoTrust, Policy::kTaEbp, Policy::kFullReveal}) {
+    if (name == ToString(policy)) return policy;
+  }
+  throw InvalidArgument("policy '" + name +
+                        "' is unknown (expected no_ebp, no_trust, ta_ebp or full_reveal)");
+}
+
+namespace {
+
+// A TA-EBP design as a commitment; the fallback (not persuadable) always yields.
+CommittedScheme FromDesign(const TaebpDesign& design) {
+  CommittedScheme scheme;
+  if (!design.persuadable) return scheme;
+  scheme.av_may_go = true;
+  scheme.nudge = design.s_star;
+  scheme.a = design.a;
+  scheme.b = design.b;
+  return scheme;
+}
+
+}  // namespace
+
+CommittedScheme CommitScheme(Policy policy, const AvHvParams& params, double theta_hat,
+                             const LikelihoodModel& model) {
+  params.Validate();
+  switch (policy) {
+    case Policy::kNoEbp: {
+      // Never nudges; the AV predicts the HV's reaction to "no nudge" (s = 0)
+      // with its assumed trust and goes only if that reaction is DC.
+      CommittedScheme scheme;
+      scheme.av_may_go = HvDrivesIfClear(params, HvPosteriorGo(params, theta_hat, model, 0.0));
+      return scheme;
+    }
+    case Policy::kNoTrust:
+      // Classic Bayesian persuasion: assumes a fully trusting HV.
+      return FromDesign(DesignTaebp(params, 1.0, model));
+    case Policy::kTaEbp:
+      return FromDesign(DesignTaebp(params, theta_hat, model));
+    case Policy::kFullReveal: {
+      // Nudge s_max iff Go: pi(s_max|Go) = 1, pi(s_max|Stop) = 0.
+      CommittedScheme scheme;
+      scheme.av_may_go = true;
+      scheme.nudge = model.SMax();
+      scheme.a = 1.0;
+      scheme.b = 0.0;
+      return scheme;
+    }
+  }
+  throw InvalidArgument("policy = " + std::to_string(static_cast<int>(policy)) + " is unknown");
+}
+
+// The HV (true trust theta_true, intuitive model hv_model) sees either the nudge
+// s (probability a under Go, b under Stop) or no nudge (s = 0) and drives if
+// clear iff its eq:pp posterior reaches p* (HvDrivesIfClear). The AV goes iff its
+// intent is Go and the scheme lets it go; a collision is the AV going while the
+// HV drives recklessly.
+PredictedOutcome PredictOutcome(const CommittedScheme& scheme, const AvHvParams& params,
+                                double theta_true, const LikelihoodModel& hv_model) {
+  params.Validate();
+  internal::CheckTrust(theta_true, "trust theta_true");
+  auto check_probability = [](double x, const char* name) {
+    if (!(x >= 0.0 && x <= 1.0)) {
+      throw InvalidArgument(std::string(name) + " = " + internal::Num(x) + " is outside [0, 1]");
+    }
+  };
+  check_probability(scheme.a, "scheme a (P(nudge | Go))");
+  check_probability(scheme.b, "scheme b (P(nudge | Stop))");
+  const double lambda = params.prior_go;
+  const double dc_nudge =
+      HvDrivesIfClear(params, HvPosteriorGo(params, theta_true, hv_model, scheme.nudge)) ? 1.0
+                                                                                         : 0.0;
+  const double dc_still =
+      HvDrivesIfClear(params, HvPosteriorGo(params, theta_true, hv_model, 0.0)) ? 1.0 : 0.0;
+
+  // P(DC | Go) and P(DC | Stop).
+  const double dc_go = scheme.a * dc_nudge + (1.0 - scheme.a) * dc_still;
+  const double dc_stop = scheme.b * dc_nudge + (1.0 - scheme.b) * dc_still;
+
+  PredictedOutcome outcome;
+  outcome.dc_rate = lambda * dc_go + (1.0 - lambda) * dc_stop;
+  // A "nudge" of 0 is standing still: it is not counted as nudging.
+  outcome.nudge_rate =
+      scheme.nudge > 0.0 ? lambda * scheme.a + (1.0 - lambda) * scheme.b : 0.0;
+  if (scheme.av_may_go) {
+    outcome.collision_rate = lambda * (1.0 - dc_go);  // AV goes, HV drives recklessly
+    outcome.av_first_rate = lambda * dc_go;           // AV goes, HV waits for it
+  }
+  return outcome;
+}
+
+PredictedOutcome PredictOutcome(Policy policy, const AvHvParams& params, double theta_true,
+                                const LikelihoodModel& model, std::optional<double> theta_hat) {
+  internal::CheckTrust(theta_true, "trust theta_true");
+  const double assumed = policy == Policy::kNoTrust ? 1.0 : theta_hat.value_or(theta_true);
+  return PredictOutcome(CommitScheme(policy, params, assumed, model), params, theta_true, model);
+}
+
+}  // namespace taebp::persuasion
