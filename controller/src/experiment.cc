@@ -81,6 +81,20 @@ class Run {
     out_.theory = persuasion::PredictOutcome(out_.scheme, params_, theta, *model_);
   }
 
+  double ExecuteBare() {
+    Start();
+    try {
+      const long steps = std::lround(sc_.duration / sc_.step_length);
+      for (long k = 0; k < steps; ++k) sumo::Step();
+    } catch (...) {
+      sumo::Close();
+      throw;
+    }
+    const double t = sumo::Time();
+    sumo::Close();
+    return t;
+  }
+
   PolicyRun Execute() {
     Start();
     try {
@@ -412,6 +426,11 @@ std::unique_ptr<persuasion::LikelihoodModel> MakeLikelihood(const LikelihoodConf
   if (c.type == "logistic")
     return std::make_unique<persuasion::LogisticLikelihood>(c.s_max, c.steepness, c.midpoint);
   return std::make_unique<persuasion::LinearLikelihood>(c.s_max);
+}
+
+double RunBareSumo(const ExperimentConfig& config, const ScenarioFiles& files) {
+  Run run(config, Policy::kNoEbp, files);
+  return run.ExecuteBare();
 }
 
 PolicyRun RunPolicy(const ExperimentConfig& config, Policy policy, const ScenarioFiles& files) {

@@ -62,6 +62,11 @@ ScenarioFiles ResolveScenarioFiles(const ExperimentConfig& config, const std::st
 PolicyRun RunPolicy(const ExperimentConfig& config, persuasion::Policy policy,
                     const ScenarioFiles& files);
 
+// The speed floor: the same network, vehicles, types and step, with SUMO's own
+// junction logic and no controller (only Simulation::step in the loop). For
+// tools/bench. Returns the simulated seconds.
+double RunBareSumo(const ExperimentConfig& config, const ScenarioFiles& files);
+
 // The HV likelihood model named by the config.
 std::unique_ptr<persuasion::LikelihoodModel> MakeLikelihood(const LikelihoodConfig& config);
 
