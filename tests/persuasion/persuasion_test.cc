@@ -263,6 +263,22 @@ TEST(MinPersuadableTrust, UnrestrictedThreeActionGameByHand) {
   EXPECT_NEAR(t.theta_star, 0.2, 1e-15);
 }
 
+TEST(MinPersuadableTrust, MinimumDoesNotDependOnActionOrder) {
+  // Same game with the last two actions swapped: the cheapest target is now index 1.
+  Game g = ThreeActionGame();
+  g.actions = {"a0", "a2", "a1"};
+  g.receiver_utility.col(1).swap(g.receiver_utility.col(2));
+  g.sender_utility.col(1).swap(g.sender_utility.col(2));
+  const TrustThreshold t = MinPersuadableTrust(g);
+  EXPECT_EQ(t.target_action, 1);
+  EXPECT_NEAR(t.theta_star, 0.2, 1e-15);
+  Eigen::Matrix2d signals;
+  signals << 0.8, 0.2,  //
+      0.2, 0.8;
+  EXPECT_EQ(MinPersuadableTrust(g, signals).target_action, 1);
+  EXPECT_NEAR(MinPersuadableTrust(g, signals).theta_star, 7.0 / 15.0, 1e-14);
+}
+
 TEST(MinPersuadableTrust, ThresholdSeparatesPersuadableFromNot) {
   // With a fully revealing w1 signal, the receiver leaves a0 exactly from theta* on.
   const Game g = ThreeActionGame();
@@ -283,6 +299,11 @@ TEST(MinPersuadableTrust, ZeroWhenAnotherActionIsAlreadyTiedAtThePrior) {
   EXPECT_EQ(t.target_action, 1);
   EXPECT_TRUE(t.persuadable);
   EXPECT_EQ(t.theta_star, 0.0);
+  // A round-off-sized gap (2e-12 < kTieTolerance) still counts as a tie: theta* = 0,
+  // not 2e-12.
+  g.prior = Eigen::Vector2d(0.5 + 1e-12, 0.5 - 1e-12);
+  EXPECT_EQ(MinPersuadableTrust(g).theta_star, 0.0);
+  EXPECT_EQ(MinPersuadableTrust(g).target_action, 1);
 }
 
 TEST(MinPersuadableTrust, DominatedActionIsNeverPersuadable) {

@@ -20,8 +20,10 @@ class LikelihoodModel {
   double Ratio(double s) const;
   // L^{-1}(ratio): the smallest s in [0, s_max] with L(s) >= ratio.
   //   ratio <= L(0) (in particular ratio <= 0) -> 0 (no nudge needed);
-  //   ratio = +infinity -> s_max;
-  //   ratio > L(s_max) -> throws InvalidArgument (unreachable).
+  //   ratio = +infinity -> s_max when L(s_max) = +infinity;
+  //   ratio > L(s_max) -> throws InvalidArgument (unreachable; this includes
+  //   ratio = +infinity for a bounded L such as the logistic model);
+  //   ratio = NaN -> throws InvalidArgument.
   virtual double InverseRatio(double ratio) const = 0;
   // Largest reachable ratio L(s_max) (may be +infinity).
   double MaxRatio() const { return Ratio(s_max_); }
