@@ -1,6 +1,10 @@
 #include "taebp/controller/config.h"
 
+#include <boost/math/special_functions/beta.hpp>
+
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <set>
 #include <sstream>
 
@@ -44,6 +48,86 @@ class Checker {
 
 }  // namespace
 
+double TrustSpec::Mean() const {
+  if (dist == "uniform") return 0.5 * (low + high);
+  if (dist == "beta") return alpha / (alpha + beta);
+  if (dist == "discrete") {
+    double w = 0, m = 0;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const double wi = weights.empty() ? 1.0 : weights[i];
+      w += wi;
+      m += wi * values[i];
+    }
+    return w > 0 ? m / w : 0.0;
+  }
+  return value;
+}
+
+double TrustSpec::Quantile(double q) const {
+  q = std::clamp(q, 0.0, 1.0);
+  if (dist == "uniform") return low + q * (high - low);
+  if (dist == "beta") {
+    if (q <= 0) return 0.0;
+    if (q >= 1) return 1.0;
+    return boost::math::ibeta_inv(alpha, beta, q);
+  }
+  if (dist == "discrete") {
+    double total = 0;
+    for (std::size_t i = 0; i < values.size(); ++i) total += weights.empty() ? 1.0 : weights[i];
+    double acc = 0;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      acc += (weights.empty() ? 1.0 : weights[i]) / total;
+      if (q < acc) return values[i];
+    }
+    return values.empty() ? 0.0 : values.back();
+  }
+  return value;
+}
+
+bool TrustSpec::IsValid(const std::string& key, std::string* why) const {
+  Checker c(why);
+  if (dist == "fixed") {
+    c.Closed01(key.c_str(), value);
+  } else if (dist == "uniform") {
+    c.Closed01((key + ".low").c_str(), low);
+    c.Closed01((key + ".high").c_str(), high);
+    if (c.ok() && low > high)
+      c.Fail(key + ".low = " + Num(low) + " is above " + key + ".high = " + Num(high));
+  } else if (dist == "beta") {
+    c.Positive((key + ".alpha").c_str(), alpha);
+    c.Positive((key + ".beta").c_str(), beta);
+  } else if (dist == "discrete") {
+    if (values.empty()) c.Fail(key + ".values is empty");
+    for (double v : values) c.Closed01((key + ".values").c_str(), v);
+    if (!weights.empty() && weights.size() != values.size())
+      c.Fail(key + ".weights has " + std::to_string(weights.size()) + " entries but " + key +
+             ".values has " + std::to_string(values.size()));
+    double total = 0;
+    for (double w : weights) {
+      c.NonNegative((key + ".weights").c_str(), w);
+      total += w;
+    }
+    if (c.ok() && !weights.empty() && total <= 0) c.Fail(key + ".weights sum to 0");
+  } else {
+    c.Fail(key + ".dist = '" + dist + "' is not one of: uniform, beta, discrete");
+  }
+  return c.ok();
+}
+
+std::string TrustSpec::ToString() const {
+  if (dist == "uniform") return "uniform(" + Num(low) + "," + Num(high) + ")";
+  if (dist == "beta") return "beta(" + Num(alpha) + "," + Num(beta) + ")";
+  if (dist == "discrete") {
+    std::string s = "discrete(";
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      s += (i ? "," : "") + Num(values[i]);
+      if (!weights.empty()) s += ":" + Num(weights[i]);
+    }
+    return s + ")";
+  }
+  return Num(value);
+}
+
 bool ExperimentConfig::IsValid(std::string* why) const {
   Checker c(why);
   const ScenarioConfig& s = scenario;
@@ -72,8 +156,17 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   const ModelConfig& m = model;
   c.Open01("model.prior_go", m.prior_go);
   c.Positive("model.collision_penalty", m.collision_penalty);
-  c.Closed01("model.trust", m.trust);
+  {
+    std::string why_trust;
+    if (!m.trust.IsValid("model.trust", &why_trust)) c.Fail(why_trust);
+  }
   if (m.assumed_trust) c.Closed01("model.assumed_trust", *m.assumed_trust);
+  if (!m.trust_knowledge.empty() && m.trust_knowledge != "exact" &&
+      m.trust_knowledge != "population_mean" && m.trust_knowledge != "assumed")
+    c.Fail("model.trust_knowledge = '" + m.trust_knowledge +
+           "' is not one of: exact, population_mean, assumed");
+  if (m.Knowledge() == "assumed" && !m.assumed_trust)
+    c.Fail("model.trust_knowledge = 'assumed' needs model.assumed_trust");
   const LikelihoodConfig& l = m.likelihood;
   if (l.type != "linear" && l.type != "logistic")
     c.Fail("model.likelihood.type = '" + l.type + "' is not one of: linear, logistic");
@@ -92,6 +185,16 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     if (p != "no_ebp" && p != "no_trust" && p != "ta_ebp" && p != "full_reveal")
       c.Fail("policies: '" + p + "' is not one of no_ebp, no_trust, ta_ebp, full_reveal");
     if (!seen.insert(p).second) c.Fail("policies: '" + p + "' is listed twice");
+  }
+  if (sweep) {
+    if (sweep->replicates < 1)
+      c.Fail("sweep.replicates = " + std::to_string(sweep->replicates) + " must be >= 1");
+    for (const auto& [key, values] : sweep->grid) {
+      if (key.empty()) c.Fail("sweep.grid has an empty key");
+      if (key == "sweep" || key.rfind("sweep.", 0) == 0)
+        c.Fail("sweep.grid key '" + key + "' cannot sweep the sweep section");
+      if (values.empty()) c.Fail("sweep.grid." + key + " has no values");
+    }
   }
   return c.ok();
 }

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -149,6 +150,73 @@ class YamlReader {
     ReadScalarCheck(node, key, "a string");
     *value = node.Scalar();
   }
+  void Read(const YAML::Node& node, const std::string& key, TrustSpec* value) {
+    if (node.IsScalar()) {
+      double v = 0;
+      Read(node, key, &v);
+      *value = TrustSpec::Fixed(v);
+      return;
+    }
+    if (!node.IsMap())
+      Fail(key, node, "key '" + key + "' expects a number or a distribution map, got " + Show(node));
+    TrustSpec t;
+    const YAML::Node dist = node["dist"];
+    if (!dist.IsDefined())
+      Fail(key, node, "key '" + key + ".dist' is missing (uniform, beta or discrete)");
+    Read(dist, key + ".dist", &t.dist);
+    std::vector<std::string> allowed;
+    if (t.dist == "uniform") allowed = {"low", "high"};
+    else if (t.dist == "beta") allowed = {"alpha", "beta"};
+    else if (t.dist == "discrete") allowed = {"values", "weights"};
+    else Fail(key + ".dist", dist, "key '" + key + ".dist' = " + Show(dist) +
+                                       " is not one of: uniform, beta, discrete");
+    for (const auto& kv : node) {
+      const std::string name = kv.first.as<std::string>();
+      if (name == "dist") continue;
+      if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
+        std::string known;
+        for (const auto& a : allowed) known += (known.empty() ? "" : ", ") + a;
+        Fail(key + "." + name, kv.first, "unknown key '" + key + "." + name + "' for dist " +
+                                             t.dist + " (known keys: dist, " + known + ")");
+      }
+    }
+    auto need = [&](const char* name) {
+      const YAML::Node n = node[name];
+      if (!n.IsDefined())
+        Fail(key, node, "key '" + key + "." + name + "' is missing for dist " + t.dist);
+      return n;
+    };
+    if (t.dist == "uniform") {
+      Read(need("low"), key + ".low", &t.low);
+      Read(need("high"), key + ".high", &t.high);
+    } else if (t.dist == "beta") {
+      Read(need("alpha"), key + ".alpha", &t.alpha);
+      Read(need("beta"), key + ".beta", &t.beta);
+    } else {
+      Read(need("values"), key + ".values", &t.values);
+      if (node["weights"].IsDefined()) Read(node["weights"], key + ".weights", &t.weights);
+    }
+    *value = t;
+  }
+  void Read(const YAML::Node& node, const std::string& key,
+            std::vector<std::pair<std::string, std::vector<std::string>>>* value) {
+    if (!node.IsMap())
+      Fail(key, node, "key '" + key + "' expects a map of KEY: [values...], got " + Show(node));
+    value->clear();
+    for (const auto& kv : node) {
+      const std::string name = kv.first.as<std::string>();
+      const std::string sub = key + "." + name;
+      if (!kv.second.IsSequence())
+        Fail(sub, kv.second, "key '" + sub + "' expects a list of values, got " + Show(kv.second));
+      std::vector<std::string> values;
+      for (const auto& v : kv.second) {
+        YAML::Emitter e;
+        e << YAML::Flow << v;
+        values.push_back(e.c_str());
+      }
+      value->emplace_back(name, std::move(values));
+    }
+  }
   template <typename T>
   void Read(const YAML::Node& node, const std::string& key, std::optional<T>* value) {
     if (node.IsNull()) {
@@ -188,6 +256,30 @@ class YamlReader {
 };
 
 // Writes a struct through the same schema into nlohmann::ordered_json.
+nlohmann::ordered_json YamlToJson(const YAML::Node& node) {
+  if (node.IsMap()) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::object();
+    for (const auto& kv : node) j[kv.first.as<std::string>()] = YamlToJson(kv.second);
+    return j;
+  }
+  if (node.IsSequence()) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::array();
+    for (const auto& v : node) j.push_back(YamlToJson(v));
+    return j;
+  }
+  if (!node.IsDefined() || node.IsNull()) return nullptr;
+  const std::string& s = node.Scalar();
+  long long i = 0;
+  double d = 0;
+  bool b = false;
+  if (node.Tag() != "!" && YAML::convert<long long>::decode(node, i) &&
+      s.find_first_of(".eE") == std::string::npos)
+    return i;
+  if (node.Tag() != "!" && YAML::convert<double>::decode(node, d)) return d;
+  if (node.Tag() != "!" && YAML::convert<bool>::decode(node, b)) return b;
+  return s;
+}
+
 class JsonWriter {
  public:
   explicit JsonWriter(nlohmann::ordered_json* out) : out_(out) {}
@@ -197,6 +289,33 @@ class JsonWriter {
   }
 
  private:
+  static void Write(nlohmann::ordered_json* j, const TrustSpec& t) {
+    if (t.IsFixed()) {
+      *j = t.value;
+      return;
+    }
+    *j = nlohmann::ordered_json::object();
+    (*j)["dist"] = t.dist;
+    if (t.dist == "uniform") {
+      (*j)["low"] = t.low;
+      (*j)["high"] = t.high;
+    } else if (t.dist == "beta") {
+      (*j)["alpha"] = t.alpha;
+      (*j)["beta"] = t.beta;
+    } else {
+      (*j)["values"] = t.values;
+      if (!t.weights.empty()) (*j)["weights"] = t.weights;
+    }
+  }
+  static void Write(nlohmann::ordered_json* j,
+                    const std::vector<std::pair<std::string, std::vector<std::string>>>& grid) {
+    *j = nlohmann::ordered_json::object();
+    for (const auto& [key, values] : grid) {
+      nlohmann::ordered_json arr = nlohmann::ordered_json::array();
+      for (const std::string& v : values) arr.push_back(YamlToJson(YAML::Load(v)));
+      (*j)[key] = arr;
+    }
+  }
   template <typename T>
   static void Write(nlohmann::ordered_json* j, const T& v) {
     if constexpr (IsOptional<T>::value) {

@@ -46,6 +46,8 @@ struct Veh {
   double hold_odometer = 0;
   double trust = 0;  // HV's true theta
   bool speed_controlled = false;  // setSpeed active (nudge)
+  persuasion::CommittedScheme scheme;   // HV only: the AV's design for this HV
+  persuasion::PredictedOutcome theory;  // HV only: predicted outcome of that design
 };
 
 struct ActiveEncounter {
@@ -74,11 +76,13 @@ class Run {
         rng_(config.scenario.seed) {
     params_.prior_go = config.model.prior_go;
     params_.collision_penalty = config.model.collision_penalty;
-    const double theta = config.model.trust;
-    const double theta_hat = config.model.assumed_trust.value_or(theta);
+    const ModelConfig& m = config.model;
+    // The design reported in summary.json: for the population's mean trust
+    // (per-HV designs under `exact` knowledge are in the encounter rows).
+    const double population_hat = DesignTrust(m, policy, m.trust.Mean());
     out_.policy = persuasion::ToString(policy);
-    out_.scheme = persuasion::CommitScheme(policy, params_, theta_hat, *model_);
-    out_.theory = persuasion::PredictOutcome(out_.scheme, params_, theta, *model_);
+    out_.scheme = persuasion::CommitScheme(policy, params_, population_hat, *model_);
+    out_.theory = ExpectedOutcome(m, policy);
   }
 
   double ExecuteBare() {
@@ -126,6 +130,7 @@ class Run {
     sumo::AddVehicleType({"HV", sc_.cruise_speed, sc_.min_gap, sc_.vehicle_length,
                           sc_.vehicle_width, sc_.accel, sc_.decel, 255, 0, 0});
     PlaceVehicles();
+    DrawTrust();
   }
 
   void ReadNetwork() {
@@ -198,9 +203,25 @@ class Run {
       v.id = (is_av ? "av" : "hv") + std::to_string(is_av ? avs_placed : k - avs_placed);
       if (is_av) ++avs_placed;
       v.approach = (edge == 0 || edge == 1) ? 0 : 1;
-      v.trust = cfg_.model.trust;
       sumo::AddVehicle(v.id, "lap" + std::to_string(edge), is_av ? "AV" : "HV", on_edge);
       vehs_.push_back(v);
+    }
+  }
+
+  // Each HV draws its trust (own random stream, so the encounter draws do not
+  // depend on it); each AV-HV pair's scheme follows the trust knowledge.
+  void DrawTrust() {
+    std::seed_seq seq{static_cast<std::uint32_t>(sc_.seed & 0xffffffffu),
+                      static_cast<std::uint32_t>(sc_.seed >> 32), 0x74727573u};
+    std::mt19937_64 trust_rng(seq);
+    for (Veh& v : vehs_) {
+      if (v.kind != VehicleKind::kHV) continue;
+      v.trust = cfg_.model.trust.IsFixed() ? cfg_.model.trust.value
+                                           : cfg_.model.trust.Draw(Uniform01(trust_rng));
+      out_.hv_trust.push_back(v.trust);
+      const double hat = DesignTrust(cfg_.model, policy_, v.trust);
+      v.scheme = persuasion::CommitScheme(policy_, params_, hat, *model_);
+      v.theory = persuasion::PredictOutcome(v.scheme, params_, v.trust, *model_);
     }
   }
 
@@ -318,7 +339,9 @@ class Run {
     r.av = vehs_[av].id;
     r.hv = vehs_[hv].id;
     r.hv_trust = vehs_[hv].trust;
-    const AvDraw draw = DrawAv(out_.scheme, params_.prior_go, rng_);
+    r.theory_dc = vehs_[hv].theory.dc_rate;
+    r.theory_collision = vehs_[hv].theory.collision_rate;
+    const AvDraw draw = DrawAv(vehs_[hv].scheme, params_.prior_go, rng_);
     r.intent_go = draw.intent_go;
     r.commanded = draw.nudge_distance;
     r.av_first = draw.goes_first;
@@ -420,6 +443,57 @@ ScenarioFiles ResolveScenarioFiles(const ExperimentConfig& config, const std::st
                       p.string() + ")");
   files.net = p.string();
   return files;
+}
+
+double DesignTrust(const ModelConfig& model, Policy policy, double theta) {
+  if (policy == Policy::kNoTrust) return 1.0;
+  const std::string k = model.Knowledge();
+  if (k == "assumed") return model.assumed_trust.value_or(theta);
+  if (k == "population_mean") return model.trust.Mean();
+  return theta;
+}
+
+persuasion::PredictedOutcome ExpectedOutcome(const ModelConfig& model, Policy policy, int points) {
+  persuasion::AvHvParams params{model.prior_go, model.collision_penalty};
+  const auto lik = MakeLikelihood(model.likelihood);
+  auto at = [&](double theta) {
+    const auto scheme =
+        persuasion::CommitScheme(policy, params, DesignTrust(model, policy, theta), *lik);
+    return persuasion::PredictOutcome(scheme, params, theta, *lik);
+  };
+  if (model.trust.IsFixed()) return at(model.trust.value);
+  std::vector<std::pair<double, double>> nodes;  // (theta, weight)
+  const TrustSpec& t = model.trust;
+  if (t.dist == "discrete") {
+    double total = 0;
+    for (std::size_t i = 0; i < t.values.size(); ++i) total += t.weights.empty() ? 1 : t.weights[i];
+    for (std::size_t i = 0; i < t.values.size(); ++i)
+      nodes.emplace_back(t.values[i], (t.weights.empty() ? 1 : t.weights[i]) / total);
+  } else {
+    for (int j = 0; j < points; ++j) nodes.emplace_back(t.Quantile((j + 0.5) / points), 1.0 / points);
+  }
+  persuasion::PredictedOutcome e;
+  for (const auto& [theta, w] : nodes) {
+    const auto o = at(theta);
+    e.dc_rate += w * o.dc_rate;
+    e.collision_rate += w * o.collision_rate;
+    e.nudge_rate += w * o.nudge_rate;
+    e.av_first_rate += w * o.av_first_rate;
+  }
+  return e;
+}
+
+std::vector<std::string> ScenarioWarnings(const ExperimentConfig& config) {
+  std::vector<std::string> w;
+  const double reach = config.scenario.stop_distance - config.model.likelihood.s_max;
+  if (reach < config.scenario.vehicle_width / 2) {
+    w.push_back("a nudge of up to model.likelihood.s_max = " + Fmt(config.model.likelihood.s_max) +
+                " m from scenario.stop_distance = " + Fmt(config.scenario.stop_distance) +
+                " m can put the AV's nose inside the crossing path (needs stop_distance >= s_max + "
+                "vehicle_width/2 = " + Fmt(config.model.likelihood.s_max + config.scenario.vehicle_width / 2) +
+                " m): a waiting, nudged AV can then be hit");
+  }
+  return w;
 }
 
 std::unique_ptr<persuasion::LikelihoodModel> MakeLikelihood(const LikelihoodConfig& c) {

@@ -48,6 +48,7 @@ struct Stats {
   long n = 0, collisions = 0, dc = 0, nudges = 0;
   double commanded_sum = 0, observed_sum = 0, max_abs_error = 0;
   double min_excess = 0;  // min over nudges of observed - commanded
+  double theory_dc_sum = 0, theory_collision_sum = 0;  // per-encounter predictions
 };
 
 Stats Compute(const PolicyRun& r) {
@@ -57,6 +58,8 @@ Stats Compute(const PolicyRun& r) {
   for (const EncounterRecord& e : r.encounters) {
     s.collisions += e.collision;
     s.dc += e.hv_dc;
+    s.theory_dc_sum += e.theory_dc;
+    s.theory_collision_sum += e.theory_collision;
     if (e.commanded > 0) {
       ++s.nudges;
       s.commanded_sum += e.commanded;
@@ -97,6 +100,7 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
   p["seed"] = prov.seed;
   p["config_path"] = prov.config_path;
   p["config"] = json::parse(prov.config_json);
+  p["warnings"] = prov.warnings;
   json& pol = root["policies"];
   pol = json::object();
   for (const PolicyRun& r : runs) {
@@ -116,6 +120,11 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
                    {"dc_rate", r.theory.dc_rate},
                    {"nudge_rate", r.theory.nudge_rate},
                    {"av_first_rate", r.theory.av_first_rate}};
+    // Mean of the per-encounter predictions for the HVs actually met (equals
+    // `theory` for a fixed trust; the fair comparison for a drawn population).
+    j["theory_given_hvs"] = {{"collision_rate", s.n ? s.theory_collision_sum / s.n : 0.0},
+                             {"dc_rate", s.n ? s.theory_dc_sum / s.n : 0.0}};
+    j["hv_trust"] = r.hv_trust;
     j["scheme"] = {{"av_may_go", r.scheme.av_may_go},
                    {"nudge", r.scheme.nudge},
                    {"p_nudge_given_go", r.scheme.a},

@@ -207,6 +207,8 @@ int RunExperiment(const std::string& config_path, const std::vector<std::string>
   const std::string config_dir = fs::path(config_path).parent_path().string();
   const taebp::ScenarioFiles files = taebp::ResolveScenarioFiles(config, config_dir);
   if (out_dir.empty()) out_dir = "results/" + fs::path(config_path).stem().string();
+  const std::vector<std::string> warnings = taebp::ScenarioWarnings(config);
+  for (const std::string& w : warnings) std::fprintf(stderr, "taebp: warning: %s\n", w.c_str());
 
   std::vector<taebp::PolicyRun> runs;
   double wall_total = 0;
@@ -228,6 +230,7 @@ int RunExperiment(const std::string& config_path, const std::vector<std::string>
   prov.git_revision = taebp::BuildGitRevision();
   prov.sumo_version = runs.empty() ? "" : runs.front().sumo_version;
   prov.taebp_version = taebp::TaebpVersion();
+  prov.warnings = warnings;
   ordered_json timing;
   timing["wall_seconds_total"] = wall_total;
   taebp::WriteFilesAtomically(out_dir, {{"summary.json", taebp::SummaryJson(runs, prov)},

@@ -75,11 +75,44 @@ struct LikelihoodConfig {
   }
 };
 
+// The HVs' trust: one number for every HV, or a distribution from which each
+// HV draws its own theta at the start of a run (with the run's seed).
+// YAML: `trust: 0.6`, `trust: {dist: uniform, low: 0.2, high: 0.9}`,
+// `trust: {dist: beta, alpha: 2, beta: 5}`,
+// `trust: {dist: discrete, values: [0.2, 0.8], weights: [1, 3]}`.
+struct TrustSpec {
+  std::string dist = "fixed";  // fixed | uniform | beta | discrete
+  double value = 0.6;          // fixed
+  double low = 0.0, high = 1.0;         // uniform
+  double alpha = 1.0, beta = 1.0;       // beta
+  std::vector<double> values, weights;  // discrete (weights default to equal)
+
+  static TrustSpec Fixed(double v) {
+    TrustSpec t;
+    t.value = v;
+    return t;
+  }
+  bool IsFixed() const { return dist == "fixed"; }
+  double Mean() const;
+  // theta with cumulative probability q in (0, 1) (the quantile function).
+  double Quantile(double q) const;
+  // One draw from a uniform u in [0, 1) (inverse-CDF sampling).
+  double Draw(double u) const { return Quantile(u); }
+  // Checks ranges; `key` names the config key in the message.
+  bool IsValid(const std::string& key, std::string* why) const;
+  std::string ToString() const;  // compact, for tables and file names
+};
+
 struct ModelConfig {
   double prior_go = 0.2;           // lambda
   double collision_penalty = 3.0;  // r
-  double trust = 0.6;              // theta, every HV
-  std::optional<double> assumed_trust;  // theta_hat used by ta_ebp (default: trust)
+  TrustSpec trust = TrustSpec::Fixed(0.6);  // theta of the HVs
+  // What the AV knows of each HV's trust when it designs its scheme (ta_ebp):
+  // exact (that HV's own theta), population_mean (one design for the mean),
+  // assumed (one design for assumed_trust). Empty: assumed if assumed_trust is
+  // set, else exact.
+  std::string trust_knowledge;
+  std::optional<double> assumed_trust;  // theta_hat for trust_knowledge = assumed
   LikelihoodConfig likelihood;
 
   template <typename Archive>
@@ -87,8 +120,34 @@ struct ModelConfig {
     a->Visit("prior_go", &prior_go);
     a->Visit("collision_penalty", &collision_penalty);
     a->Visit("trust", &trust);
+    a->Visit("trust_knowledge", &trust_knowledge);
     a->Visit("assumed_trust", &assumed_trust);
     a->Visit("likelihood", &likelihood);
+  }
+  // trust_knowledge with the default resolved.
+  std::string Knowledge() const {
+    if (!trust_knowledge.empty()) return trust_knowledge;
+    return assumed_trust ? "assumed" : "exact";
+  }
+};
+
+// A sweep: a grid over config keys (each point is one `run` of every listed
+// policy) times seed replicates. YAML:
+//   sweep:
+//     replicates: 5            # seeds scenario.seed, +1, ..., +4
+//     grid:                    # axes in order; the last varies fastest
+//       model.trust: [0.1, 0.2, 0.5]
+//       scenario.avs: [0, 8, 16]
+// Values are YAML (numbers, lists, maps such as trust distributions).
+struct SweepConfig {
+  int replicates = 1;
+  // (key, values as YAML flow text), in file order.
+  std::vector<std::pair<std::string, std::vector<std::string>>> grid;
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("replicates", &replicates);
+    a->Visit("grid", &grid);
   }
 };
 
@@ -96,12 +155,14 @@ struct ExperimentConfig {
   ScenarioConfig scenario;
   ModelConfig model;
   std::vector<std::string> policies = {"no_ebp", "no_trust", "ta_ebp"};
+  std::optional<SweepConfig> sweep;  // only `taebp sweep` uses it
 
   template <typename Archive>
   void Serialize(Archive* a) {
     a->Visit("scenario", &scenario);
     a->Visit("model", &model);
     a->Visit("policies", &policies);
+    a->Visit("sweep", &sweep);
   }
 
   // Range checks; on failure returns false and a message naming the key and value.

@@ -29,12 +29,17 @@ struct EncounterRecord {
   bool av_first = false;    // AV action: go first (else wait)
   bool collision = false;   // SUMO reported a collision between the two
   double decided_at = 0;    // when the HV decided (after the nudge)
+  double theory_dc = 0;         // library prediction for this AV-HV pair's design and HV
+  double theory_collision = 0;
 };
 
 struct PolicyRun {
   std::string policy;
-  persuasion::CommittedScheme scheme;     // what the AV committed to
-  persuasion::PredictedOutcome theory;    // library prediction for this run
+  persuasion::CommittedScheme scheme;     // the design for the population's theta_hat
+  // Library prediction: expectation over the trust distribution of the per-HV
+  // predictions (for a fixed trust, the prediction itself).
+  persuasion::PredictedOutcome theory;
+  std::vector<double> hv_trust;           // each HV's drawn theta, in HV order
   std::vector<EncounterRecord> encounters;
   double simulated_seconds = 0;
   long crossings_av = 0, crossings_hv = 0;
@@ -66,6 +71,19 @@ PolicyRun RunPolicy(const ExperimentConfig& config, persuasion::Policy policy,
 // junction logic and no controller (only Simulation::step in the loop). For
 // tools/bench. Returns the simulated seconds.
 double RunBareSumo(const ExperimentConfig& config, const ScenarioFiles& files);
+
+// The AV's design trust theta_hat for an HV of true trust `theta` under
+// `policy` and the config's trust_knowledge (no_trust: 1).
+double DesignTrust(const ModelConfig& model, persuasion::Policy policy, double theta);
+
+// Expected outcome over the trust distribution (quantile midpoint rule with
+// `points` nodes; exact for fixed and discrete trust).
+persuasion::PredictedOutcome ExpectedOutcome(const ModelConfig& model, persuasion::Policy policy,
+                                             int points = 4000);
+
+// Non-fatal remarks about a config (e.g. a nudge that can reach into the
+// crossing path), for stderr and summary.json.
+std::vector<std::string> ScenarioWarnings(const ExperimentConfig& config);
 
 // The HV likelihood model named by the config.
 std::unique_ptr<persuasion::LikelihoodModel> MakeLikelihood(const LikelihoodConfig& config);

@@ -23,6 +23,7 @@ struct Provenance {
   std::string git_revision;
   std::string sumo_version;
   std::string taebp_version;
+  std::vector<std::string> warnings;  // ScenarioWarnings
 };
 // The git revision the binary was built from ("unknown" outside a checkout).
 std::string BuildGitRevision();
