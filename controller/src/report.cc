@@ -177,6 +177,10 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs) {
   auto cell = [&](long k, long n, double theory) {
     const Interval ci = Wilson95(k, n);
     char buf[96];
+    if (n == 0) {
+      std::snprintf(buf, sizeof buf, "n/a (no AV-HV encounter) th %.3f", theory);
+      return std::string(buf);
+    }
     std::snprintf(buf, sizeof buf, "%.3f [%.3f,%.3f] th %.3f", Rate(k, n), ci.low, ci.high,
                   theory);
     return std::string(buf);

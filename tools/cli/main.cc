@@ -207,7 +207,8 @@ int RunExperiment(const std::string& config_path, const std::vector<std::string>
   const std::string config_dir = fs::path(config_path).parent_path().string();
   const taebp::ScenarioFiles files = taebp::ResolveScenarioFiles(config, config_dir);
   if (out_dir.empty()) out_dir = "results/" + fs::path(config_path).stem().string();
-  const std::vector<std::string> warnings = taebp::ScenarioWarnings(config);
+  std::vector<std::string> warnings = taebp::ScenarioWarnings(config);
+  warnings.insert(warnings.end(), files.notes.begin(), files.notes.end());
   for (const std::string& w : warnings) std::fprintf(stderr, "taebp: warning: %s\n", w.c_str());
 
   std::vector<taebp::PolicyRun> runs;

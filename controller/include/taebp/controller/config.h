@@ -36,6 +36,7 @@ struct ScenarioConfig {
   double confirm_delay = 1.0;   // s: a DC HV facing a waiting AV waits this long
   double creep_speed = 1.0;     // m/s: top speed of a nudge
   double loop_length = 80.0;    // m per loop of the figure-8 (network generation)
+  bool auto_length = true;      // grow the loops when the vehicles do not fit
   std::string network;          // path to a .net.xml; empty: the built-in figure-8
 
   template <typename Archive>
@@ -56,6 +57,7 @@ struct ScenarioConfig {
     a->Visit("confirm_delay", &confirm_delay);
     a->Visit("creep_speed", &creep_speed);
     a->Visit("loop_length", &loop_length);
+    a->Visit("auto_length", &auto_length);
     a->Visit("network", &network);
   }
 };

@@ -52,14 +52,23 @@ struct PolicyRun {
 
 // Paths of the scenario's SUMO files.
 struct ScenarioFiles {
-  std::string net;  // .net.xml
+  std::string net;           // .net.xml
+  double loop_length = 0;    // m per loop of the figure-8 actually used (0: custom network)
+  std::vector<std::string> notes;  // e.g. "loops grown to 95 m to fit 24 vehicles"
 };
+
+// Loop length (m) that fits `vehicles` of the scenario's length and gap.
+double RequiredLoopLength(const ScenarioConfig& scenario);
 
 // The built-in figure-8 network built with the project (build/sumo_net).
 std::string DefaultNetworkPath();
 
 // Resolves scenario.network (relative to `config_dir` when relative) or the
-// default; throws ConfigError naming the key and value when the file is missing.
+// figure-8: the built-in one for the default loop length, else one generated
+// (make_figure8.py + netconvert, cached in build/sumo_net/cache) for
+// scenario.loop_length, grown to RequiredLoopLength when scenario.auto_length.
+// Throws ConfigError naming the key and value when a file is missing or the
+// vehicles cannot fit.
 ScenarioFiles ResolveScenarioFiles(const ExperimentConfig& config, const std::string& config_dir);
 
 // Runs one policy for scenario.duration simulated seconds. Throws SumoError
