@@ -6,6 +6,7 @@
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/lp.h"
 #include "taebp/persuasion/outcomes.h"
+#include "sweep_cmd.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -288,12 +289,14 @@ int main(int argc, char** argv) {
                   "e.g. --set scenario.duration=600 --set policies=[ta_ebp]");
   run->add_option("--out", out_dir, "output directory (default: results/<config name>)");
   run->add_flag("--quiet", quiet, "no progress on stderr");
+  taebp::sweep::Commands sweep_commands(app);  // sweep, merge
 
   CLI11_PARSE(app, argc, argv);
   try {
     if (*theory) return Theory(th);
     if (*solve) return Solve(problem, solve_json);
     if (*run) return RunExperiment(config_path, overrides, out_dir, quiet);
+    if (sweep_commands.Parsed()) return sweep_commands.Run();
   } catch (const taebp::ConfigError& e) {
     std::cerr << "taebp: config error: " << e.what() << "\n";
     return kExitConfig;

@@ -1,0 +1,575 @@
+#include "sweep.h"
+
+#include "taebp/controller/report.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace taebp::sweep {
+namespace {
+
+constexpr const char* kFormat = "taebp-sweep/1";
+constexpr std::size_t kMaxPoints = 1000000;
+
+std::string Trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+
+std::string JoinKeys(const std::vector<std::string>& keys) {
+  std::string out;
+  for (const auto& k : keys) out += (out.empty() ? "" : ", ") + k;
+  return out;
+}
+
+// Rates that are undefined for a run without AV-HV encounters.
+const std::set<std::string>& RateColumns() {
+  static const std::set<std::string> cols = {
+      "collision_rate", "collision_rate_lo", "collision_rate_hi",
+      "dc_rate",        "dc_rate_lo",        "dc_rate_hi",
+      "theory_given_hvs_collision_rate", "theory_given_hvs_dc_rate"};
+  return cols;
+}
+
+// A grid value as JSON for results.jsonl: numbers, booleans and flow lists
+// that are valid JSON keep their type, anything else is its YAML text.
+Json ValueJson(const std::string& text) {
+  try {
+    return Json::parse(text);
+  } catch (const std::exception&) {
+    return text;
+  }
+}
+
+// CSV text of a JSON value (null: empty cell).
+std::string Cell(const Json& v) {
+  if (v.is_null()) return "";
+  if (v.is_number_unsigned()) return std::to_string(v.get<unsigned long long>());
+  if (v.is_number_integer()) return std::to_string(v.get<long long>());
+  if (v.is_number_float()) {
+    const double d = v.get<double>();
+    return std::isfinite(d) ? FormatDouble(d) : "";
+  }
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  if (v.is_string()) return CsvQuote(v.get<std::string>());
+  return CsvQuote(v.dump());
+}
+
+double Number(const Json& v) {
+  if (v.is_number()) return v.get<double>();
+  return std::nan("");
+}
+
+// The entries' rows for every task of the plan that has one, in task order.
+template <typename F>
+void ForEachRow(const Plan& plan, const Journal& journal, F&& emit) {
+  for (const Task& task : plan.tasks) {
+    const auto it = journal.entries.find(task.index);
+    if (it == journal.entries.end()) continue;
+    const Json& e = it->second;
+    const Point& point = plan.points[static_cast<std::size_t>(task.point)];
+    const bool ok = e.value("status", "") == "ok";
+    for (const std::string& policy : point.policies) {
+      Json metrics = Json::object();
+      const Json* m = nullptr;
+      if (ok && e.contains("policies") && e["policies"].contains(policy))
+        m = &e["policies"][policy];
+      const bool no_encounters = m && m->value("encounters", 0L) == 0;
+      for (const std::string& col : MetricColumns()) {
+        if (!m || !m->contains(col) || (no_encounters && RateColumns().count(col)))
+          metrics[col] = nullptr;
+        else
+          metrics[col] = (*m)[col];
+      }
+      const std::string status = ok && !m ? "failed" : e.value("status", "failed");
+      const std::string error = ok && !m ? "policy " + policy + " missing from summary.json"
+                                         : e.value("error", "");
+      emit(task, point, policy, status, error, metrics);
+    }
+  }
+}
+
+}  // namespace
+
+std::string FormatDouble(double v) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
+
+std::string CsvQuote(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+bool SplitFlowSequence(const std::string& raw, std::vector<std::string>* items) {
+  const std::string text = Trim(raw);
+  items->clear();
+  if (text.size() < 2 || text.front() != '[' || text.back() != ']') return false;
+  int depth = 0;
+  char quote = 0;
+  std::string cur;
+  bool any = false;
+  for (std::size_t i = 1; i + 1 < text.size(); ++i) {
+    const char c = text[i];
+    if (quote) {
+      cur += c;
+      if (quote == '"' && c == '\\' && i + 2 < text.size()) {
+        cur += text[++i];
+      } else if (c == quote) {
+        if (quote == '\'' && i + 2 < text.size() && text[i + 1] == '\'') cur += text[++i];
+        else quote = 0;
+      }
+      continue;
+    }
+    if (c == '"' || c == '\'') quote = c;
+    if (c == '[' || c == '{') ++depth;
+    if (c == ']' || c == '}') --depth;
+    if (depth < 0) return false;
+    if (c == ',' && depth == 0) {
+      items->push_back(Trim(cur));
+      cur.clear();
+      any = true;
+      continue;
+    }
+    cur += c;
+  }
+  if (quote || depth != 0) return false;
+  const std::string last = Trim(cur);
+  if (any || !last.empty()) items->push_back(last);
+  return true;
+}
+
+std::string ConfigHash(const ExperimentConfig& config) {
+  ExperimentConfig c = config;
+  if (c.sweep) c.sweep->replicates = 1;
+  const std::string text = ToJson(c);
+  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a 64
+  for (unsigned char ch : text) {
+    h ^= ch;
+    h *= 1099511628211ULL;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+std::vector<std::string> Plan::TaskOverrides(const Task& task) const {
+  std::vector<std::string> out;
+  const Point& p = points[static_cast<std::size_t>(task.point)];
+  for (std::size_t k = 0; k < columns.size(); ++k) out.push_back(columns[k] + "=" + p.values[k]);
+  out.push_back("scenario.seed=" + std::to_string(task.seed));
+  return out;
+}
+
+Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
+                 const std::vector<std::string>& overrides) {
+  Plan plan;
+  plan.config_text = config_text;
+  plan.config_path = config_path;
+  plan.overrides = overrides;
+  plan.base = ParseExperimentConfig(config_text, config_path, overrides);
+  if (!plan.base.sweep)
+    throw ConfigError(config_path +
+                      ": no 'sweep:' section (taebp sweep needs sweep.grid and sweep.replicates)");
+  plan.hash = ConfigHash(plan.base);
+  const SweepConfig& spec = *plan.base.sweep;
+  plan.replicates = spec.replicates;
+  if (plan.replicates < 1)
+    throw ConfigError(config_path + ": sweep.replicates = " + std::to_string(plan.replicates) +
+                      " must be >= 1");
+
+  std::set<std::string> seen;
+  std::size_t total = 1;
+  for (const auto& [key_spec, values] : spec.grid) {
+    const std::string where = config_path + ": sweep.grid key '" + key_spec + "'";
+    Axis axis;
+    axis.spec = key_spec;
+    std::stringstream ss(key_spec);
+    for (std::string k; std::getline(ss, k, ',');) {
+      k = Trim(k);
+      if (k.empty()) throw ConfigError(where + " has an empty key name");
+      if (k == "sweep" || k.rfind("sweep.", 0) == 0)
+        throw ConfigError(where + " cannot sweep the sweep section");
+      if (!seen.insert(k).second)
+        throw ConfigError(where + ": key '" + k + "' appears twice in the grid");
+      axis.keys.push_back(k);
+    }
+    if (!key_spec.empty() && key_spec.back() == ',') throw ConfigError(where + " has an empty key name");
+    if (axis.keys.empty()) throw ConfigError(where + " has no key name");
+    if (values.empty()) throw ConfigError(where + " has no values");
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const std::string& v = values[i];
+      if (axis.keys.size() == 1) {
+        if (Trim(v).empty() || v == "~" || v == "null")
+          throw ConfigError(where + ": value #" + std::to_string(i + 1) + " is empty");
+        axis.values.push_back({v});
+        continue;
+      }
+      std::vector<std::string> items;
+      const std::string expected = "a list of " + std::to_string(axis.keys.size()) +
+                                   " values (one per key: " + JoinKeys(axis.keys) + ")";
+      if (!SplitFlowSequence(v, &items))
+        throw ConfigError(where + ": value #" + std::to_string(i + 1) + " " + v + " is not " +
+                          expected);
+      if (items.size() != axis.keys.size())
+        throw ConfigError(where + ": value #" + std::to_string(i + 1) + " " + v + " has " +
+                          std::to_string(items.size()) + " entries, expected " + expected);
+      for (std::size_t k = 0; k < items.size(); ++k)
+        if (items[k].empty() || items[k] == "~" || items[k] == "null")
+          throw ConfigError(where + ": value #" + std::to_string(i + 1) + " " + v +
+                            " has an empty entry for key '" + axis.keys[k] + "'");
+      axis.values.push_back(items);
+    }
+    total *= axis.values.size();
+    if (total > kMaxPoints)
+      throw ConfigError(config_path + ": sweep.grid has more than " + std::to_string(kMaxPoints) +
+                        " points");
+    for (const auto& k : axis.keys) plan.columns.push_back(k);
+    plan.axes.push_back(std::move(axis));
+  }
+
+  for (std::size_t idx = 0; idx < total; ++idx) {
+    Point point;
+    point.index = static_cast<int>(idx);
+    std::vector<std::size_t> pick(plan.axes.size());
+    std::size_t rest = idx;
+    for (std::size_t a = plan.axes.size(); a-- > 0;) {
+      pick[a] = rest % plan.axes[a].values.size();
+      rest /= plan.axes[a].values.size();
+    }
+    std::vector<std::string> point_overrides = overrides;
+    for (std::size_t a = 0; a < plan.axes.size(); ++a) {
+      for (std::size_t k = 0; k < plan.axes[a].keys.size(); ++k) {
+        point.values.push_back(plan.axes[a].values[pick[a]][k]);
+        point_overrides.push_back(plan.axes[a].keys[k] + "=" + point.values.back());
+      }
+    }
+    // The point's own policies and seed (a grid may sweep either); an invalid
+    // point keeps the base ones and fails in its worker with the loader's error.
+    point.policies = plan.base.policies;
+    std::uint64_t seed = plan.base.scenario.seed;
+    try {
+      const ExperimentConfig c = ParseExperimentConfig(config_text, config_path, point_overrides);
+      point.policies = c.policies;
+      seed = c.scenario.seed;
+    } catch (const ConfigError&) {
+    }
+    for (int r = 0; r < plan.replicates; ++r) {
+      Task t;
+      t.point = point.index;
+      t.replicate = r;
+      t.index = point.index * plan.replicates + r;
+      t.seed = seed + static_cast<std::uint64_t>(r);
+      plan.tasks.push_back(t);
+    }
+    plan.points.push_back(std::move(point));
+  }
+  return plan;
+}
+
+const std::vector<std::string>& MetricColumns() {
+  static const std::vector<std::string> cols = {
+      "encounters", "collisions", "collision_rate", "collision_rate_lo", "collision_rate_hi",
+      "dc", "dc_rate", "dc_rate_lo", "dc_rate_hi",
+      "theory_collision_rate", "theory_dc_rate",
+      "theory_given_hvs_collision_rate", "theory_given_hvs_dc_rate",
+      "throughput_av", "throughput_hv", "throughput_all",
+      "wait_mean", "wait_max", "nudges", "other_collisions", "teleports",
+      "longest_gap_without_crossing"};
+  return cols;
+}
+
+Json MetricsFromSummary(const std::string& summary_json, const std::vector<std::string>& policies) {
+  Json s;
+  try {
+    s = Json::parse(summary_json);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("summary.json is not valid JSON: ") + e.what());
+  }
+  Json out = Json::object();
+  for (const std::string& p : policies) {
+    if (!s.contains("policies") || !s["policies"].contains(p))
+      throw std::runtime_error("summary.json has no results for policy " + p);
+    const Json& j = s["policies"][p];
+    auto get = [&](std::initializer_list<const char*> path) -> Json {
+      const Json* cur = &j;
+      std::string name;
+      for (const char* part : path) {
+        name += (name.empty() ? "" : ".") + std::string(part);
+        if (!cur->is_object() || !cur->contains(part))
+          throw std::runtime_error("summary.json: policies." + p + "." + name + " is missing");
+        cur = &(*cur)[part];
+      }
+      return *cur;
+    };
+    auto at = [&](const char* key, std::size_t i) -> Json {
+      const Json a = get({key});
+      if (!a.is_array() || a.size() <= i)
+        throw std::runtime_error("summary.json: policies." + p + "." + key + " is not an interval");
+      return a[i];
+    };
+    Json m;
+    m["encounters"] = get({"encounters"});
+    m["collisions"] = get({"collisions"});
+    m["collision_rate"] = get({"collision_rate"});
+    m["collision_rate_lo"] = at("collision_rate_ci95", 0);
+    m["collision_rate_hi"] = at("collision_rate_ci95", 1);
+    m["dc"] = get({"dc"});
+    m["dc_rate"] = get({"dc_rate"});
+    m["dc_rate_lo"] = at("dc_rate_ci95", 0);
+    m["dc_rate_hi"] = at("dc_rate_ci95", 1);
+    m["theory_collision_rate"] = get({"theory", "collision_rate"});
+    m["theory_dc_rate"] = get({"theory", "dc_rate"});
+    m["theory_given_hvs_collision_rate"] = get({"theory_given_hvs", "collision_rate"});
+    m["theory_given_hvs_dc_rate"] = get({"theory_given_hvs", "dc_rate"});
+    m["throughput_av"] = get({"throughput_per_hour", "av"});
+    m["throughput_hv"] = get({"throughput_per_hour", "hv"});
+    m["throughput_all"] = get({"throughput_per_hour", "all"});
+    m["wait_mean"] = get({"wait_at_stop_line", "mean"});
+    m["wait_max"] = get({"wait_at_stop_line", "max"});
+    m["nudges"] = get({"nudges", "count"});
+    m["other_collisions"] = get({"other_collisions"});
+    m["teleports"] = get({"teleports"});
+    m["longest_gap_without_crossing"] = get({"longest_gap_without_crossing"});
+    out[p] = m;
+  }
+  return out;
+}
+
+Json JournalEntry(const Plan& plan, const Task& task, const std::string& status,
+                  const std::string& error, const Json& policies_metrics) {
+  Json e;
+  e["hash"] = plan.hash;
+  e["point"] = task.point;
+  e["replicate"] = task.replicate;
+  e["seed"] = task.seed;
+  Json values = Json::object();
+  const Point& p = plan.points[static_cast<std::size_t>(task.point)];
+  for (std::size_t k = 0; k < plan.columns.size(); ++k) values[plan.columns[k]] = p.values[k];
+  e["values"] = values;
+  e["status"] = status;
+  e["error"] = error;
+  e["policies"] = policies_metrics.is_null() ? Json::object() : policies_metrics;
+  return e;
+}
+
+void AddEntry(Journal* journal, const Plan& plan, const Json& entry) {
+  if (!entry.contains("point") || !entry.contains("replicate") ||
+      !entry["point"].is_number_integer() || !entry["replicate"].is_number_integer())
+    return;
+  const long point = entry["point"].get<long>();
+  const long replicate = entry["replicate"].get<long>();
+  // Entries outside the plan (e.g. replicates lowered since) stay in the
+  // journal but not in the tables.
+  if (point < 0 || point >= static_cast<long>(plan.points.size()) || replicate < 0 ||
+      replicate >= plan.replicates)
+    return;
+  const int index = static_cast<int>(point) * plan.replicates + static_cast<int>(replicate);
+  auto it = journal->entries.find(index);
+  if (it != journal->entries.end() && it->second.value("status", "") == "ok" &&
+      entry.value("status", "") != "ok")
+    return;
+  journal->entries[index] = entry;
+}
+
+Journal ParseJournal(const std::string& text, const Plan& plan, const std::string& origin) {
+  Journal j;
+  const auto last_newline = text.rfind('\n');
+  j.valid_bytes = last_newline == std::string::npos ? 0 : last_newline + 1;
+  j.partial_tail = j.valid_bytes < text.size();
+  std::size_t start = 0, line_no = 0;
+  while (start < j.valid_bytes) {
+    const std::size_t end = text.find('\n', start);
+    const std::string line = text.substr(start, end - start);
+    start = end + 1;
+    ++line_no;
+    if (Trim(line).empty()) continue;
+    Json e;
+    try {
+      e = Json::parse(line);
+    } catch (const std::exception&) {
+      continue;  // a torn line from an older crash; the task simply runs again
+    }
+    if (!e.is_object()) continue;
+    const std::string hash = e.value("hash", "");
+    if (hash != plan.hash)
+      throw ConfigError(origin + ":" + std::to_string(line_no) +
+                        ": the journal belongs to a different sweep (config hash " + hash +
+                        ", this sweep " + plan.hash +
+                        "): the config, its grid or the --set overrides differ; "
+                        "use another --out or remove that directory");
+    ++j.lines;
+    AddEntry(&j, plan, e);
+  }
+  return j;
+}
+
+std::string ResultsCsv(const Plan& plan, const Journal& journal) {
+  std::ostringstream out;
+  out << "point,replicate,seed";
+  for (const auto& c : plan.columns) out << ',' << CsvQuote(c);
+  out << ",policy,status,error";
+  for (const auto& c : MetricColumns()) out << ',' << c;
+  out << '\n';
+  ForEachRow(plan, journal, [&](const Task& t, const Point& p, const std::string& policy,
+                                const std::string& status, const std::string& error,
+                                const Json& metrics) {
+    out << t.point << ',' << t.replicate << ',' << t.seed;
+    for (const auto& v : p.values) out << ',' << CsvQuote(v);
+    out << ',' << CsvQuote(policy) << ',' << status << ',' << CsvQuote(error);
+    for (const auto& c : MetricColumns()) out << ',' << Cell(metrics[c]);
+    out << '\n';
+  });
+  return out.str();
+}
+
+std::string ResultsJsonl(const Plan& plan, const Journal& journal) {
+  std::string out;
+  ForEachRow(plan, journal, [&](const Task& t, const Point& p, const std::string& policy,
+                                const std::string& status, const std::string& error,
+                                const Json& metrics) {
+    Json row;
+    row["point"] = t.point;
+    row["replicate"] = t.replicate;
+    row["seed"] = t.seed;
+    for (std::size_t k = 0; k < plan.columns.size(); ++k)
+      row[plan.columns[k]] = ValueJson(p.values[k]);
+    row["policy"] = policy;
+    row["status"] = status;
+    row["error"] = error;
+    for (const auto& c : MetricColumns()) row[c] = metrics[c];
+    out += row.dump() + "\n";
+  });
+  return out;
+}
+
+std::string AggregateCsv(const Plan& plan, const Journal& journal) {
+  struct Acc {
+    long ok = 0, failed = 0;
+    long enc = 0, collisions = 0, dc = 0;
+    double th_c_w = 0, th_d_w = 0, th_c = 0, th_d = 0, thg_c_w = 0, thg_d_w = 0;
+    std::vector<double> tp_av, tp_hv, tp_all, wait;
+  };
+  // (point, policy) in point order, then the point's policy order.
+  std::map<int, std::map<std::string, Acc>> acc;
+  ForEachRow(plan, journal, [&](const Task& t, const Point&, const std::string& policy,
+                                const std::string& status, const std::string&,
+                                const Json& m) {
+    Acc& a = acc[t.point][policy];
+    if (status != "ok") {
+      ++a.failed;
+      return;
+    }
+    ++a.ok;
+    const long n = m["encounters"].is_number() ? m["encounters"].get<long>() : 0;
+    a.enc += n;
+    a.collisions += m["collisions"].is_number() ? m["collisions"].get<long>() : 0;
+    a.dc += m["dc"].is_number() ? m["dc"].get<long>() : 0;
+    const double tc = Number(m["theory_collision_rate"]);
+    const double td = Number(m["theory_dc_rate"]);
+    a.th_c += tc;
+    a.th_d += td;
+    if (n > 0) {
+      a.th_c_w += tc * static_cast<double>(n);
+      a.th_d_w += td * static_cast<double>(n);
+      a.thg_c_w += Number(m["theory_given_hvs_collision_rate"]) * static_cast<double>(n);
+      a.thg_d_w += Number(m["theory_given_hvs_dc_rate"]) * static_cast<double>(n);
+    }
+    a.tp_av.push_back(Number(m["throughput_av"]));
+    a.tp_hv.push_back(Number(m["throughput_hv"]));
+    a.tp_all.push_back(Number(m["throughput_all"]));
+    a.wait.push_back(Number(m["wait_mean"]));
+  });
+  auto mean = [](const std::vector<double>& v) {
+    if (v.empty()) return std::nan("");
+    double s = 0;
+    for (double x : v) s += x;
+    return s / static_cast<double>(v.size());
+  };
+  auto sd = [&](const std::vector<double>& v) {
+    if (v.size() < 2) return std::nan("");
+    const double m = mean(v);
+    double s = 0;
+    for (double x : v) s += (x - m) * (x - m);
+    return std::sqrt(s / static_cast<double>(v.size() - 1));
+  };
+  auto num = [](double v) { return std::isfinite(v) ? FormatDouble(v) : std::string(); };
+
+  std::ostringstream out;
+  out << "point";
+  for (const auto& c : plan.columns) out << ',' << CsvQuote(c);
+  out << ",policy,runs_ok,runs_failed,encounters,collision_rate,collision_rate_lo,"
+         "collision_rate_hi,dc_rate,dc_rate_lo,dc_rate_hi,theory_collision_rate,theory_dc_rate,"
+         "theory_given_hvs_collision_rate,theory_given_hvs_dc_rate,throughput_av,throughput_hv,"
+         "throughput_all,wait_mean,throughput_all_sd\n";
+  for (const auto& [point_index, by_policy] : acc) {
+    const Point& p = plan.points[static_cast<std::size_t>(point_index)];
+    for (const std::string& policy : p.policies) {
+      const auto it = by_policy.find(policy);
+      if (it == by_policy.end()) continue;
+      const Acc& a = it->second;
+      out << point_index;
+      for (const auto& v : p.values) out << ',' << CsvQuote(v);
+      out << ',' << CsvQuote(policy) << ',' << a.ok << ',' << a.failed;
+      if (a.ok == 0) {
+        out << std::string(16, ',') << '\n';
+        continue;
+      }
+      out << ',' << a.enc;
+      const double n = static_cast<double>(a.enc);
+      if (a.enc > 0) {
+        const Interval ci_c = Wilson95(a.collisions, a.enc);
+        const Interval ci_d = Wilson95(a.dc, a.enc);
+        out << ',' << num(a.collisions / n) << ',' << num(ci_c.low) << ',' << num(ci_c.high)
+            << ',' << num(a.dc / n) << ',' << num(ci_d.low) << ',' << num(ci_d.high) << ','
+            << num(a.th_c_w / n) << ',' << num(a.th_d_w / n) << ',' << num(a.thg_c_w / n) << ','
+            << num(a.thg_d_w / n);
+      } else {
+        // No encounter in any run: the rates are undefined; the model's
+        // prediction is still its plain mean over the runs.
+        const double k = static_cast<double>(a.ok);
+        out << ",,,,,,," << num(a.th_c / k) << ',' << num(a.th_d / k) << ",,";
+      }
+      out << ',' << num(mean(a.tp_av)) << ',' << num(mean(a.tp_hv)) << ','
+          << num(mean(a.tp_all)) << ',' << num(mean(a.wait)) << ',' << num(sd(a.tp_all)) << '\n';
+    }
+  }
+  return out.str();
+}
+
+Json SweepHeader(const Plan& plan, const std::string& shard, const std::string& sumo_version) {
+  Json h;
+  h["format"] = kFormat;
+  h["config_hash"] = plan.hash;
+  h["config_path"] = plan.config_path;
+  h["overrides"] = plan.overrides;
+  h["config_text"] = plan.config_text;
+  h["config"] = Json::parse(ToJson(plan.base));
+  Json axes = Json::array();
+  for (const Axis& a : plan.axes) axes.push_back({{"keys", a.keys}, {"values", a.values}});
+  h["axes"] = axes;
+  h["columns"] = plan.columns;
+  h["points"] = plan.points.size();
+  h["replicates"] = plan.replicates;
+  h["tasks"] = plan.tasks.size();
+  h["policies"] = plan.base.policies;
+  h["shard"] = shard.empty() ? Json(nullptr) : Json(shard);
+  h["git_revision"] = BuildGitRevision();
+  h["taebp_version"] = TaebpVersion();
+  h["sumo_version"] = sumo_version;
+  return h;
+}
+
+}  // namespace taebp::sweep

@@ -1,0 +1,111 @@
+// The sweep engine's pure parts (no processes, no MPI): grid expansion, the
+// config hash, journal lines and the final tables. `taebp sweep` and
+// `taebp merge` (sweep_cmd.cc) drive them; tests/sweep links them directly.
+#pragma once
+
+#include "taebp/controller/config.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace taebp::sweep {
+
+using Json = nlohmann::ordered_json;
+
+// One axis of the grid: a key, or several comma-separated keys zipped together
+// ("scenario.avs,scenario.hvs": [[0,16],[8,8]]): values[i][k] is the i-th value
+// of keys[k], as YAML flow text.
+struct Axis {
+  std::string spec;  // the grid key as written in the file
+  std::vector<std::string> keys;
+  std::vector<std::vector<std::string>> values;
+};
+
+struct Point {
+  int index = 0;
+  std::vector<std::string> values;     // one per Plan::columns, YAML text as given
+  std::vector<std::string> policies;   // the point's resolved policies (base ones if invalid)
+};
+
+struct Task {
+  int index = 0;  // point * replicates + replicate
+  int point = 0;
+  int replicate = 0;
+  std::uint64_t seed = 0;
+};
+
+struct Plan {
+  std::string config_text;               // the YAML file as read
+  std::string config_path;               // origin in messages, CONFIG for the workers
+  std::vector<std::string> overrides;    // the user's --set, applied to every task
+  ExperimentConfig base;                 // resolved, without point overrides
+  std::string hash;                      // ConfigHash(base)
+  std::vector<Axis> axes;
+  std::vector<std::string> columns;      // individual keys, axis order
+  std::vector<Point> points;             // Cartesian product, last axis fastest
+  int replicates = 1;
+  std::vector<Task> tasks;               // point-major, replicate fastest
+
+  // The --set overrides of a task after the user's: the point's values, then
+  // scenario.seed.
+  std::vector<std::string> TaskOverrides(const Task& task) const;
+};
+
+// Builds the plan from the config text and the user's --set overrides. Throws
+// ConfigError naming the key for a missing `sweep:` section, a zipped value of
+// the wrong length, empty values or a key given twice.
+Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
+                 const std::vector<std::string>& overrides);
+
+// Splits a YAML flow sequence "[a, [b, c], {d: e}]" into its top-level items'
+// text. Returns false if `text` is not a flow sequence.
+bool SplitFlowSequence(const std::string& text, std::vector<std::string>* items);
+
+// 16 hex digits identifying the resolved sweep: the config with the user's
+// overrides and the grid, but not sweep.replicates (so a sweep can be extended
+// with more replicates and resume).
+std::string ConfigHash(const ExperimentConfig& config);
+
+// The metric columns of results.csv, in order (after policy, status, error).
+const std::vector<std::string>& MetricColumns();
+
+// Per-policy metrics (the MetricColumns keys) from a task's summary.json text.
+// Throws std::runtime_error naming what is missing.
+Json MetricsFromSummary(const std::string& summary_json, const std::vector<std::string>& policies);
+
+// A journal line (no newline) for a finished task.
+Json JournalEntry(const Plan& plan, const Task& task, const std::string& status,
+                  const std::string& error, const Json& policies_metrics);
+
+// Journal contents by task index: the latest entry per (point, replicate),
+// an ok entry winning over failed ones.
+struct Journal {
+  std::map<int, Json> entries;
+  std::size_t lines = 0;         // well-formed lines read
+  std::size_t valid_bytes = 0;   // length up to the last complete line
+  bool partial_tail = false;     // the file ended in a half-written line
+};
+// Parses journal text. Lines of another sweep (hash) throw ConfigError naming
+// `origin`; malformed complete lines are skipped.
+Journal ParseJournal(const std::string& text, const Plan& plan, const std::string& origin);
+// Adds `entry` (a journal line's JSON) to `journal` with the same precedence.
+void AddEntry(Journal* journal, const Plan& plan, const Json& entry);
+
+// The final tables, byte-identical for the same entries.
+std::string ResultsCsv(const Plan& plan, const Journal& journal);
+std::string ResultsJsonl(const Plan& plan, const Journal& journal);
+std::string AggregateCsv(const Plan& plan, const Journal& journal);
+
+// sweep.json: the resolved base config, the plan's shape and provenance.
+Json SweepHeader(const Plan& plan, const std::string& shard, const std::string& sumo_version);
+
+// Shortest text that reads back as the same double.
+std::string FormatDouble(double v);
+// A CSV cell, quoted when it holds a comma, quote or newline.
+std::string CsvQuote(const std::string& s);
+
+}  // namespace taebp::sweep
