@@ -1,0 +1,204 @@
+// The sweep engine's pure parts: grid expansion (zipped axes, replicates),
+// spec errors naming the key, the config hash, journal parsing and tables.
+#include "sweep.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace taebp::sweep {
+namespace {
+
+using ::testing::HasSubstr;
+
+const char* kBase = R"(
+scenario: {avs: 8, hvs: 8, seed: 10, duration: 60}
+model: {trust: 0.6}
+policies: [no_trust, ta_ebp]
+)";
+
+Plan Expand(const std::string& sweep, const std::vector<std::string>& overrides = {}) {
+  return ExpandSweep(std::string(kBase) + sweep, "test.yaml", overrides);
+}
+
+std::string ErrorOf(const std::string& sweep) {
+  try {
+    Expand(sweep);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(SweepGrid, CartesianProductInFileOrderLastKeyFastestTimesReplicates) {
+  const Plan p = Expand(R"(
+sweep:
+  replicates: 3
+  grid:
+    model.trust: [0.2, 0.8]
+    scenario.cruise_speed: [3, 4, 5]
+)");
+  ASSERT_EQ(p.columns, (std::vector<std::string>{"model.trust", "scenario.cruise_speed"}));
+  ASSERT_EQ(p.points.size(), 6u);
+  EXPECT_EQ(p.points[0].values, (std::vector<std::string>{"0.2", "3"}));
+  EXPECT_EQ(p.points[1].values, (std::vector<std::string>{"0.2", "4"}));
+  EXPECT_EQ(p.points[3].values, (std::vector<std::string>{"0.8", "3"}));
+  EXPECT_EQ(p.points[5].values, (std::vector<std::string>{"0.8", "5"}));
+  ASSERT_EQ(p.tasks.size(), 18u);
+  for (std::size_t i = 0; i < p.tasks.size(); ++i) {
+    const Task& t = p.tasks[i];
+    EXPECT_EQ(t.index, static_cast<int>(i));
+    EXPECT_EQ(t.point, static_cast<int>(i / 3));
+    EXPECT_EQ(t.replicate, static_cast<int>(i % 3));
+    EXPECT_EQ(t.seed, 10u + i % 3);  // scenario.seed + r
+  }
+  EXPECT_EQ(p.TaskOverrides(p.tasks[7]),
+            (std::vector<std::string>{"model.trust=0.2", "scenario.cruise_speed=5",
+                                      "scenario.seed=11"}));
+  EXPECT_EQ(p.points[0].policies, (std::vector<std::string>{"no_trust", "ta_ebp"}));
+}
+
+TEST(SweepGrid, ZippedKeysSplitIntoOneColumnEach) {
+  const Plan p = Expand(R"(
+sweep:
+  replicates: 2
+  grid:
+    "scenario.avs, scenario.hvs": [[0, 16], [8, 8], [16, 0]]
+    model.trust: [{dist: uniform, low: 0.2, high: 0.9}, 0.5]
+)");
+  ASSERT_EQ(p.columns, (std::vector<std::string>{"scenario.avs", "scenario.hvs", "model.trust"}));
+  ASSERT_EQ(p.points.size(), 6u);
+  EXPECT_EQ(p.points[0].values[0], "0");
+  EXPECT_EQ(p.points[0].values[1], "16");
+  EXPECT_THAT(p.points[0].values[2], HasSubstr("uniform"));
+  EXPECT_EQ(p.points[5].values, (std::vector<std::string>{"16", "0", "0.5"}));
+  EXPECT_EQ(p.tasks.size(), 12u);
+  const auto o = p.TaskOverrides(p.tasks[11]);
+  EXPECT_EQ(o[0], "scenario.avs=16");
+  EXPECT_EQ(o[1], "scenario.hvs=0");
+  EXPECT_EQ(o.back(), "scenario.seed=11");
+}
+
+TEST(SweepGrid, NoGridIsOnePointOfReplicates) {
+  const Plan p = Expand("sweep: {replicates: 4}\n");
+  EXPECT_EQ(p.points.size(), 1u);
+  EXPECT_EQ(p.tasks.size(), 4u);
+  EXPECT_TRUE(p.columns.empty());
+}
+
+TEST(SweepGrid, SweptSeedAndPoliciesAreThePoints) {
+  const Plan p = Expand(R"(
+sweep:
+  replicates: 2
+  grid:
+    scenario.seed: [100, 200]
+    policies: [[no_ebp], [ta_ebp, full_reveal]]
+)");
+  ASSERT_EQ(p.tasks.size(), 8u);
+  EXPECT_EQ(p.tasks[1].seed, 101u);
+  EXPECT_EQ(p.tasks[5].seed, 201u);
+  EXPECT_EQ(p.points[1].policies, (std::vector<std::string>{"ta_ebp", "full_reveal"}));
+}
+
+TEST(SweepGrid, ZippedValueOfWrongLengthNamesTheKey) {
+  const std::string e = ErrorOf(R"(
+sweep:
+  grid:
+    "scenario.avs,scenario.hvs": [[0, 16], [8], [16, 0]]
+)");
+  EXPECT_THAT(e, HasSubstr("scenario.avs,scenario.hvs"));
+  EXPECT_THAT(e, HasSubstr("value #2"));
+  EXPECT_THAT(e, HasSubstr("has 1 entries, expected a list of 2 values"));
+  EXPECT_THAT(ErrorOf(R"(
+sweep:
+  grid:
+    "scenario.avs,scenario.hvs": [4, [12, 4]]
+)"),
+              HasSubstr("'scenario.avs,scenario.hvs': value #1 4 is not a list of 2 values"));
+}
+
+TEST(SweepGrid, EmptyValuesNameTheKey) {
+  EXPECT_THAT(ErrorOf("sweep:\n  grid:\n    model.trust: []\n"), HasSubstr("model.trust"));
+  EXPECT_THAT(ErrorOf("sweep:\n  grid:\n    model.trust: []\n"), HasSubstr("no values"));
+  EXPECT_THAT(ErrorOf("sweep:\n  grid:\n    model.trust: [0.5, ~]\n"),
+              HasSubstr("'model.trust': value #2 is empty"));
+  EXPECT_THAT(ErrorOf("sweep:\n  grid:\n    \"scenario.avs,\": [[1]]\n"),
+              HasSubstr("'scenario.avs,' has an empty key name"));
+}
+
+TEST(SweepGrid, OtherSpecErrors) {
+  EXPECT_THAT(ErrorOf(""), HasSubstr("no 'sweep:' section"));
+  EXPECT_THAT(ErrorOf("sweep:\n  grid:\n    model.trust: [0.5]\n    \"scenario.avs,model.trust\": [[1, 0.2]]\n"),
+              HasSubstr("key 'model.trust' appears twice"));
+  EXPECT_THAT(ErrorOf("sweep: {replicates: 0}\n"), HasSubstr("sweep.replicates"));
+  EXPECT_THAT(ErrorOf("sweep:\n  grid:\n    model.trust: 0.5\n"), HasSubstr("sweep.grid.model.trust"));
+}
+
+TEST(SweepGrid, SplitFlowSequenceRespectsNestingAndQuotes) {
+  std::vector<std::string> items;
+  ASSERT_TRUE(SplitFlowSequence("[0, [1, 2], {a: 1, b: [3, 4]}, 'x, y', \"q\\\",\"]", &items));
+  EXPECT_EQ(items, (std::vector<std::string>{"0", "[1, 2]", "{a: 1, b: [3, 4]}", "'x, y'",
+                                             "\"q\\\",\""}));
+  ASSERT_TRUE(SplitFlowSequence("[]", &items));
+  EXPECT_TRUE(items.empty());
+  EXPECT_FALSE(SplitFlowSequence("4", &items));
+  EXPECT_FALSE(SplitFlowSequence("[1, [2]", &items));
+}
+
+TEST(SweepGrid, HashCoversConfigAndGridButNotReplicates) {
+  const std::string sweep = "sweep:\n  replicates: 2\n  grid:\n    model.trust: [0.2, 0.8]\n";
+  const std::string h = Expand(sweep).hash;
+  EXPECT_EQ(h.size(), 16u);
+  EXPECT_EQ(Expand(sweep, {"sweep.replicates=5"}).hash, h);
+  EXPECT_NE(Expand(sweep, {"scenario.duration=90"}).hash, h);
+  EXPECT_NE(Expand("sweep:\n  replicates: 2\n  grid:\n    model.trust: [0.2, 0.9]\n").hash, h);
+}
+
+Json Metrics(long encounters, long collisions) {
+  Json m;
+  for (const std::string& c : MetricColumns()) m[c] = 0.5;
+  m["encounters"] = encounters;
+  m["collisions"] = collisions;
+  m["dc"] = 0;
+  return m;
+}
+
+TEST(SweepJournal, TornTailIgnoredOtherSweepRefusedOkWins) {
+  const Plan p = Expand("sweep:\n  replicates: 2\n  grid:\n    model.trust: [0.2, 0.8]\n");
+  const Json ok = JournalEntry(p, p.tasks[1], "ok", "",
+                               {{"no_trust", Metrics(10, 2)}, {"ta_ebp", Metrics(0, 0)}});
+  const Json failed = JournalEntry(p, p.tasks[1], "failed", "boom", nullptr);
+  const std::string text = failed.dump() + "\n" + ok.dump() + "\n" + failed.dump() + "\n" +
+                           "{\"hash\":\"" + p.hash + "\",\"poi";
+  const Journal j = ParseJournal(text, p, "journal.jsonl");
+  EXPECT_TRUE(j.partial_tail);
+  EXPECT_EQ(j.valid_bytes, text.rfind('\n') + 1);
+  EXPECT_EQ(j.lines, 3u);
+  ASSERT_EQ(j.entries.size(), 1u);
+  EXPECT_EQ(j.entries.at(1).value("status", ""), "ok");
+
+  const Plan other = Expand("sweep:\n  replicates: 2\n  grid:\n    model.trust: [0.3]\n");
+  try {
+    ParseJournal(ok.dump() + "\n", other, "dir/journal.jsonl");
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("dir/journal.jsonl:1: the journal belongs to a different sweep"));
+  }
+
+  // Tables: rates of a run without encounters are empty; a failed task has a
+  // row per policy with its error.
+  Journal both = j;
+  AddEntry(&both, p, JournalEntry(p, p.tasks[2], "failed", "config error: model.trust", nullptr));
+  const std::string csv = ResultsCsv(p, both);
+  EXPECT_THAT(csv, HasSubstr("\n0,1,11,0.2,no_trust,ok,,10,2,0.5,"));
+  EXPECT_THAT(csv, HasSubstr("\n0,1,11,0.2,ta_ebp,ok,,0,0,,,,0,,,,0.5,0.5,,,0.5,"));
+  EXPECT_THAT(csv, HasSubstr("\n1,0,10,0.8,ta_ebp,failed,config error: model.trust,,,"));
+  EXPECT_THAT(ResultsJsonl(p, both), HasSubstr("\"collision_rate\":null"));
+  const std::string agg = AggregateCsv(p, both);
+  EXPECT_THAT(agg, HasSubstr("\n0,0.2,no_trust,1,0,10,0.2,"));
+  EXPECT_THAT(agg, HasSubstr("\n1,0.8,ta_ebp,0,1,,"));
+}
+
+}  // namespace
+}  // namespace taebp::sweep
