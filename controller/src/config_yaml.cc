@@ -82,8 +82,11 @@ class YamlReader {
     Read(child, key, value);
   }
 
-  // Any key in the map that the schema did not visit is an error.
+  // Any key in the map that the schema did not visit is an error, and so is a
+  // key given twice (yaml-cpp keeps both and node[name] would silently read the
+  // first).
   void RejectUnknown() const {
+    RejectDuplicates(node_, prefix_);
     for (const auto& kv : node_) {
       const std::string name = kv.first.as<std::string>();
       if (!visited_.count(name)) {
@@ -106,6 +109,18 @@ class YamlReader {
   [[noreturn]] void Fail(const std::string& key, const YAML::Node& node,
                          const std::string& what) const {
     throw ConfigError(origins_->Locate(key, node) + ": " + what);
+  }
+
+  void RejectDuplicates(const YAML::Node& map, const std::string& prefix) const {
+    std::map<std::string, int> seen;  // key -> line of its first occurrence
+    for (const auto& kv : map) {
+      const std::string name = kv.first.as<std::string>();
+      const auto [it, fresh] = seen.emplace(name, kv.first.Mark().line + 1);
+      if (!fresh)
+        Fail(Join(prefix, name), kv.first,
+             "key '" + Join(prefix, name) + "' is given twice (first on line " +
+                 std::to_string(it->second) + ")");
+    }
   }
 
   void ReadScalarCheck(const YAML::Node& node, const std::string& key, const char* expected) {
@@ -163,6 +178,7 @@ class YamlReader {
     const YAML::Node dist = node["dist"];
     if (!dist.IsDefined())
       Fail(key, node, "key '" + key + ".dist' is missing (uniform, beta or discrete)");
+    RejectDuplicates(node, key);
     Read(dist, key + ".dist", &t.dist);
     std::vector<std::string> allowed;
     if (t.dist == "uniform") allowed = {"low", "high"};
@@ -202,6 +218,7 @@ class YamlReader {
             std::vector<std::pair<std::string, std::vector<std::string>>>* value) {
     if (!node.IsMap())
       Fail(key, node, "key '" + key + "' expects a map of KEY: [values...], got " + Show(node));
+    RejectDuplicates(node, key);
     value->clear();
     for (const auto& kv : node) {
       const std::string name = kv.first.as<std::string>();

@@ -102,9 +102,18 @@ double CreepSpeed(double target, double covered, double speed, double dt, double
   const double remaining = target - covered;
   if (remaining <= 1e-12) return 0.0;
   const double v_accel = std::min(creep_speed, speed + accel * dt);
-  // Largest v with v*dt/2 + v^2/(2 decel) <= remaining: after this step the
-  // vehicle can still stop within the target braking at `decel`.
-  const double v_brake = decel * (-dt / 2 + std::sqrt(dt * dt / 4 + 2 * remaining / decel));
+  // Largest v from which the vehicle can still stop within the target when each
+  // step's speed drops by at most dv = decel*dt: the steps v, v - dv, v - 2dv, ...
+  // cover dt * S(v), S(v) = sum_k max(0, v - k dv), piecewise linear in v with
+  // S(m dv) = dv m(m+1)/2. (The continuous bound v*dt/2 + v^2/(2 decel) <=
+  // remaining agrees with S at the grid points but lies below it in between, so
+  // it allows speeds that then need more than `decel` to land.)
+  const double dv = decel * dt;
+  const double budget = remaining / dt;  // S(v) may not exceed this
+  double m = std::floor((std::sqrt(1.0 + 8.0 * budget / dv) - 1.0) / 2.0);
+  while (m > 0 && dv * m * (m + 1) / 2 > budget) m -= 1;  // round-off guards
+  while (dv * (m + 1) * (m + 2) / 2 <= budget) m += 1;
+  const double v_brake = (budget + dv * m * (m + 1) / 2) / (m + 1);
   const double v_land = remaining / dt;
   return std::max(0.0, std::min({v_accel, v_brake, v_land}));
 }

@@ -1,0 +1,467 @@
+// The experiment and problem config loader: documented values, one schema for
+// load and save, and errors that name the key, the value and where they came
+// from (file:line or the --set text).
+#include "taebp/controller/config.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace taebp {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+namespace fs = std::filesystem;
+
+const std::string kPaper = std::string(TAEBP_SOURCE_DIR) + "/configs/paper.yaml";
+const std::string kProblems = std::string(TAEBP_SOURCE_DIR) + "/configs/problems";
+
+// A private temporary directory, removed with the fixture.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "taebp_config_test.XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  std::string Write(const std::string& name, const std::string& text) const {
+    const fs::path p = path_ / name;
+    std::ofstream(p, std::ios::binary) << text;
+    return p.string();
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+// The ConfigError message of `f()`, or a recorded failure.
+template <typename F>
+std::string ConfigErrorOf(F&& f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected ConfigError, got another exception: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "expected ConfigError, nothing was thrown";
+  return "";
+}
+
+// Loads `yaml` from a file named `name` in a fresh temporary directory; returns
+// the ConfigError message and the file's path.
+struct FileError {
+  std::string message, path;
+};
+FileError LoadError(const std::string& yaml, const std::vector<std::string>& overrides = {},
+                    const std::string& name = "exp.yaml") {
+  TempDir dir;
+  const std::string path = dir.Write(name, yaml);
+  return {ConfigErrorOf([&] { LoadExperimentConfig(path, overrides); }), path};
+}
+
+// ------------------------------------------------------------------ paper.yaml
+
+TEST(ConfigLoad, PaperYamlHasTheDocumentedValues) {
+  const ExperimentConfig c = LoadExperimentConfig(kPaper);
+  const ScenarioConfig& s = c.scenario;
+  EXPECT_EQ(s.avs, 8);
+  EXPECT_EQ(s.hvs, 8);
+  EXPECT_EQ(s.cruise_speed, 4.0);
+  EXPECT_EQ(s.min_gap, 2.0);
+  // 3.0 m, not the paper's 1.7: a nudge of up to s_max = 2 m from 1.7 m would put
+  // the AV's nose into the crossing path of a 1.8 m wide HV (sumo_net/PROBE.md).
+  EXPECT_EQ(s.stop_distance, 3.0);
+  EXPECT_GE(s.stop_distance, c.model.likelihood.s_max + s.vehicle_width / 2);
+  EXPECT_EQ(s.step_length, 0.1);
+  EXPECT_EQ(s.duration, 3600.0);
+  EXPECT_EQ(s.seed, 1u);
+  const ModelConfig& m = c.model;
+  EXPECT_EQ(m.prior_go, 0.2);
+  EXPECT_EQ(m.collision_penalty, 3.0);
+  EXPECT_TRUE(m.trust.IsFixed());
+  EXPECT_EQ(m.trust.value, 0.6);
+  EXPECT_FALSE(m.assumed_trust.has_value());
+  EXPECT_EQ(m.Knowledge(), "exact");
+  EXPECT_EQ(m.likelihood.type, "linear");
+  EXPECT_EQ(m.likelihood.s_max, 2.0);
+  EXPECT_EQ(c.policies, (std::vector<std::string>{"no_ebp", "no_trust", "ta_ebp"}));
+  EXPECT_FALSE(c.sweep.has_value());
+  // Keys the file does not set keep the struct defaults.
+  const ScenarioConfig defaults;
+  EXPECT_EQ(s.vehicle_length, defaults.vehicle_length);
+  EXPECT_EQ(s.vehicle_width, defaults.vehicle_width);
+  EXPECT_EQ(s.arrival_window, defaults.arrival_window);
+  EXPECT_EQ(s.network, "");
+  std::string why;
+  EXPECT_TRUE(c.IsValid(&why)) << why;
+}
+
+TEST(ConfigLoad, ToYamlRoundTripGivesIdenticalJson) {
+  const ExperimentConfig paper = LoadExperimentConfig(kPaper);
+  const std::string yaml = ToYaml(paper);
+  EXPECT_EQ(ToJson(ParseExperimentConfig(yaml, "roundtrip.yaml")), ToJson(paper));
+  // A config that sets every kind of field: optional, distribution, logistic
+  // likelihood, awkward doubles, a sweep grid and a non-default policy list.
+  const ExperimentConfig rich = ParseExperimentConfig(
+      "scenario: {avs: 3, hvs: 5, duration: 123.456, seed: 18446744073709551615,\n"
+      "           step_length: 0.05, auto_length: false, network: some/net.xml,\n"
+      "           creep_speed: 0.1}\n"
+      "model:\n"
+      "  prior_go: 0.1\n"
+      "  collision_penalty: 3.3333333333333335\n"
+      "  trust: {dist: discrete, values: [0.2, 0.7], weights: [1, 2]}\n"
+      "  trust_knowledge: assumed\n"
+      "  assumed_trust: 0.9\n"
+      "  likelihood: {type: logistic, s_max: 1.5, steepness: 6, midpoint: 0.7}\n"
+      "policies: [ta_ebp, full_reveal]\n"
+      "sweep:\n"
+      "  replicates: 3\n"
+      "  grid:\n"
+      "    model.trust: [0.1, 0.5, {dist: uniform, low: 0.2, high: 0.9}]\n"
+      "    scenario.avs: [0, 8]\n",
+      "rich.yaml");
+  EXPECT_EQ(rich.scenario.seed, 18446744073709551615ull);
+  ASSERT_TRUE(rich.sweep.has_value());
+  EXPECT_EQ(rich.sweep->grid.size(), 2u);
+  const std::string rich_yaml = ToYaml(rich);
+  const ExperimentConfig back = ParseExperimentConfig(rich_yaml, "rich-roundtrip.yaml");
+  EXPECT_EQ(ToJson(back), ToJson(rich)) << rich_yaml;
+  EXPECT_EQ(back.scenario.duration, 123.456);
+  EXPECT_EQ(back.model.collision_penalty, 3.3333333333333335);
+  ASSERT_TRUE(back.model.assumed_trust.has_value());
+  EXPECT_EQ(*back.model.assumed_trust, 0.9);
+  // And the YAML we write is itself stable.
+  EXPECT_EQ(ToYaml(back), rich_yaml);
+}
+
+TEST(ConfigLoad, EmptyTextGivesTheDefaults) {
+  EXPECT_EQ(ToJson(ParseExperimentConfig("", "empty.yaml")), ToJson(ExperimentConfig{}));
+  EXPECT_EQ(ToJson(ParseExperimentConfig("{}", "empty.yaml")), ToJson(ExperimentConfig{}));
+}
+
+// ------------------------------------------------------------------ unknown keys
+
+TEST(ConfigErrors, UnknownTopLevelKeyNamesKeyFileAndLine) {
+  const FileError e = LoadError(
+      "# an experiment\n"
+      "scenario:\n"
+      "  avs: 8\n"
+      "scenaro:\n"
+      "  hvs: 8\n");
+  EXPECT_THAT(e.message, HasSubstr("scenaro"));
+  EXPECT_THAT(e.message, HasSubstr(e.path + ":4"));
+  EXPECT_THAT(e.message, HasSubstr("unknown key"));
+}
+
+TEST(ConfigErrors, UnknownNestedKeyNamesFullKeyFileAndLine) {
+  const FileError e = LoadError(
+      "scenario:\n"
+      "  avs: 8\n"
+      "  hvs: 8\n"
+      "  avss: 3\n"
+      "model:\n"
+      "  prior_go: 0.2\n");
+  EXPECT_THAT(e.message, HasSubstr("scenario.avss"));
+  EXPECT_THAT(e.message, HasSubstr(e.path + ":4"));
+  const FileError deep = LoadError(
+      "model:\n"
+      "  likelihood:\n"
+      "    type: linear\n"
+      "    smax: 2\n");
+  EXPECT_THAT(deep.message, HasSubstr("model.likelihood.smax"));
+  EXPECT_THAT(deep.message, HasSubstr(deep.path + ":4"));
+}
+
+TEST(ConfigErrors, DuplicateKeysAreErrorsNotSilentlyFirstWins) {
+  const FileError nested = LoadError(
+      "scenario:\n"
+      "  duration: 60\n"
+      "  avs: 8\n"
+      "  duration: 3600\n");
+  EXPECT_THAT(nested.message, HasSubstr("scenario.duration"));
+  EXPECT_THAT(nested.message, HasSubstr("twice"));
+  EXPECT_THAT(nested.message, HasSubstr(nested.path + ":4"));
+  const FileError top = LoadError("policies: [ta_ebp]\nmodel: {}\npolicies: [no_ebp]\n");
+  EXPECT_THAT(top.message, HasSubstr("policies"));
+  EXPECT_THAT(top.message, HasSubstr(top.path + ":3"));
+  const FileError trust = LoadError("model: {trust: {dist: beta, alpha: 2, beta: 3, alpha: 4}}\n");
+  EXPECT_THAT(trust.message, HasSubstr("model.trust.alpha"));
+  EXPECT_THAT(trust.message, HasSubstr("twice"));
+}
+
+// ------------------------------------------------------------------ wrong types
+
+TEST(ConfigErrors, WrongTypesNameKeyValueAndLine) {
+  {
+    const FileError e = LoadError("scenario:\n  avs: abc\n");
+    EXPECT_THAT(e.message, HasSubstr("scenario.avs"));
+    EXPECT_THAT(e.message, HasSubstr("abc"));
+    EXPECT_THAT(e.message, HasSubstr(e.path + ":2"));
+  }
+  {
+    const FileError e = LoadError("scenario:\n  avs: 8\n  duration: [1]\n");
+    EXPECT_THAT(e.message, HasSubstr("scenario.duration"));
+    EXPECT_THAT(e.message, HasSubstr("[1]"));
+    EXPECT_THAT(e.message, HasSubstr(e.path + ":3"));
+  }
+  {
+    const FileError e = LoadError("model: {prior_go: 0.2}\npolicies: ta_ebp\n");
+    EXPECT_THAT(e.message, HasSubstr("policies"));
+    EXPECT_THAT(e.message, HasSubstr("list"));
+    EXPECT_THAT(e.message, HasSubstr("ta_ebp"));
+    EXPECT_THAT(e.message, HasSubstr(e.path + ":2"));
+  }
+  {
+    // A fraction for an integer, a word for a bool, a map where a number goes.
+    EXPECT_THAT(LoadError("scenario: {hvs: 2.5}\n").message, HasSubstr("scenario.hvs"));
+    EXPECT_THAT(LoadError("scenario: {auto_length: maybe}\n").message,
+                HasSubstr("scenario.auto_length"));
+    EXPECT_THAT(LoadError("model: {collision_penalty: {a: 1}}\n").message,
+                HasSubstr("model.collision_penalty"));
+    EXPECT_THAT(LoadError("model: {prior_go: yes}\n").message, HasSubstr("model.prior_go"));
+    EXPECT_THAT(LoadError("scenario: {seed: -1}\n").message, HasSubstr("scenario.seed"));
+    EXPECT_THAT(LoadError("scenario: 5\n").message, HasSubstr("scenario"));
+  }
+}
+
+// ------------------------------------------------------------------ ranges
+
+TEST(ConfigErrors, OutOfRangeValuesNameKeyAndValue) {
+  struct Case {
+    std::string yaml, expected;
+  };
+  const std::vector<Case> cases = {
+      {"model: {trust: 1.3}\n", "model.trust = 1.3"},
+      {"model: {prior_go: 0}\n", "model.prior_go = 0"},
+      {"model: {prior_go: 1}\n", "model.prior_go = 1"},
+      {"model: {collision_penalty: -2}\n", "model.collision_penalty = -2"},
+      {"model: {assumed_trust: -0.1}\n", "model.assumed_trust = -0.1"},
+      {"model: {likelihood: {s_max: 0}}\n", "model.likelihood.s_max = 0"},
+      {"model: {likelihood: {type: cubic}}\n", "model.likelihood.type = 'cubic'"},
+      {"scenario: {duration: -5}\n", "scenario.duration = -5"},
+      {"scenario: {avs: -1}\n", "scenario.avs = -1"},
+      {"scenario: {hvs: -3}\n", "scenario.hvs = -3"},
+      {"scenario: {avs: 0, hvs: 0}\n", "scenario.avs + scenario.hvs = 0"},
+      {"scenario: {step_length: 0}\n", "scenario.step_length = 0"},
+      {"scenario: {cruise_speed: -4}\n", "scenario.cruise_speed = -4"},
+      {"policies: [ta_ebp, yolo]\n", "'yolo'"},
+      {"policies: [ta_ebp, no_ebp, ta_ebp]\n", "'ta_ebp' is listed twice"},
+      {"policies: []\n", "policies is empty"},
+  };
+  for (const Case& c : cases) {
+    const FileError e = LoadError(c.yaml);
+    EXPECT_THAT(e.message, HasSubstr(c.expected)) << c.yaml;
+    EXPECT_THAT(e.message, HasSubstr(e.path)) << c.yaml;
+  }
+}
+
+// ------------------------------------------------------------------ files
+
+TEST(ConfigErrors, MalformedYamlNamesFileAndLine) {
+  const FileError e = LoadError(
+      "scenario:\n"
+      "  avs: 8\n"
+      "  hvs: [8, 9\n"
+      "model:\n"
+      "  prior_go: 0.2\n");
+  EXPECT_THAT(e.message, HasSubstr("malformed YAML"));
+  // The parser reports the unterminated list somewhere from its start on.
+  EXPECT_THAT(e.message, ::testing::ContainsRegex(e.path + ":[3-6]:"));
+  // A tab used for indentation on line 4.
+  const FileError tab = LoadError("scenario:\n  avs: 8\n  hvs: 8\n\tseed: 1\n");
+  EXPECT_THAT(tab.message, HasSubstr("malformed YAML"));
+  EXPECT_THAT(tab.message, HasSubstr(tab.path + ":4:"));
+  // A stray closing brace on line 3.
+  const FileError brace = LoadError("scenario:\n  avs: 8\nmodel: {prior_go: 0.2}}\n");
+  EXPECT_THAT(brace.message, HasSubstr("malformed YAML"));
+  EXPECT_THAT(brace.message, HasSubstr(brace.path + ":3:"));
+}
+
+TEST(ConfigErrors, MissingFileNamesThePath) {
+  TempDir dir;
+  const std::string path = (dir.path() / "nope.yaml").string();
+  const std::string msg = ConfigErrorOf([&] { LoadExperimentConfig(path); });
+  EXPECT_THAT(msg, HasSubstr(path));
+  const std::string pmsg = ConfigErrorOf([&] { LoadProblemConfig(path); });
+  EXPECT_THAT(pmsg, HasSubstr(path));
+}
+
+TEST(ConfigErrors, NonMapTopLevelIsRejected) {
+  EXPECT_THAT(LoadError("- a\n- b\n").message, HasSubstr("top level"));
+}
+
+// ------------------------------------------------------------------ --set
+
+TEST(ConfigOverrides, OverridesApply) {
+  const ExperimentConfig c = LoadExperimentConfig(
+      kPaper, {"scenario.duration=60", "policies=[ta_ebp]", "model.likelihood.s_max=1.5"});
+  EXPECT_EQ(c.scenario.duration, 60.0);
+  EXPECT_EQ(c.policies, std::vector<std::string>{"ta_ebp"});
+  EXPECT_EQ(c.model.likelihood.s_max, 1.5);
+  // Everything else as in the file.
+  ExperimentConfig expected = LoadExperimentConfig(kPaper);
+  expected.scenario.duration = 60;
+  expected.policies = {"ta_ebp"};
+  expected.model.likelihood.s_max = 1.5;
+  EXPECT_EQ(ToJson(c), ToJson(expected));
+}
+
+TEST(ConfigOverrides, LaterOverridesWinAndCreateMissingSections) {
+  const ExperimentConfig c =
+      ParseExperimentConfig("", "empty.yaml",
+                            {"scenario.avs=2", "scenario.avs=5", "model.assumed_trust=0.9",
+                             "model.likelihood={type: logistic, s_max: 2, steepness: 3}"});
+  EXPECT_EQ(c.scenario.avs, 5);
+  ASSERT_TRUE(c.model.assumed_trust.has_value());
+  EXPECT_EQ(*c.model.assumed_trust, 0.9);
+  EXPECT_EQ(c.model.Knowledge(), "assumed");
+  EXPECT_EQ(c.model.likelihood.type, "logistic");
+  EXPECT_EQ(c.model.likelihood.steepness, 3.0);
+}
+
+TEST(ConfigOverrides, ErrorsNameTheSetNotTheFile) {
+  struct Case {
+    std::string set, expected;
+  };
+  const std::vector<Case> cases = {
+      {"scenario.avss=3", "scenario.avss"},
+      {"model.trust=2", "model.trust = 2"},
+      {"novalue", "KEY=VALUE"},
+      {"scenario.duration=abc", "scenario.duration"},
+      {"scenario.avs=-1", "scenario.avs = -1"},
+      {"policies=[ta_ebp, ta_ebp]", "listed twice"},
+      {"scenario..avs=3", "empty component"},
+      {"scenario.avs=[1, 2", "not valid YAML"},
+  };
+  for (const Case& c : cases) {
+    const std::string msg =
+        ConfigErrorOf([&] { LoadExperimentConfig(kPaper, {"scenario.duration=60", c.set}); });
+    EXPECT_THAT(msg, HasSubstr("--set " + c.set)) << c.set;
+    EXPECT_THAT(msg, HasSubstr(c.expected)) << c.set;
+    EXPECT_THAT(msg, Not(HasSubstr("paper.yaml"))) << c.set;
+    // The error is about this --set, not the valid one before it.
+    EXPECT_THAT(msg, Not(HasSubstr("scenario.duration=60"))) << c.set;
+  }
+}
+
+TEST(ConfigOverrides, FileErrorsStillNameTheFileWhenOverridesAreGiven) {
+  const FileError e = LoadError("scenario:\n  avs: 8\n  avss: 3\n", {"scenario.duration=60"});
+  EXPECT_THAT(e.message, HasSubstr(e.path + ":3"));
+  EXPECT_THAT(e.message, Not(HasSubstr("--set")));
+}
+
+// ------------------------------------------------------------------ problems
+
+constexpr const char* kGoodProblem =
+    "states: [a, b]\n"
+    "actions: [x, y]\n"
+    "prior: [0.4, 0.6]\n"
+    "receiver_utility:\n"
+    "  - [1, 0]\n"
+    "  - [0, 1]\n"
+    "sender_utility:\n"
+    "  - [1, 0]\n"
+    "  - [1, 0]\n"
+    "trust: 0.5\n";
+
+TEST(ProblemConfig, LoadsAGoodFile) {
+  TempDir dir;
+  const ProblemConfig p = LoadProblemConfig(dir.Write("p.yaml", kGoodProblem));
+  EXPECT_EQ(p.states, (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(p.actions, (std::vector<std::string>{"x", "y"}));
+  EXPECT_EQ(p.prior, (std::vector<double>{0.4, 0.6}));
+  ASSERT_EQ(p.receiver_utility.size(), 2u);
+  EXPECT_EQ(p.receiver_utility[1], (std::vector<double>{0, 1}));
+  EXPECT_EQ(p.sender_utility[1], (std::vector<double>{1, 0}));
+  EXPECT_EQ(p.trust, 0.5);
+}
+
+TEST(ProblemConfig, MissingUnknownAndBadlyTypedKeysAreErrors) {
+  TempDir dir;
+  std::string text = kGoodProblem;
+  {
+    std::string missing = text;
+    missing.erase(missing.find("prior:"), std::string("prior: [0.4, 0.6]\n").size());
+    const std::string path = dir.Write("missing.yaml", missing);
+    const std::string msg = ConfigErrorOf([&] { LoadProblemConfig(path); });
+    EXPECT_THAT(msg, HasSubstr("missing"));
+    EXPECT_THAT(msg, HasSubstr("'prior'"));
+    EXPECT_THAT(msg, HasSubstr(path));
+  }
+  {
+    const std::string path = dir.Write("unknown.yaml", text + "trsut: 0.5\n");
+    const std::string msg = ConfigErrorOf([&] { LoadProblemConfig(path); });
+    EXPECT_THAT(msg, HasSubstr("trsut"));
+    EXPECT_THAT(msg, HasSubstr(path + ":11"));
+  }
+  {
+    std::string bad = text;
+    bad.replace(bad.find("trust: 0.5"), std::string("trust: 0.5").size(), "trust: high");
+    const std::string path = dir.Write("badtype.yaml", bad);
+    const std::string msg = ConfigErrorOf([&] { LoadProblemConfig(path); });
+    EXPECT_THAT(msg, HasSubstr("trust"));
+    EXPECT_THAT(msg, HasSubstr("high"));
+    EXPECT_THAT(msg, HasSubstr(path + ":10"));
+  }
+  {
+    std::string bad = text;
+    bad.replace(bad.find("  - [0, 1]"), std::string("  - [0, 1]").size(), "  - [0, one]");
+    const std::string path = dir.Write("badcell.yaml", bad);
+    const std::string msg = ConfigErrorOf([&] { LoadProblemConfig(path); });
+    EXPECT_THAT(msg, HasSubstr("receiver_utility"));
+    EXPECT_THAT(msg, HasSubstr("one"));
+    EXPECT_THAT(msg, HasSubstr(path + ":6"));
+  }
+  {
+    const std::string path = dir.Write("duplicate.yaml", text + "prior: [0.5, 0.5]\n");
+    const std::string msg = ConfigErrorOf([&] { LoadProblemConfig(path); });
+    EXPECT_THAT(msg, HasSubstr("'prior'"));
+    EXPECT_THAT(msg, HasSubstr("twice"));
+    EXPECT_THAT(msg, HasSubstr(path + ":11"));
+  }
+  {
+    const std::string path = dir.Write("empty.yaml", "");
+    EXPECT_THAT(ConfigErrorOf([&] { LoadProblemConfig(path); }), HasSubstr(path));
+  }
+}
+
+TEST(ProblemConfig, ShippedProblemsLoad) {
+  if (!fs::is_directory(kProblems)) GTEST_SKIP() << kProblems << " does not exist yet";
+  int loaded = 0;
+  for (const auto& entry : fs::directory_iterator(kProblems)) {
+    if (entry.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(entry.path().string());
+    const ProblemConfig p = LoadProblemConfig(entry.path().string());
+    EXPECT_GE(p.states.size(), 2u);
+    EXPECT_GE(p.actions.size(), 2u);
+    EXPECT_EQ(p.prior.size(), p.states.size());
+    EXPECT_EQ(p.receiver_utility.size(), p.states.size());
+    EXPECT_EQ(p.sender_utility.size(), p.states.size());
+    for (const auto& row : p.receiver_utility) EXPECT_EQ(row.size(), p.actions.size());
+    for (const auto& row : p.sender_utility) EXPECT_EQ(row.size(), p.actions.size());
+    EXPECT_GE(p.trust, 0.0);
+    EXPECT_LE(p.trust, 1.0);
+    ++loaded;
+  }
+  if (loaded == 0) GTEST_SKIP() << "no problem files in " << kProblems << " yet";
+}
+
+}  // namespace
+}  // namespace taebp

@@ -1,0 +1,433 @@
+// The SUMO-free decision logic at the two-way stop: right of way, the AV's
+// draws, the HV's reading of a nudge, the release sequence of an encounter and
+// the creep profile of a nudge.
+#include "taebp/controller/intersection.h"
+
+#include "taebp/persuasion/av_hv.h"
+#include "taebp/persuasion/likelihood.h"
+#include "taebp/persuasion/outcomes.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <random>
+#include <vector>
+
+namespace taebp {
+namespace {
+
+namespace per = persuasion;
+using Kind = RightOfWay::Kind;
+
+Head MakeHead(int vehicle, VehicleKind kind, int approach, double arrival, double ready) {
+  Head h;
+  h.vehicle = vehicle;
+  h.kind = kind;
+  h.approach = approach;
+  h.arrival = arrival;
+  h.ready = ready;
+  return h;
+}
+
+// ------------------------------------------------------------------ right of way
+
+TEST(RightOfWay, NobodyWaitingIsWait) {
+  EXPECT_EQ(DecideRightOfWay(std::nullopt, std::nullopt, 100.0, 1.0).kind, Kind::kWait);
+}
+
+TEST(RightOfWay, LoneHeadWaitsTheWindowThenGoes) {
+  const double window = 1.0;
+  for (VehicleKind kind : {VehicleKind::kAV, VehicleKind::kHV}) {
+    for (int approach : {0, 1}) {
+      const Head h = MakeHead(7, kind, approach, 10.0, 12.0);
+      const std::optional<Head> some = h, none;
+      const std::optional<Head>& a = approach == 0 ? some : none;
+      const std::optional<Head>& b = approach == 0 ? none : some;
+      // Looking both ways: still waiting until ready + window.
+      for (double now : {12.0, 12.5, 12.99}) {
+        EXPECT_EQ(DecideRightOfWay(a, b, now, window).kind, Kind::kWait) << now;
+      }
+      for (double now : {13.0, 13.1, 50.0}) {
+        const RightOfWay r = DecideRightOfWay(a, b, now, window);
+        EXPECT_EQ(r.kind, Kind::kRelease) << now;
+        EXPECT_EQ(r.first, 7);
+      }
+    }
+  }
+  // A zero window releases at once.
+  const RightOfWay r = DecideRightOfWay(MakeHead(3, VehicleKind::kHV, 0, 5, 5), std::nullopt, 5, 0);
+  EXPECT_EQ(r.kind, Kind::kRelease);
+  EXPECT_EQ(r.first, 3);
+}
+
+TEST(RightOfWay, AvAndHvWithinTheWindowMeetWithTheAvFirst) {
+  const double window = 1.0;
+  for (bool av_on_a : {true, false}) {
+    for (double gap : {0.0, 0.4, 1.0}) {
+      for (bool av_earlier : {true, false}) {
+        const double t_av = av_earlier ? 20.0 : 20.0 + gap;
+        const double t_hv = av_earlier ? 20.0 + gap : 20.0;
+        const Head av = MakeHead(1, VehicleKind::kAV, av_on_a ? 0 : 1, t_av, t_av);
+        const Head hv = MakeHead(2, VehicleKind::kHV, av_on_a ? 1 : 0, t_hv, t_hv);
+        const RightOfWay r = av_on_a ? DecideRightOfWay(av, hv, 21.0, window)
+                                     : DecideRightOfWay(hv, av, 21.0, window);
+        EXPECT_EQ(r.kind, Kind::kEncounter) << gap;
+        EXPECT_EQ(r.first, 1);
+        EXPECT_EQ(r.second, 2);
+      }
+    }
+  }
+}
+
+TEST(RightOfWay, BeyondTheWindowTheEarlierGoes) {
+  const double window = 1.0;
+  // Any kinds: the early head had looked both ways long enough.
+  for (VehicleKind ka : {VehicleKind::kAV, VehicleKind::kHV}) {
+    for (VehicleKind kb : {VehicleKind::kAV, VehicleKind::kHV}) {
+      const Head a = MakeHead(10, ka, 0, 30.0, 30.0);
+      const Head b = MakeHead(11, kb, 1, 31.2, 31.2);
+      RightOfWay r = DecideRightOfWay(a, b, 31.2, window);
+      EXPECT_EQ(r.kind, Kind::kRelease);
+      EXPECT_EQ(r.first, 10);
+      // Same with the early head on approach 1.
+      const Head a2 = MakeHead(10, ka, 0, 31.2, 31.2);
+      const Head b2 = MakeHead(11, kb, 1, 30.0, 30.0);
+      r = DecideRightOfWay(a2, b2, 31.2, window);
+      EXPECT_EQ(r.kind, Kind::kRelease);
+      EXPECT_EQ(r.first, 11);
+    }
+  }
+  // Readiness, not arrival, decides: both arrived long apart but the junction
+  // only became free at 40, so they are ready together and meet.
+  const Head av = MakeHead(1, VehicleKind::kAV, 0, 30.0, 40.0);
+  const Head hv = MakeHead(2, VehicleKind::kHV, 1, 38.0, 40.0);
+  const RightOfWay r = DecideRightOfWay(av, hv, 40.0, window);
+  EXPECT_EQ(r.kind, Kind::kEncounter);
+}
+
+TEST(RightOfWay, SameKindCrossByArrivalTiesToApproachZero) {
+  const double window = 1.0;
+  for (VehicleKind kind : {VehicleKind::kAV, VehicleKind::kHV}) {
+    // Ready together (junction became free at 50), b arrived first.
+    const Head a = MakeHead(4, kind, 0, 48.0, 50.0);
+    const Head b = MakeHead(5, kind, 1, 45.0, 50.0);
+    RightOfWay r = DecideRightOfWay(a, b, 50.0, window);
+    EXPECT_EQ(r.kind, Kind::kRelease);
+    EXPECT_EQ(r.first, 5);
+    // a arrived first.
+    r = DecideRightOfWay(MakeHead(4, kind, 0, 44.0, 50.0), b, 50.0, window);
+    EXPECT_EQ(r.kind, Kind::kRelease);
+    EXPECT_EQ(r.first, 4);
+    // Tie: approach 0 first, wherever it is passed.
+    const Head t0 = MakeHead(8, kind, 0, 47.0, 50.0);
+    const Head t1 = MakeHead(9, kind, 1, 47.0, 50.0);
+    EXPECT_EQ(DecideRightOfWay(t0, t1, 50.0, window).first, 8);
+    EXPECT_EQ(DecideRightOfWay(t1, t0, 50.0, window).first, 8);
+    EXPECT_EQ(DecideRightOfWay(t1, t0, 50.0, window).kind, Kind::kRelease);
+  }
+}
+
+// ------------------------------------------------------------------ randomness
+
+TEST(Uniform01, InUnitIntervalAndPortable) {
+  std::mt19937_64 rng(12345);
+  double lo = 1, hi = 0, sum = 0;
+  const int n = 1000000;
+  for (int i = 0; i < n; ++i) {
+    const double u = Uniform01(rng);
+    ASSERT_GE(u, 0.0);
+    ASSERT_LT(u, 1.0);
+    lo = std::min(lo, u);
+    hi = std::max(hi, u);
+    sum += u;
+  }
+  // Mean within 5 standard errors of 1/2 (sd of U(0,1) is 1/sqrt(12)).
+  EXPECT_NEAR(sum / n, 0.5, 5.0 / std::sqrt(12.0 * n));
+  EXPECT_LT(lo, 1e-4);
+  EXPECT_GT(hi, 1 - 1e-4);
+  // Portable: the standard fixes mt19937_64's 10000th output for the default
+  // seed (9981545732273789042); Uniform01 is its top 53 bits over 2^53.
+  std::mt19937_64 std_rng;
+  std_rng.discard(9999);
+  EXPECT_EQ(Uniform01(std_rng), static_cast<double>(9981545732273789042ull >> 11) * 0x1.0p-53);
+  // The largest output maps below 1.
+  EXPECT_LT(static_cast<double>(std::numeric_limits<std::uint64_t>::max() >> 11) * 0x1.0p-53, 1.0);
+}
+
+// Binomial check: |k/n - p| <= 5 standard errors (false-failure rate ~6e-7).
+void ExpectRate(long k, long n, double p, const char* what) {
+  ASSERT_GT(n, 0) << what;
+  const double se = std::sqrt(p * (1 - p) / n);
+  const double rate = static_cast<double>(k) / n;
+  if (p == 0.0 || p == 1.0) {
+    EXPECT_EQ(rate, p) << what;
+  } else {
+    EXPECT_NEAR(rate, p, 5 * se) << what << ": " << k << " of " << n;
+  }
+}
+
+TEST(DrawAv, FrequenciesMatchLambdaAB) {
+  struct Case {
+    double lambda;
+    per::CommittedScheme scheme;
+  };
+  const std::vector<Case> cases = {
+      {0.2, {true, 1.641025641025641, 1.0, 0.21875}},  // the paper's TA-EBP
+      {0.3, {true, 0.8, 0.7, 0.05}},
+      {0.1, {false, 0.0, 0.0, 0.0}},  // no_ebp: never nudges, never goes
+      {0.5, {true, 2.0, 1.0, 0.0}},   // full reveal
+  };
+  const long n = 200000;
+  for (const Case& c : cases) {
+    std::mt19937_64 rng(7);
+    long go = 0, nudge_go = 0, nudge_stop = 0, first = 0;
+    for (long i = 0; i < n; ++i) {
+      const AvDraw d = DrawAv(c.scheme, c.lambda, rng);
+      go += d.intent_go;
+      if (d.intent_go) nudge_go += d.nudge;
+      else nudge_stop += d.nudge;
+      first += d.goes_first;
+      ASSERT_EQ(d.goes_first, d.intent_go && c.scheme.av_may_go);
+      ASSERT_EQ(d.nudge_distance, d.nudge ? c.scheme.nudge : 0.0);
+      if (c.scheme.nudge == 0.0) {
+        ASSERT_FALSE(d.nudge);
+      }
+    }
+    ExpectRate(go, n, c.lambda, "P(Go)");
+    ExpectRate(nudge_go, go, c.scheme.nudge > 0 ? c.scheme.a : 0.0, "P(nudge | Go)");
+    ExpectRate(nudge_stop, n - go, c.scheme.nudge > 0 ? c.scheme.b : 0.0, "P(nudge | Stop)");
+    ExpectRate(first, n, c.scheme.av_may_go ? c.lambda : 0.0, "P(AV goes first)");
+  }
+}
+
+TEST(DrawAv, AlwaysConsumesTwoUniformsSoSchemesShareStreams) {
+  const std::vector<per::CommittedScheme> schemes = {
+      {true, 1.641025641025641, 1.0, 0.21875},
+      {true, 1.4545454545454546, 1.0, 0.25},
+      {false, 0.0, 0.0, 0.0},
+      {true, 2.0, 1.0, 0.0}};
+  // Each draw advances the engine by exactly two outputs.
+  for (const per::CommittedScheme& s : schemes) {
+    std::mt19937_64 rng(99), reference(99);
+    for (int i = 0; i < 1000; ++i) {
+      const double u_intent = Uniform01(reference);
+      const double u_signal = Uniform01(reference);
+      const AvDraw d = DrawAv(s, 0.2, rng);
+      ASSERT_EQ(rng, reference) << i;
+      ASSERT_EQ(d.intent_go, u_intent < 0.2);
+      ASSERT_EQ(d.nudge, s.nudge > 0 && u_signal < (d.intent_go ? s.a : s.b));
+    }
+  }
+  // Two policies fed from the same seed see the same intents, encounter by encounter.
+  std::mt19937_64 r1(2024), r2(2024);
+  for (int i = 0; i < 10000; ++i) {
+    const AvDraw d1 = DrawAv(schemes[0], 0.3, r1);
+    const AvDraw d2 = DrawAv(schemes[2], 0.3, r2);
+    ASSERT_EQ(d1.intent_go, d2.intent_go) << i;
+  }
+}
+
+// ------------------------------------------------------------------ HV reading
+
+TEST(ReadNudge, IsThePosteriorOfTheLibraryClampedToTheModelRange) {
+  const per::LinearLikelihood linear(2.0);
+  const per::LogisticLikelihood logistic(2.0, 4.0, 1.0);
+  for (const per::LikelihoodModel* model :
+       std::vector<const per::LikelihoodModel*>{&linear, &logistic}) {
+    for (const per::AvHvParams params : {per::AvHvParams{0.2, 3.0}, per::AvHvParams{0.3, 2.0}}) {
+      for (double theta : {0.0, 0.25, 0.6, 1.0}) {
+        for (double s : {0.0, 0.5, 1.4545454545454546, 1.641025641025641, 1.9999, 2.0}) {
+          const HvReading r = ReadNudge(params, theta, *model, s);
+          EXPECT_EQ(r.observed, s);
+          EXPECT_EQ(r.posterior, per::HvPosteriorGo(params, theta, *model, s));
+          EXPECT_EQ(r.drives_if_clear, per::HvDrivesIfClear(params, r.posterior));
+        }
+        // Past s_max (SUMO overshoot, the full-reveal nudge + kNudgeOvershoot)
+        // reads as s_max; a round-off negative displacement reads as 0.
+        for (double past : {2.0 + 1e-6, 2.001, 3.5}) {
+          const HvReading r = ReadNudge(params, theta, *model, past);
+          EXPECT_EQ(r.observed, past);
+          EXPECT_EQ(r.posterior, per::HvPosteriorGo(params, theta, *model, 2.0));
+        }
+        const HvReading neg = ReadNudge(params, theta, *model, -1e-12);
+        EXPECT_EQ(neg.posterior, per::HvPosteriorGo(params, theta, *model, 0.0));
+      }
+    }
+  }
+  // The paper's numbers: theta = 0.6 is persuaded by s* = 64/39 but not by
+  // No Trust's 16/11 (posterior 0.32 < p* = 0.4).
+  const per::AvHvParams paper{0.2, 3.0};
+  EXPECT_TRUE(ReadNudge(paper, 0.6, linear, 64.0 / 39.0).drives_if_clear);
+  const HvReading nt = ReadNudge(paper, 0.6, linear, 16.0 / 11.0);
+  EXPECT_NEAR(nt.posterior, 0.32, 1e-12);
+  EXPECT_FALSE(nt.drives_if_clear);
+}
+
+// ------------------------------------------------------------------ encounter
+
+using Release = EncounterSequence::Release;
+bool IsAv(const Release& r) { return r.av && !r.reckless; }
+bool IsHv(const Release& r, bool reckless) { return !r.av && r.reckless == reckless; }
+
+TEST(EncounterSequence, AvGoesHvDrivesRecklesslyBothAtOnce) {
+  EncounterSequence seq(true, false, 10.0, 1.0);
+  const auto out = seq.Update(10.0, false, false);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(std::count_if(out.begin(), out.end(), IsAv), 1);
+  EXPECT_EQ(std::count_if(out.begin(), out.end(), [](const Release& r) { return IsHv(r, true); }), 1);
+  EXPECT_TRUE(seq.Update(10.1, false, false).empty());
+  EXPECT_TRUE(seq.Update(15.0, true, true).empty());
+  EXPECT_TRUE(seq.Done(true, true));
+  EXPECT_FALSE(seq.Done(true, false));
+}
+
+TEST(EncounterSequence, AvGoesHvDrivesIfClearAfterTheAvCleared) {
+  EncounterSequence seq(true, true, 10.0, 1.0);
+  auto out = seq.Update(10.0, false, false);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_TRUE(IsAv(out[0]));
+  // The HV waits as long as the AV is in the junction, confirm delay or not.
+  for (double t : {10.1, 11.0, 12.0, 30.0}) EXPECT_TRUE(seq.Update(t, false, false).empty()) << t;
+  out = seq.Update(30.1, true, false);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_TRUE(IsHv(out[0], false));
+  EXPECT_TRUE(seq.Update(30.2, true, false).empty());
+  EXPECT_TRUE(seq.Update(33.0, true, true).empty());
+}
+
+TEST(EncounterSequence, AvWaitsHvDrivesRecklesslyAtOnceThenTheAv) {
+  EncounterSequence seq(false, false, 10.0, 1.0);
+  auto out = seq.Update(10.0, false, false);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_TRUE(IsHv(out[0], true));
+  for (double t : {10.1, 11.0, 20.0}) EXPECT_TRUE(seq.Update(t, false, false).empty()) << t;
+  out = seq.Update(20.1, false, true);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_TRUE(IsAv(out[0]));
+  EXPECT_TRUE(seq.Update(20.2, false, true).empty());
+}
+
+TEST(EncounterSequence, AvWaitsHvDrivesIfClearAfterConfirmDelayThenTheAv) {
+  const double dt = 0.1;
+  for (double confirm_delay : {0.0, 1.0, 2.5}) {
+    for (int decided_step : {7, 123, 35999}) {
+      // Time as the simulation accumulates it, with round-off.
+      double now = 0;
+      for (int k = 0; k < decided_step; ++k) now += dt;
+      const double decided_at = now;
+      EncounterSequence seq(false, true, decided_at, confirm_delay);
+      const int delay_steps = static_cast<int>(std::lround(confirm_delay / dt));
+      int released_at = -1;
+      for (int k = 0; k <= delay_steps + 3; ++k) {
+        const auto out = seq.Update(now, false, false);
+        if (!out.empty()) {
+          ASSERT_EQ(out.size(), 1u);
+          EXPECT_TRUE(IsHv(out[0], false));
+          EXPECT_EQ(released_at, -1) << "released twice";
+          released_at = k;
+        }
+        now += dt;
+      }
+      // Exactly at decided_at + confirm_delay, not a step late through round-off.
+      EXPECT_EQ(released_at, delay_steps) << confirm_delay << " " << decided_step;
+      const auto av = seq.Update(now, false, true);
+      ASSERT_EQ(av.size(), 1u);
+      EXPECT_TRUE(IsAv(av[0]));
+      EXPECT_TRUE(seq.Update(now + dt, false, true).empty());
+    }
+  }
+}
+
+// ------------------------------------------------------------------ creep
+
+TEST(CreepSpeed, LandsExactlyWithinLimitsAndNeverOvershoots) {
+  const double accel = 2.6, decel = 4.5, creep = 1.0;
+  for (double target : {0.3, 1.4545, 1.641, 2.0, 2.0 + 1e-6}) {
+    for (double dt : {0.1, 0.05}) {
+      SCOPED_TRACE(testing::Message() << "target " << target << " dt " << dt);
+      double x = 0, v = 0;
+      int steps = 0;
+      bool stopped = false;
+      while (steps < 10000) {
+        const double next = CreepSpeed(target, x, v, dt, accel, decel, creep);
+        ASSERT_GE(next, 0.0);
+        ASSERT_LE(next, creep + 1e-12);
+        ASSERT_LE(next - v, accel * dt + 1e-12) << "step " << steps;
+        if (next == 0.0) {
+          stopped = true;
+          break;
+        }
+        ASSERT_LE(v - next, decel * dt + 1e-12) << "step " << steps;
+        v = next;
+        x += v * dt;
+        ++steps;
+        ASSERT_LE(x, target + 1e-12) << "overshoot at step " << steps;
+      }
+      ASSERT_TRUE(stopped);
+      EXPECT_NEAR(x, target, 1e-12);
+      // The final stop from the last creep speed: at most one step of braking
+      // beyond decel*dt is allowed, and only then.
+      EXPECT_LE(v, decel * dt + 1e-12) << "final stop from " << v;
+      // A sensible duration: not slower than creeping at half speed plus ramps.
+      EXPECT_LE(steps * dt, target / (0.5 * creep) + creep / accel + creep / decel + 2 * dt);
+      // Once there it stays there.
+      EXPECT_EQ(CreepSpeed(target, x, 0.0, dt, accel, decel, creep), 0.0);
+    }
+  }
+}
+
+// The same properties over a grid of targets, steps and vehicle limits.
+TEST(CreepSpeed, PropertiesHoldOverAGridOfParameters) {
+  int cases = 0;
+  for (double dt : {0.01, 0.05, 0.1, 0.2, 0.25}) {
+    for (double accel : {0.8, 2.6, 5.0}) {
+      for (double decel : {1.0, 4.5, 9.0}) {
+        for (double creep : {0.3, 1.0, 2.5}) {
+          for (int t = 1; t <= 60; ++t) {
+            const double target = 0.0137 * t * t;  // 0.0137 .. 49 m, irregular
+            double x = 0, v = 0;
+            int steps = 0;
+            for (; steps < 100000; ++steps) {
+              const double next = CreepSpeed(target, x, v, dt, accel, decel, creep);
+              if (next == 0.0) break;
+              ASSERT_LE(next, creep + 1e-12);
+              ASSERT_LE(next - v, accel * dt + 1e-12);
+              ASSERT_LE(v - next, decel * dt + 1e-12)
+                  << "target " << target << " dt " << dt << " decel " << decel;
+              v = next;
+              x += v * dt;
+              ASSERT_LE(x, target + 1e-12);
+            }
+            ASSERT_LT(steps, 100000);
+            ASSERT_NEAR(x, target, 1e-12) << "target " << target << " dt " << dt;
+            // The landing speed is remaining/dt: round-off in x grows with the
+            // number of steps and is divided by dt.
+            ASSERT_LE(v, decel * dt + 1e-9) << "final stop, target " << target;
+            ++cases;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(cases, 5 * 3 * 3 * 3 * 60);
+}
+
+TEST(CreepSpeed, ReachesCreepSpeedOnLongNudgesAndZeroTargetIsZero) {
+  double x = 0, v = 0, vmax = 0;
+  for (int k = 0; k < 1000; ++k) {
+    v = CreepSpeed(5.0, x, v, 0.1, 2.6, 4.5, 1.0);
+    if (v == 0) break;
+    x += v * 0.1;
+    vmax = std::max(vmax, v);
+  }
+  EXPECT_DOUBLE_EQ(vmax, 1.0);
+  EXPECT_NEAR(x, 5.0, 1e-12);
+  EXPECT_EQ(CreepSpeed(0.0, 0.0, 0.0, 0.1, 2.6, 4.5, 1.0), 0.0);
+}
+
+}  // namespace
+}  // namespace taebp

@@ -1,0 +1,374 @@
+// Short SUMO runs of the figure-8 through taebp::RunPolicy: every encounter is
+// checked against the library (nudge realised, posterior, HV action, AV action,
+// collision), the measured rates against the library's theory (99.9% Wilson
+// intervals), determinism, the run's health and bad input.
+#include "taebp/controller/config.h"
+#include "taebp/controller/experiment.h"
+#include "taebp/controller/report.h"
+#include "taebp/controller/sumo_adapter.h"
+#include "taebp/persuasion/av_hv.h"
+#include "taebp/persuasion/outcomes.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace taebp {
+namespace {
+
+using ::testing::HasSubstr;
+namespace per = persuasion;
+namespace fs = std::filesystem;
+
+const std::string kPaper = std::string(TAEBP_SOURCE_DIR) + "/configs/paper.yaml";
+
+// Two-sided normal quantile for 99.9%: a true rate falls outside the interval
+// with probability ~0.001 per check.
+constexpr double kZ999 = 3.2905267314919255;
+constexpr double kZ95 = 1.959963984540054;
+
+Interval Wilson(long k, long n, double z) {
+  const double p = static_cast<double>(k) / n;
+  const double z2 = z * z;
+  const double denom = 1 + z2 / n;
+  const double centre = (p + z2 / (2.0 * n)) / denom;
+  const double half = z * std::sqrt(p * (1 - p) / n + z2 / (4.0 * n * n)) / denom;
+  return {centre - half, centre + half};
+}
+
+// k of n against a theory probability p: exact for p = 0 or 1, else p must lie
+// in the 99.9% Wilson interval of k/n.
+void ExpectAgrees(long k, long n, double p, const std::string& what) {
+  ASSERT_GT(n, 0) << what;
+  if (p == 0.0) {
+    EXPECT_EQ(k, 0) << what << ": theory says never";
+  } else if (p == 1.0) {
+    EXPECT_EQ(k, n) << what << ": theory says always";
+  } else {
+    const Interval ci = Wilson(k, n, kZ999);
+    EXPECT_GE(p, ci.low) << what << ": " << k << "/" << n << " = " << static_cast<double>(k) / n
+                         << ", theory " << p;
+    EXPECT_LE(p, ci.high) << what << ": " << k << "/" << n << " = "
+                          << static_cast<double>(k) / n << ", theory " << p;
+  }
+}
+
+ExperimentConfig Config(const std::vector<std::string>& overrides) {
+  return LoadExperimentConfig(kPaper, overrides);
+}
+
+PolicyRun RunOne(const ExperimentConfig& config, per::Policy policy) {
+  return RunPolicy(config, policy, ResolveScenarioFiles(config, ""));
+}
+
+TEST(Wilson, OurIntervalMatchesReportAt95) {
+  for (auto [k, n] : {std::pair{0L, 10L}, std::pair{3L, 10L}, std::pair{50L, 127L},
+                      std::pair{127L, 127L}, std::pair{1L, 1000L}}) {
+    const Interval ours = Wilson(k, n, kZ95);
+    const Interval theirs = Wilson95(k, n);
+    EXPECT_NEAR(theirs.low, std::max(0.0, ours.low), 1e-12) << k << "/" << n;
+    EXPECT_NEAR(theirs.high, std::min(1.0, ours.high), 1e-12) << k << "/" << n;
+  }
+  EXPECT_EQ(Wilson95(0, 0).low, 0.0);
+  EXPECT_EQ(Wilson95(0, 0).high, 1.0);
+}
+
+// ------------------------------------------------------------------ theory points
+
+struct Point {
+  std::string name;
+  std::vector<std::string> overrides;
+};
+
+std::ostream& operator<<(std::ostream& os, const Point& p) { return os << p.name; }
+
+class ScenarioPoint : public ::testing::TestWithParam<Point> {};
+
+// Simulated time per policy: ~0.14 AV-HV encounters per simulated second, so an
+// hour gives ~500 encounters; the 99.9% interval half-width is then <= 0.07.
+constexpr double kDuration = 3600;
+
+TEST_P(ScenarioPoint, EveryEncounterFollowsTheLibraryAndRatesAgreeWithTheory) {
+  std::vector<std::string> overrides = GetParam().overrides;
+  overrides.push_back("scenario.duration=" + std::to_string(kDuration));
+  overrides.push_back("policies=[no_ebp, no_trust, ta_ebp, full_reveal]");
+  const ExperimentConfig cfg = Config(overrides);
+  ASSERT_TRUE(cfg.model.trust.IsFixed());
+  const double theta = cfg.model.trust.value;
+  const per::AvHvParams params{cfg.model.prior_go, cfg.model.collision_penalty};
+  const auto model = MakeLikelihood(cfg.model.likelihood);
+  const double s_max = model->SMax();
+  const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
+
+  for (const std::string& name : cfg.policies) {
+    SCOPED_TRACE(GetParam().name + " / " + name);
+    const per::Policy policy = per::ParsePolicy(name);
+    // The AV's design trust, from the config alone.
+    const double theta_hat = policy == per::Policy::kNoTrust ? 1.0
+                             : cfg.model.assumed_trust     ? *cfg.model.assumed_trust
+                                                           : theta;
+    const per::CommittedScheme scheme = per::CommitScheme(policy, params, theta_hat, *model);
+    const per::PredictedOutcome theory =
+        per::PredictOutcome(policy, params, theta, *model, theta_hat);
+    // The nudge the AV must command, straight from Theorem 2 (or s_max / none).
+    double expected_nudge = 0;
+    if (policy == per::Policy::kTaEbp || policy == per::Policy::kNoTrust) {
+      const per::TaebpDesign d = per::DesignTaebp(params, theta_hat, *model);
+      expected_nudge = d.persuadable ? d.s_star : 0.0;
+    } else if (policy == per::Policy::kFullReveal) {
+      expected_nudge = s_max;
+    }
+
+    const PolicyRun run = RunPolicy(cfg, policy, files);
+    EXPECT_EQ(run.policy, name);
+    EXPECT_NEAR(run.simulated_seconds, kDuration, 1e-6);
+    EXPECT_NEAR(run.theory.dc_rate, theory.dc_rate, 1e-12);
+    EXPECT_NEAR(run.theory.collision_rate, theory.collision_rate, 1e-12);
+    EXPECT_EQ(run.scheme.nudge, scheme.nudge);
+    // Health: no teleports, no collision outside an encounter, no deadlock.
+    EXPECT_EQ(run.teleports, 0);
+    EXPECT_EQ(run.other_collisions, 0);
+    EXPECT_LT(run.longest_gap_without_crossing, 60.0);
+    EXPECT_GT(run.crossings_av, 0);
+    EXPECT_GT(run.crossings_hv, 0);
+
+    const long n = static_cast<long>(run.encounters.size());
+    // Enough encounters for the intervals below to mean something.
+    ASSERT_GE(n, 200);
+    long go = 0, nudges = 0, dc = 0, collisions = 0;
+    double last_time = -1;
+    for (const EncounterRecord& e : run.encounters) {
+      SCOPED_TRACE(testing::Message() << "encounter at t = " << e.time << " " << e.av << "-"
+                                      << e.hv);
+      EXPECT_GE(e.time, last_time);
+      last_time = e.time;
+      EXPECT_EQ(e.av.rfind("av", 0), 0u);
+      EXPECT_EQ(e.hv.rfind("hv", 0), 0u);
+      EXPECT_EQ(e.hv_trust, theta);
+      EXPECT_GE(e.decided_at, e.time);
+      if (e.commanded > 0) {
+        ++nudges;
+        EXPECT_EQ(e.commanded, expected_nudge);
+        // SUMO's reported displacement realises the nudge, never short of it.
+        EXPECT_GE(e.observed, e.commanded);
+        EXPECT_LE(e.observed - e.commanded, kNudgeTolerance);
+      } else {
+        EXPECT_EQ(e.observed, 0.0);
+      }
+      // The HV's belief and action follow eq:pp at the observed displacement
+      // (read as s_max when SUMO's overshoot passes it).
+      const double posterior =
+          per::HvPosteriorGo(params, theta, *model, std::min(e.observed, s_max));
+      EXPECT_NEAR(e.posterior, posterior, 1e-12);
+      EXPECT_EQ(e.hv_dc, per::HvDrivesIfClear(params, e.posterior));
+      // The AV goes iff its intent is Go and the committed scheme lets it.
+      EXPECT_EQ(e.av_first, e.intent_go && scheme.av_may_go);
+      // SUMO reports a collision exactly when both proceed.
+      EXPECT_EQ(e.collision, e.av_first && !e.hv_dc);
+      EXPECT_NEAR(e.theory_dc, theory.dc_rate, 1e-12);
+      EXPECT_NEAR(e.theory_collision, theory.collision_rate, 1e-12);
+      go += e.intent_go;
+      dc += e.hv_dc;
+      collisions += e.collision;
+    }
+    ExpectAgrees(go, n, params.prior_go, "P(intent Go)");
+    ExpectAgrees(nudges, n, theory.nudge_rate, "nudge rate");
+    ExpectAgrees(dc, n, theory.dc_rate, "DC rate");
+    ExpectAgrees(collisions, n, theory.collision_rate, "collision rate");
+    if (policy == per::Policy::kNoEbp) {
+      EXPECT_EQ(nudges, 0);
+      EXPECT_EQ(dc, 0);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Theory, ScenarioPoint,
+    ::testing::Values(
+        // lambda 0.2, r 3, theta 0.6: TA-EBP DC 0.375, No Trust collides at 0.2.
+        Point{"Paper", {}},
+        Point{"Lambda03R2Theta08",
+              {"model.prior_go=0.3", "model.collision_penalty=2", "model.trust=0.8"}},
+        Point{"Lambda01R5Theta05",
+              {"model.prior_go=0.1", "model.collision_penalty=5", "model.trust=0.5"}},
+        // The AV over-estimates trust: its nudge is too small, collisions expected.
+        Point{"AssumedTrust09Theta06", {"model.trust=0.6", "model.assumed_trust=0.9"}},
+        // Below theta* = 0.25: TA-EBP falls back to always yielding.
+        Point{"NotPersuadableTheta01", {"model.trust=0.1"}},
+        Point{"LogisticLikelihood",
+              {"model.likelihood={type: logistic, s_max: 2.0, steepness: 4, midpoint: 1}"}}),
+    [](const ::testing::TestParamInfo<Point>& info) { return info.param.name; });
+
+// The theory values the points above are meant to exercise (so a library
+// change that silently makes them trivial is noticed).
+TEST(ScenarioPoints, CoverCollisionsPersuasionAndFallback) {
+  per::LinearLikelihood lik(2.0);
+  const per::AvHvParams paper{0.2, 3.0};
+  EXPECT_NEAR(per::PredictOutcome(per::Policy::kTaEbp, paper, 0.6, lik).dc_rate, 0.375, 1e-12);
+  EXPECT_NEAR(per::PredictOutcome(per::Policy::kNoTrust, paper, 0.6, lik).collision_rate, 0.2,
+              1e-12);
+  EXPECT_GT(per::PredictOutcome(per::Policy::kTaEbp, paper, 0.6, lik, 0.9).collision_rate, 0.0);
+  EXPECT_FALSE(per::DesignTaebp(paper, 0.1, lik).persuadable);
+  const per::AvHvParams p2{0.3, 2.0}, p3{0.1, 5.0};
+  for (const auto& [params, theta] : {std::pair{p2, 0.8}, std::pair{p3, 0.5}}) {
+    const auto o = per::PredictOutcome(per::Policy::kTaEbp, params, theta, lik);
+    EXPECT_GT(o.dc_rate, params.prior_go);
+    EXPECT_LT(o.dc_rate, 1.0);
+    EXPECT_EQ(o.collision_rate, 0.0);
+  }
+}
+
+// ------------------------------------------------------------------ determinism
+
+Provenance TestProvenance(const ExperimentConfig& cfg) {
+  Provenance p;
+  p.config_path = kPaper;
+  p.config_json = ToJson(cfg);
+  p.seed = cfg.scenario.seed;
+  p.git_revision = "test";
+  p.sumo_version = "test";
+  p.taebp_version = "test";
+  return p;
+}
+
+std::vector<PolicyRun> RunAll(const ExperimentConfig& cfg) {
+  const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
+  std::vector<PolicyRun> runs;
+  for (const std::string& name : cfg.policies)
+    runs.push_back(RunPolicy(cfg, per::ParsePolicy(name), files));
+  return runs;
+}
+
+// The encounter rows without the provenance lines.
+std::string EncounterRows(const std::vector<PolicyRun>& runs, const Provenance& prov) {
+  const std::string csv = EncountersCsv(runs, prov);
+  const auto header = csv.find("policy,time");
+  return header == std::string::npos ? csv : csv.substr(header);
+}
+
+TEST(ScenarioDeterminism, SameSeedSameOutputsOtherSeedOtherEncounters) {
+  const ExperimentConfig cfg = Config({"scenario.duration=600"});
+  const Provenance prov = TestProvenance(cfg);
+  const std::vector<PolicyRun> a = RunAll(cfg);
+  const std::vector<PolicyRun> b = RunAll(cfg);
+  ASSERT_EQ(a.size(), 3u);
+  for (const PolicyRun& r : a) EXPECT_GT(r.encounters.size(), 20u) << r.policy;
+  EXPECT_EQ(SummaryJson(a, prov), SummaryJson(b, prov));
+  EXPECT_EQ(EncountersCsv(a, prov), EncountersCsv(b, prov));
+
+  const ExperimentConfig other = Config({"scenario.duration=600", "scenario.seed=2"});
+  const std::vector<PolicyRun> c = RunAll(other);
+  EXPECT_NE(EncounterRows(a, prov), EncounterRows(c, prov));
+}
+
+// ------------------------------------------------------------------ bad input
+
+template <typename E, typename F>
+std::string ErrorOf(F&& f) {
+  try {
+    f();
+  } catch (const E& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "wrong exception type: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "nothing was thrown";
+  return "";
+}
+
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "taebp_scenario_test.XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+// After a failed run libsumo is closed and the next run works.
+void ExpectAShortRunStillWorks() {
+  const ExperimentConfig cfg = Config({"scenario.duration=60"});
+  const PolicyRun run = RunOne(cfg, per::Policy::kTaEbp);
+  EXPECT_GT(run.crossings_av + run.crossings_hv, 0);
+  EXPECT_FALSE(sumo::IsLoaded());
+}
+
+TEST(ScenarioBadInput, MissingNetworkIsAConfigErrorNamingTheKey) {
+  const ExperimentConfig cfg = Config({"scenario.network=/nonexistent/dir/x.net.xml"});
+  const std::string msg = ErrorOf<ConfigError>([&] { ResolveScenarioFiles(cfg, ""); });
+  EXPECT_THAT(msg, HasSubstr("scenario.network"));
+  EXPECT_THAT(msg, HasSubstr("/nonexistent/dir/x.net.xml"));
+  // Relative paths are resolved against the config's directory.
+  const ExperimentConfig rel = Config({"scenario.network=figure8.net.xml"});
+  const std::string built = fs::path(DefaultNetworkPath()).parent_path().string();
+  EXPECT_EQ(fs::path(ResolveScenarioFiles(rel, built).net), fs::path(built) / "figure8.net.xml");
+  EXPECT_THAT(ErrorOf<ConfigError>([&] { ResolveScenarioFiles(rel, TAEBP_SOURCE_DIR); }),
+              HasSubstr("scenario.network"));
+}
+
+TEST(ScenarioBadInput, CorruptNetworkIsASumoError) {
+  TempDir dir;
+  const fs::path net = dir.path() / "garbage.net.xml";
+  std::ofstream(net) << "this is not a SUMO network <net <<<\n\x01\x02 garbage\n";
+  const ExperimentConfig cfg = Config({"scenario.network=" + net.string(),
+                                       "scenario.duration=60"});
+  const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
+  EXPECT_EQ(fs::path(files.net), net);
+  const std::string msg = ErrorOf<SumoError>([&] { RunPolicy(cfg, per::Policy::kTaEbp, files); });
+  EXPECT_THAT(msg, HasSubstr(net.string()));
+  ExpectAShortRunStillWorks();
+}
+
+TEST(ScenarioBadInput, TooManyVehiclesForTheTrackIsAConfigErrorAboutLoopLength) {
+  // Without auto_length the track does not grow: refused before SUMO starts.
+  const ExperimentConfig fixed =
+      Config({"scenario.avs=30", "scenario.hvs=30", "scenario.auto_length=false"});
+  const std::string msg = ErrorOf<ConfigError>([&] { ResolveScenarioFiles(fixed, ""); });
+  EXPECT_THAT(msg, HasSubstr("loop_length"));
+  EXPECT_THAT(msg, HasSubstr("60 vehicles"));
+  // A given network cannot grow: refused when placing the vehicles.
+  const ExperimentConfig given = Config({"scenario.avs=30", "scenario.hvs=30",
+                                         "scenario.network=" + DefaultNetworkPath()});
+  const ScenarioFiles files = ResolveScenarioFiles(given, "");
+  const std::string run_msg =
+      ErrorOf<ConfigError>([&] { RunPolicy(given, per::Policy::kTaEbp, files); });
+  EXPECT_THAT(run_msg, HasSubstr("loop_length"));
+  EXPECT_THAT(run_msg, HasSubstr("60"));
+  ExpectAShortRunStillWorks();
+}
+
+TEST(ScenarioBadInput, StopInsideTheJunctionIsAConfigError) {
+  const ExperimentConfig cfg = Config({"scenario.stop_distance=1.0", "scenario.duration=60"});
+  const std::string msg = ErrorOf<ConfigError>([&] { RunOne(cfg, per::Policy::kTaEbp); });
+  EXPECT_THAT(msg, HasSubstr("scenario.stop_distance = 1"));
+  ExpectAShortRunStillWorks();
+}
+
+TEST(ScenarioWarnings, PaperStopDistanceKeepsTheNoseOutOfTheCrossingPath) {
+  EXPECT_TRUE(ScenarioWarnings(Config({})).empty());
+  const std::vector<std::string> w = ScenarioWarnings(Config({"scenario.stop_distance=1.7"}));
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_THAT(w[0], HasSubstr("stop_distance"));
+}
+
+}  // namespace
+}  // namespace taebp
