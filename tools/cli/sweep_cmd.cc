@@ -709,7 +709,11 @@ int RunSweep(const SweepOptions& o) {
     }
     std::fprintf(stderr, "taebp sweep: results in %s\n", out.c_str());
   }
-  if (!completed) return kExitInterrupted;
+  if (!completed) {
+    if (!o.quiet)
+      std::fprintf(stderr, "taebp sweep: interrupted; the same command resumes the sweep\n");
+    return kExitInterrupted;
+  }
   return failed || missing ? kExitFailed : 0;
 }
 
