@@ -11,6 +11,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -43,6 +44,13 @@ constexpr int kModeCreep = 0;      // exact commanded speeds during a nudge
 
 enum class Phase { kApproaching, kWaiting, kNudging, kHolding, kCrossing };
 
+// Vehicle colours under RunOptions::colour_states (r, g, b).
+enum class Paint { kType, kNudging, kDr, kDc, kCollided };
+constexpr std::array<std::array<int, 3>, 5> kPaintRgb = {{
+    {0, 0, 0}, {255, 220, 0}, {255, 140, 0}, {0, 200, 0}, {255, 0, 255}}};
+constexpr std::array<int, 3> kAvRgb = {0, 0, 255};
+constexpr std::array<int, 3> kHvRgb = {255, 0, 0};
+
 struct Veh {
   std::string id;
   VehicleKind kind = VehicleKind::kHV;
@@ -52,6 +60,7 @@ struct Veh {
   double hold_odometer = 0;
   double trust = 0;  // HV's true theta
   bool speed_controlled = false;  // setSpeed active (nudge)
+  Paint paint = Paint::kType;     // colour shown (RunOptions::colour_states)
   persuasion::CommittedScheme scheme;   // HV only: the AV's design for this HV
   persuasion::PredictedOutcome theory;  // HV only: predicted outcome of that design
 };
@@ -76,8 +85,9 @@ std::string Fmt(double v) {
 
 class Run {
  public:
-  Run(const ExperimentConfig& config, Policy policy, const ScenarioFiles& files)
-      : cfg_(config), sc_(config.scenario), policy_(policy), files_(files),
+  Run(const ExperimentConfig& config, Policy policy, const ScenarioFiles& files,
+      RunOptions options = {})
+      : cfg_(config), sc_(config.scenario), policy_(policy), files_(files), opts_(std::move(options)),
         model_(MakeLikelihood(config.model.likelihood)),
         rng_(config.scenario.seed) {
     params_.prior_go = config.model.prior_go;
@@ -108,7 +118,9 @@ class Run {
   PolicyRun Execute() {
     Start();
     try {
+      if (opts_.after_start) opts_.after_start();
       Loop();
+      if (opts_.before_close) opts_.before_close();
     } catch (...) {
       sumo::Close();
       throw;
@@ -132,9 +144,9 @@ class Run {
     out_.sumo_version = sumo::Version();
     ReadNetwork();
     sumo::AddVehicleType({"AV", sc_.cruise_speed, sc_.min_gap, sc_.vehicle_length,
-                          sc_.vehicle_width, sc_.accel, sc_.decel, 0, 0, 255});
+                          sc_.vehicle_width, sc_.accel, sc_.decel, kAvRgb[0], kAvRgb[1], kAvRgb[2]});
     sumo::AddVehicleType({"HV", sc_.cruise_speed, sc_.min_gap, sc_.vehicle_length,
-                          sc_.vehicle_width, sc_.accel, sc_.decel, 255, 0, 0});
+                          sc_.vehicle_width, sc_.accel, sc_.decel, kHvRgb[0], kHvRgb[1], kHvRgb[2]});
     PlaceVehicles();
     DrawTrust();
   }
@@ -236,6 +248,18 @@ class Run {
     v.phase = Phase::kApproaching;
   }
 
+  // Shows a vehicle's state by its colour; only with colour_states (no SUMO
+  // call otherwise, nor when the colour is already shown).
+  void SetPaint(int i, Paint paint) {
+    Veh& v = vehs_[i];
+    if (!opts_.colour_states || v.paint == paint) return;
+    const std::array<int, 3>& rgb =
+        paint != Paint::kType ? kPaintRgb[static_cast<int>(paint)]
+                              : (v.kind == VehicleKind::kAV ? kAvRgb : kHvRgb);
+    sumo::SetColor(v.id, rgb[0], rgb[1], rgb[2]);
+    v.paint = paint;
+  }
+
   int IndexOf(const std::string& id) const {
     for (std::size_t i = 0; i < vehs_.size(); ++i)
       if (vehs_[i].id == id) return static_cast<int>(i);
@@ -278,6 +302,7 @@ class Run {
             sumo::LanePosition(v.id) >= sc_.vehicle_length) {
           if (enc_ && *it == enc_->av) enc_->av_cleared = true;
           if (enc_ && *it == enc_->hv) enc_->hv_cleared = true;
+          SetPaint(*it, Paint::kType);
           it = crossing_.erase(it);
           last_crossing = now;
           if (crossing_.empty()) junction_free_since = now;
@@ -358,6 +383,7 @@ class Run {
       sumo::SetSpeedMode(v.id, kModeCreep);
       v.speed_controlled = true;
       v.phase = Phase::kNudging;
+      SetPaint(av, Paint::kNudging);
       enc_->creep_speed = CreepSpeed(enc_->target, 0.0, 0.0, sc_.step_length, sc_.accel,
                                      sc_.decel, sc_.creep_speed);
       sumo::SetSpeed(v.id, enc_->creep_speed);
@@ -373,6 +399,7 @@ class Run {
     r.posterior = reading.posterior;
     r.hv_dc = reading.drives_if_clear;
     r.decided_at = now;
+    SetPaint(enc_->hv, r.hv_dc ? Paint::kDc : Paint::kDr);
     enc_->sequence.emplace(r.av_first, r.hv_dc, now, sc_.confirm_delay);
   }
 
@@ -405,6 +432,8 @@ class Run {
         const std::string& h = vehs_[enc_->hv].id;
         if ((c.collider == a && c.victim == h) || (c.collider == h && c.victim == a)) {
           enc_->record.collision = true;
+          if (!enc_->av_cleared) SetPaint(enc_->av, Paint::kCollided);
+          if (!enc_->hv_cleared) SetPaint(enc_->hv, Paint::kCollided);
           continue;
         }
       }
@@ -416,6 +445,7 @@ class Run {
   const ScenarioConfig& sc_;
   Policy policy_;
   ScenarioFiles files_;
+  RunOptions opts_;
   std::unique_ptr<persuasion::LikelihoodModel> model_;
   persuasion::AvHvParams params_;
   std::mt19937_64 rng_;
@@ -599,8 +629,9 @@ double RunBareSumo(const ExperimentConfig& config, const ScenarioFiles& files) {
   return run.ExecuteBare();
 }
 
-PolicyRun RunPolicy(const ExperimentConfig& config, Policy policy, const ScenarioFiles& files) {
-  Run run(config, policy, files);
+PolicyRun RunPolicy(const ExperimentConfig& config, Policy policy, const ScenarioFiles& files,
+                    const RunOptions& options) {
+  Run run(config, policy, files, options);
   return run.Execute();
 }
 

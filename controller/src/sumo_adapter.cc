@@ -1,183 +1,156 @@
 #include "taebp/controller/sumo_adapter.h"
 
+#include "sumo_adapter_backend.h"
+
 #include <libsumo/libsumo.h>
 
+#include <csignal>
+#include <cstdio>
+#include <iostream>
 #include <sstream>
+#include <utility>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+// The in-process backend: the adapter's body over ::libsumo.
+namespace taebp::sumo::libsumo_backend {
+namespace S = ::libsumo;
+#include "sumo_adapter_impl.inc"
+}  // namespace taebp::sumo::libsumo_backend
 
 namespace taebp::sumo {
 namespace {
 
-// `describe` builds the context message only when a call fails (hot path).
-template <typename D, typename F>
-auto Guard(D&& describe, F&& f) -> decltype(f()) {
-  try {
-    return f();
-  } catch (const libsumo::TraCIException& e) {
-    throw SumoError("SUMO " + std::string(describe()) + " failed: " + e.what());
-  } catch (const SumoError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw SumoError("SUMO " + std::string(describe()) + " failed: " + e.what());
-  }
-}
+Backend g_backend = Backend::kLibsumo;
+std::vector<std::string> g_gui_args;
+bool g_started = false;  // between a successful Start and Close
+constexpr const char* kView = "View #0";
 
-std::string Args(const std::string& veh, double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << "(" << veh << ", " << v << ")";
-  return os.str();
+bool Gui() { return g_backend == Backend::kLibtraciGui; }
+
+void RequireGui(const char* call) {
+  if (!Gui())
+    throw SumoError(std::string("SUMO GUI::") + call +
+                    " needs the sumo-gui backend (sumo::SetBackend(Backend::kLibtraciGui))");
 }
 
 }  // namespace
 
+// One predictable branch per call; the libsumo side is in this translation
+// unit and inlines as before.
+#define TAEBP_SUMO_CALL(call) (Gui() ? libtraci_backend::call : libsumo_backend::call)
+
+void SetBackend(Backend backend, std::vector<std::string> gui_args) {
+  if (g_started) throw SumoError("SUMO backend cannot change while a simulation is loaded");
+  g_backend = backend;
+  g_gui_args = std::move(gui_args);
+  // libtraci writes to the socket without MSG_NOSIGNAL: when sumo-gui is gone
+  // (window closed, bad option) the write must fail with an error we report,
+  // not kill the process with SIGPIPE.
+  if (backend == Backend::kLibtraciGui) std::signal(SIGPIPE, SIG_IGN);
+}
+Backend CurrentBackend() { return g_backend; }
+
 void Start(const std::vector<std::string>& args) {
-  std::string cmd;
-  for (const auto& a : args) cmd += (cmd.empty() ? "" : " ") + a;
-  Guard([&] { return std::string("start [" + cmd + "]"); }, [&] {
-    libsumo::Simulation::start(args);
-    return 0;
-  });
+  if (Gui()) {
+    std::vector<std::string> cmd = args;
+    if (cmd.empty()) cmd.emplace_back();
+    cmd[0] = "sumo-gui";
+    cmd.insert(cmd.end(), {"--start", "--quit-on-end"});
+    cmd.insert(cmd.end(), g_gui_args.begin(), g_gui_args.end());
+    // libtraci prints "Could not connect ... Retrying" on stdout while sumo-gui
+    // starts: keep stdout (results tables) clean. sumo-gui inherits the
+    // redirection; its errors still go to stderr.
+    std::cout.flush();
+    std::fflush(stdout);
+    const int saved = dup(1);
+    const int devnull = open("/dev/null", O_WRONLY);
+    if (saved >= 0 && devnull >= 0) dup2(devnull, 1);
+    if (devnull >= 0) close(devnull);
+    auto restore = [&] {
+      std::cout.flush();
+      std::fflush(stdout);
+      if (saved >= 0) {
+        dup2(saved, 1);
+        close(saved);
+      }
+    };
+    try {
+      libtraci_backend::Start(cmd);
+    } catch (...) {
+      restore();
+      throw;
+    }
+    restore();
+  } else {
+    libsumo_backend::Start(args);
+  }
+  g_started = true;
 }
 void Close() {
-  Guard([&] { return std::string("close"); }, [] {
-    if (libsumo::Simulation::isLoaded()) libsumo::Simulation::close();
-    return 0;
-  });
+  g_started = false;
+  TAEBP_SUMO_CALL(Close());
 }
-bool IsLoaded() {
-  return Guard([&] { return std::string("isLoaded"); }, [] { return libsumo::Simulation::isLoaded(); });
-}
-void Step() {
-  Guard([&] { return std::string("step"); }, [] {
-    libsumo::Simulation::step();
-    return 0;
-  });
-}
-double Time() {
-  return Guard([&] { return std::string("getTime"); }, [] { return libsumo::Simulation::getTime(); });
-}
-std::string Version() {
-  return Guard([&] { return std::string("getVersion"); }, [] { return libsumo::Simulation::getVersion().second; });
-}
-std::vector<SumoCollision> Collisions() {
-  return Guard([&] { return std::string("getCollisions"); }, [] {
-    std::vector<SumoCollision> out;
-    for (const auto& c : libsumo::Simulation::getCollisions()) {
-      out.push_back({c.collider, c.victim, c.type, c.lane, c.colliderSpeed, c.victimSpeed, c.pos});
-    }
-    return out;
-  });
-}
-int StopStartingNumber() {
-  return Guard([&] { return std::string("getStopStartingVehiclesNumber"); },
-               [] { return libsumo::Simulation::getStopStartingVehiclesNumber(); });
-}
-std::vector<std::string> StopStartingIDs() {
-  return Guard([&] { return std::string("getStopStartingVehiclesIDList"); },
-               [] { return libsumo::Simulation::getStopStartingVehiclesIDList(); });
-}
-int TeleportNumber() {
-  return Guard([&] { return std::string("getStartingTeleportNumber"); },
-               [] { return libsumo::Simulation::getStartingTeleportNumber(); });
-}
+bool IsLoaded() { return TAEBP_SUMO_CALL(IsLoaded()); }
+void Step() { TAEBP_SUMO_CALL(Step()); }
+double Time() { return TAEBP_SUMO_CALL(Time()); }
+std::string Version() { return TAEBP_SUMO_CALL(Version()); }
+std::vector<SumoCollision> Collisions() { return TAEBP_SUMO_CALL(Collisions()); }
+int StopStartingNumber() { return TAEBP_SUMO_CALL(StopStartingNumber()); }
+std::vector<std::string> StopStartingIDs() { return TAEBP_SUMO_CALL(StopStartingIDs()); }
+int TeleportNumber() { return TAEBP_SUMO_CALL(TeleportNumber()); }
+int CollidingNumber() { return TAEBP_SUMO_CALL(CollidingNumber()); }
 
-int CollidingNumber() {
-  return Guard([&] { return std::string("getCollidingVehiclesNumber"); },
-               [] { return libsumo::Simulation::getCollidingVehiclesNumber(); });
-}
-
-double LaneLength(const std::string& lane) {
-  return Guard([&] { return std::string("Lane::getLength(" + lane + ")"); }, [&] { return libsumo::Lane::getLength(lane); });
-}
-std::vector<XY> LaneShape(const std::string& lane) {
-  return Guard([&] { return std::string("Lane::getShape(" + lane + ")"); }, [&] {
-    std::vector<XY> out;
-    for (const auto& p : libsumo::Lane::getShape(lane).value) out.push_back({p.x, p.y});
-    return out;
-  });
-}
+double LaneLength(const std::string& lane) { return TAEBP_SUMO_CALL(LaneLength(lane)); }
+std::vector<XY> LaneShape(const std::string& lane) { return TAEBP_SUMO_CALL(LaneShape(lane)); }
 XY JunctionPosition(const std::string& junction) {
-  return Guard([&] { return std::string("Junction::getPosition(" + junction + ")"); }, [&] {
-    const auto p = libsumo::Junction::getPosition(junction);
-    return XY{p.x, p.y};
-  });
+  return TAEBP_SUMO_CALL(JunctionPosition(junction));
 }
+std::pair<XY, XY> NetBoundary() { return TAEBP_SUMO_CALL(NetBoundary()); }
 
-void AddVehicleType(const VehicleTypeSpec& s) {
-  Guard([&] { return std::string("VehicleType setup(" + s.id + ")"); }, [&] {
-    libsumo::VehicleType::copy("DEFAULT_VEHTYPE", s.id);
-    libsumo::VehicleType::setMaxSpeed(s.id, s.max_speed);
-    libsumo::VehicleType::setMinGap(s.id, s.min_gap);
-    libsumo::VehicleType::setLength(s.id, s.length);
-    libsumo::VehicleType::setWidth(s.id, s.width);
-    libsumo::VehicleType::setAccel(s.id, s.accel);
-    libsumo::VehicleType::setDecel(s.id, s.decel);
-    libsumo::VehicleType::setImperfection(s.id, 0.0);
-    libsumo::VehicleType::setSpeedDeviation(s.id, 0.0);
-    libsumo::VehicleType::setColor(s.id, libsumo::TraCIColor(s.r, s.g, s.b, 255));
-    return 0;
-  });
-}
+void AddVehicleType(const VehicleTypeSpec& spec) { TAEBP_SUMO_CALL(AddVehicleType(spec)); }
 void AddRoute(const std::string& id, const std::vector<std::string>& edges) {
-  Guard([&] { return std::string("Route::add(" + id + ")"); }, [&] {
-    libsumo::Route::add(id, edges);
-    return 0;
-  });
+  TAEBP_SUMO_CALL(AddRoute(id, edges));
 }
 
 void AddVehicle(const std::string& id, const std::string& route, const std::string& type,
                 double depart_pos) {
-  Guard([&] { return std::string("Vehicle::add" + Args(id, depart_pos)); }, [&] {
-    std::ostringstream pos;
-    pos.precision(17);
-    pos << depart_pos;
-    libsumo::Vehicle::add(id, route, type, "0", "0", pos.str(), "0");
-    return 0;
-  });
+  TAEBP_SUMO_CALL(AddVehicle(id, route, type, depart_pos));
 }
 void SetStop(const std::string& veh, const std::string& edge, double pos, double duration) {
-  Guard([&] { return std::string("Vehicle::setStop(" + veh + ", " + edge + ")" + Args("pos", pos)); }, [&] {
-    libsumo::Vehicle::setStop(veh, edge, pos, 0, duration);
-    return 0;
-  });
+  TAEBP_SUMO_CALL(SetStop(veh, edge, pos, duration));
 }
-void Resume(const std::string& veh) {
-  Guard([&] { return std::string("Vehicle::resume(" + veh + ")"); }, [&] {
-    libsumo::Vehicle::resume(veh);
-    return 0;
-  });
-}
-void SetSpeedMode(const std::string& veh, int mode) {
-  Guard([&] { return std::string("Vehicle::setSpeedMode" + Args(veh, mode)); }, [&] {
-    libsumo::Vehicle::setSpeedMode(veh, mode);
-    return 0;
-  });
-}
-void SetSpeed(const std::string& veh, double speed) {
-  Guard([&] { return std::string("Vehicle::setSpeed" + Args(veh, speed)); }, [&] {
-    libsumo::Vehicle::setSpeed(veh, speed);
-    return 0;
-  });
-}
+void Resume(const std::string& veh) { TAEBP_SUMO_CALL(Resume(veh)); }
+void SetSpeedMode(const std::string& veh, int mode) { TAEBP_SUMO_CALL(SetSpeedMode(veh, mode)); }
+void SetSpeed(const std::string& veh, double speed) { TAEBP_SUMO_CALL(SetSpeed(veh, speed)); }
 void SetColor(const std::string& veh, int r, int g, int b) {
-  Guard([&] { return std::string("Vehicle::setColor(" + veh + ")"); }, [&] {
-    libsumo::Vehicle::setColor(veh, libsumo::TraCIColor(r, g, b, 255));
-    return 0;
-  });
+  TAEBP_SUMO_CALL(SetColor(veh, r, g, b));
 }
-double Distance(const std::string& veh) {
-  return Guard([&] { return std::string("Vehicle::getDistance(" + veh + ")"); },
-               [&] { return libsumo::Vehicle::getDistance(veh); });
+double Distance(const std::string& veh) { return TAEBP_SUMO_CALL(Distance(veh)); }
+double Speed(const std::string& veh) { return TAEBP_SUMO_CALL(Speed(veh)); }
+std::string RoadID(const std::string& veh) { return TAEBP_SUMO_CALL(RoadID(veh)); }
+double LanePosition(const std::string& veh) { return TAEBP_SUMO_CALL(LanePosition(veh)); }
+
+#undef TAEBP_SUMO_CALL
+
+namespace gui {
+void SetSchema(const std::string& scheme) {
+  RequireGui("setSchema");
+  libtraci_backend::gui::SetSchema(kView, scheme);
 }
-double Speed(const std::string& veh) {
-  return Guard([&] { return std::string("Vehicle::getSpeed(" + veh + ")"); }, [&] { return libsumo::Vehicle::getSpeed(veh); });
+void SetBoundary(XY min, XY max) {
+  RequireGui("setBoundary");
+  libtraci_backend::gui::SetBoundary(kView, min, max);
 }
-std::string RoadID(const std::string& veh) {
-  return Guard([&] { return std::string("Vehicle::getRoadID(" + veh + ")"); }, [&] { return libsumo::Vehicle::getRoadID(veh); });
+void SetZoom(double percent) {
+  RequireGui("setZoom");
+  libtraci_backend::gui::SetZoom(kView, percent);
 }
-double LanePosition(const std::string& veh) {
-  return Guard([&] { return std::string("Vehicle::getLanePosition(" + veh + ")"); },
-               [&] { return libsumo::Vehicle::getLanePosition(veh); });
+void Screenshot(const std::string& file, int width, int height) {
+  RequireGui("screenshot");
+  libtraci_backend::gui::Screenshot(kView, file, width, height);
 }
+}  // namespace gui
 
 }  // namespace taebp::sumo

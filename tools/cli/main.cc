@@ -1,4 +1,4 @@
-// taebp: the command-line program. Subcommands: theory, solve, run.
+// taebp: the command-line program. Subcommands: theory, solve, run, sweep, merge, snapshot.
 #include "taebp/controller/config.h"
 #include "taebp/controller/experiment.h"
 #include "taebp/controller/report.h"
@@ -6,6 +6,7 @@
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/lp.h"
 #include "taebp/persuasion/outcomes.h"
+#include "gui_cmd.h"
 #include "sweep_cmd.h"
 
 #include <CLI/CLI.hpp>
@@ -203,7 +204,7 @@ int Solve(const std::string& path, bool json) {
 
 // ------------------------------------------------------------------ run
 int RunExperiment(const std::string& config_path, const std::vector<std::string>& overrides,
-                  std::string out_dir, bool quiet) {
+                  std::string out_dir, bool quiet, const taebp::RunOptions& run_options = {}) {
   const taebp::ExperimentConfig config = taebp::LoadExperimentConfig(config_path, overrides);
   const std::string config_dir = fs::path(config_path).parent_path().string();
   const taebp::ScenarioFiles files = taebp::ResolveScenarioFiles(config, config_dir);
@@ -216,7 +217,7 @@ int RunExperiment(const std::string& config_path, const std::vector<std::string>
   double wall_total = 0;
   for (const std::string& name : config.policies) {
     const auto t0 = std::chrono::steady_clock::now();
-    runs.push_back(taebp::RunPolicy(config, per::ParsePolicy(name), files));
+    runs.push_back(taebp::RunPolicy(config, per::ParsePolicy(name), files, run_options));
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     wall_total += wall;
@@ -289,13 +290,16 @@ int main(int argc, char** argv) {
                   "e.g. --set scenario.duration=600 --set policies=[ta_ebp]");
   run->add_option("--out", out_dir, "output directory (default: results/<config name>)");
   run->add_flag("--quiet", quiet, "no progress on stderr");
+  taebp::gui::RunGui run_gui(run);           // run --gui [--delay MS]
   taebp::sweep::Commands sweep_commands(app);  // sweep, merge
+  taebp::gui::Snapshot snapshot(app);
 
   CLI11_PARSE(app, argc, argv);
   try {
     if (*theory) return Theory(th);
     if (*solve) return Solve(problem, solve_json);
-    if (*run) return RunExperiment(config_path, overrides, out_dir, quiet);
+    if (*run) return RunExperiment(config_path, overrides, out_dir, quiet, run_gui.Prepare());
+    if (snapshot.Parsed()) return snapshot.Run(argc, argv);
     if (sweep_commands.Parsed()) return sweep_commands.Run();
   } catch (const taebp::ConfigError& e) {
     std::cerr << "taebp: config error: " << e.what() << "\n";

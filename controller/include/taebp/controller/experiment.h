@@ -6,6 +6,7 @@
 #include "taebp/controller/intersection.h"
 #include "taebp/persuasion/outcomes.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -71,10 +72,20 @@ std::string DefaultNetworkPath();
 // vehicles cannot fit.
 ScenarioFiles ResolveScenarioFiles(const ExperimentConfig& config, const std::string& config_dir);
 
+// Extras for watching a run (sumo-gui); the defaults add no SUMO calls.
+struct RunOptions {
+  // Colour vehicles by state: nudging AV yellow, HV that chose DR orange / DC
+  // green, both vehicles of a collided encounter magenta; back to the type
+  // colour (AV blue, HV red) once they have cleared the junction.
+  bool colour_states = false;
+  std::function<void()> after_start;   // SUMO started, vehicles added (e.g. frame the view)
+  std::function<void()> before_close;  // after the last step, SUMO still open (e.g. screenshot)
+};
+
 // Runs one policy for scenario.duration simulated seconds. Throws SumoError
 // (SUMO failed) or ConfigError (scenario does not fit the network).
 PolicyRun RunPolicy(const ExperimentConfig& config, persuasion::Policy policy,
-                    const ScenarioFiles& files);
+                    const ScenarioFiles& files, const RunOptions& options = {});
 
 // The speed floor: the same network, vehicles, types and step, with SUMO's own
 // junction logic and no controller (only Simulation::step in the loop). For

@@ -1,7 +1,11 @@
-// The one thin adapter around libsumo. Nothing else in the project includes a
-// libsumo header. Every call catches libsumo::TraCIException (and any other
-// exception libsumo throws) at this boundary and rethrows SumoError with the
-// call and its arguments as context.
+// The one thin adapter around SUMO. Nothing else in the project includes a
+// libsumo or libtraci header. Every call catches libsumo::TraCIException (and
+// any other exception SUMO throws) at this boundary and rethrows SumoError with
+// the call and its arguments as context.
+//
+// Two backends with the same calls (SetBackend): libsumo, in process (the
+// default and the fast path), and libtraci driving a sumo-gui process (for
+// watching a run and for screenshots). Each call dispatches with one branch.
 //
 // libsumo runs one simulation per process: a second Start replaces the first.
 // Sweeps therefore run simulations in separate processes, never threads.
@@ -36,6 +40,17 @@ struct VehicleTypeSpec {
 
 namespace sumo {
 
+enum class Backend {
+  kLibsumo,      // in process (libsumo); the default
+  kLibtraciGui,  // a sumo-gui process driven over a socket (libtraci)
+};
+
+// Selects the backend of the next Start; throws SumoError while a simulation
+// is loaded. With kLibtraciGui, Start runs "sumo-gui" in place of args[0] and
+// appends "--start", "--quit-on-end" and `gui_args` (e.g. {"--delay", "100"}).
+void SetBackend(Backend backend, std::vector<std::string> gui_args = {});
+Backend CurrentBackend();
+
 // Simulation
 void Start(const std::vector<std::string>& args);  // args[0] = "sumo"
 void Close();
@@ -43,6 +58,10 @@ bool IsLoaded();
 void Step();
 double Time();
 std::string Version();  // e.g. "SUMO 1.15.0"
+// Collisions this step. libsumo: one entry per colliding pair for every step
+// they overlap. sumo-gui backend (libtraci 1.15 has no getCollisions): one
+// entry per pair of vehicles whose collision started this step, type
+// "unknown", no lane/speeds.
 std::vector<SumoCollision> Collisions();
 int StopStartingNumber();
 std::vector<std::string> StopStartingIDs();
@@ -53,6 +72,7 @@ int CollidingNumber();  // vehicles in a collision that started this step
 double LaneLength(const std::string& lane);
 std::vector<XY> LaneShape(const std::string& lane);
 XY JunctionPosition(const std::string& junction);
+std::pair<XY, XY> NetBoundary();  // bounding box (min, max) of the network's shapes
 
 // Types and routes
 void AddVehicleType(const VehicleTypeSpec& spec);
@@ -70,6 +90,17 @@ double Distance(const std::string& veh);  // odometer (m)
 double Speed(const std::string& veh);
 std::string RoadID(const std::string& veh);
 double LanePosition(const std::string& veh);
+
+// The sumo-gui view ("View #0"). Only with Backend::kLibtraciGui; SumoError
+// otherwise.
+namespace gui {
+void SetSchema(const std::string& scheme);  // e.g. "real world", "standard"
+void SetBoundary(XY min, XY max);           // fit this box into the view
+void SetZoom(double percent);
+// Written by sumo-gui during the next Step(); format from the extension
+// (.png); -1: the view's size.
+void Screenshot(const std::string& file, int width = -1, int height = -1);
+}  // namespace gui
 
 }  // namespace sumo
 }  // namespace taebp

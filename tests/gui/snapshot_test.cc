@@ -1,0 +1,214 @@
+// The visual side of the CLI, run as a user would: `taebp snapshot` writes a
+// real picture of the figure-8 (re-executing itself under xvfb-run without a
+// display), its errors are clear, and `taebp run --gui` (sumo-gui over
+// libtraci) gives the same results as the in-process libsumo run.
+// Skipped when sumo-gui or xvfb-run is not installed.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+const std::string kCli = TAEBP_CLI;
+const std::string kSource = TAEBP_SOURCE_DIR;
+const std::string kPaper = kSource + "/configs/paper.yaml";
+const std::string kXvfb = "xvfb-run -a -s '-screen 0 1280x1024x24' ";
+
+bool OnPath(const std::string& program) {
+  return std::system(("command -v " + program + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+#define SKIP_WITHOUT_GUI()                                                        \
+  do {                                                                            \
+    if (!OnPath("sumo-gui")) GTEST_SKIP() << "sumo-gui is not installed";         \
+    if (!OnPath("xvfb-run")) GTEST_SKIP() << "xvfb-run (package xvfb) is missing"; \
+  } while (0)
+
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "taebp_gui_test.XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+struct Result {
+  int code = -1;
+  std::string output;  // stdout and stderr
+};
+
+// Runs a shell command line; `env -u DISPLAY` in front exercises the xvfb path.
+Result Shell(const std::string& command, const fs::path& log) {
+  const int status = std::system((command + " >" + log.string() + " 2>&1").c_str());
+  Result r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(log);
+  r.output.assign(std::istreambuf_iterator<char>(in), {});
+  return r;
+}
+
+std::string ReadFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// encounters.csv without its provenance comment (git revision, wall times).
+std::string Rows(const fs::path& csv) {
+  std::istringstream in(ReadFile(csv));
+  std::string line, out;
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#') out += line + "\n";
+  return out;
+}
+
+unsigned Be32(const std::string& b, std::size_t at) {
+  return (unsigned(static_cast<unsigned char>(b[at])) << 24) |
+         (unsigned(static_cast<unsigned char>(b[at + 1])) << 16) |
+         (unsigned(static_cast<unsigned char>(b[at + 2])) << 8) |
+         unsigned(static_cast<unsigned char>(b[at + 3]));
+}
+
+TEST(Snapshot, WritesAPictureOfTheTrackWithoutADisplay) {
+  SKIP_WITHOUT_GUI();
+  TempDir tmp;
+  const fs::path png = tmp.path() / "pictures" / "figure8.png";
+  const Result r = Shell("env -u DISPLAY " + kCli + " snapshot " + kPaper + " --out " +
+                             png.string() + " --at 20",
+                         tmp.path() / "log.txt");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("snapshot of no_ebp at t = 20 s"));
+  ASSERT_TRUE(fs::exists(png)) << r.output;
+
+  const std::string b = ReadFile(png);
+  ASSERT_GE(b.size(), 33u);
+  EXPECT_EQ(b.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_EQ(b.substr(12, 4), "IHDR");
+  const unsigned width = Be32(b, 16), height = Be32(b, 20);
+  // The snapshot window's view: about 1270 x 534, the figure-8's 2.4 : 1.
+  EXPECT_GE(width, 640u);
+  EXPECT_LE(width, 4096u);
+  EXPECT_GE(height, 240u);
+  EXPECT_LE(height, 4096u);
+  EXPECT_GT(width, height);
+  // A flat colour of that size compresses to a few KB; the track with sixteen
+  // vehicles is over 15 KB (about 23 KB in SUMO 1.15).
+  EXPECT_GT(b.size(), 15u * 1024) << "a nearly empty picture: is the view framed on the track?";
+}
+
+TEST(Snapshot, PolicyAndOverridesAreUsed) {
+  SKIP_WITHOUT_GUI();
+  TempDir tmp;
+  const fs::path png = tmp.path() / "ta.png";
+  const Result r = Shell("env -u DISPLAY " + kCli + " snapshot " + kPaper + " --out " +
+                             png.string() + " --at 5 --policy ta_ebp --set scenario.seed=7",
+                         tmp.path() / "log.txt");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("snapshot of ta_ebp at t = 5 s"));
+  EXPECT_TRUE(fs::exists(png));
+}
+
+TEST(Snapshot, BadArgumentsAreClearErrors) {
+  TempDir tmp;
+  const fs::path png = tmp.path() / "x.png";
+  for (const std::string at : {"0", "-3", "nan"}) {
+    const Result r = Shell(kCli + " snapshot " + kPaper + " --out " + png.string() + " --at " + at,
+                           tmp.path() / "log.txt");
+    EXPECT_EQ(r.code, 2) << at << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("--at")) << at;
+  }
+  if (!OnPath("sumo-gui")) return;  // checked before the config
+  Result r = Shell(kCli + " snapshot " + kPaper + " --out " + png.string() + " --policy bogus",
+                   tmp.path() / "log.txt");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("bogus"));
+  r = Shell(kCli + " snapshot " + kPaper, tmp.path() / "log.txt");  // --out is required
+  EXPECT_NE(r.code, 0);
+  EXPECT_THAT(r.output, HasSubstr("--out"));
+  EXPECT_FALSE(fs::exists(png));
+}
+
+TEST(Snapshot, MissingProgramsAreNamed) {
+  if (!OnPath("sumo-gui")) GTEST_SKIP() << "sumo-gui is not installed";
+  TempDir tmp;
+  const fs::path png = tmp.path() / "x.png";
+  // No sumo-gui on PATH.
+  Result r = Shell("env -u DISPLAY PATH=" + tmp.path().string() + " " + kCli + " snapshot " +
+                       kPaper + " --out " + png.string(),
+                   tmp.path() / "log.txt");
+  EXPECT_NE(r.code, 0);
+  EXPECT_THAT(r.output, HasSubstr("sumo-gui is not on PATH"));
+  // sumo-gui but no xvfb-run, and no display.
+  const fs::path bin = tmp.path() / "bin";
+  fs::create_directories(bin);
+  std::string sumo_gui;
+  {
+    FILE* p = popen("command -v sumo-gui", "r");
+    char buf[4096] = {};
+    if (p && std::fgets(buf, sizeof buf, p)) sumo_gui = buf;
+    if (p) pclose(p);
+    while (!sumo_gui.empty() && (sumo_gui.back() == '\n' || sumo_gui.back() == '\r')) sumo_gui.pop_back();
+  }
+  fs::create_symlink(sumo_gui, bin / "sumo-gui");
+  r = Shell("env -u DISPLAY PATH=" + bin.string() + " " + kCli + " snapshot " + kPaper +
+                " --out " + png.string(),
+            tmp.path() / "log.txt");
+  EXPECT_NE(r.code, 0);
+  EXPECT_THAT(r.output, HasSubstr("xvfb-run is not installed"));
+  // run --gui without a display.
+  r = Shell("env -u DISPLAY " + kCli + " run " + kPaper + " --gui --out " +
+                (tmp.path() / "out").string(),
+            tmp.path() / "log.txt");
+  EXPECT_NE(r.code, 0);
+  EXPECT_THAT(r.output, HasSubstr("DISPLAY is not set"));
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+}
+
+// sumo-gui (libtraci) and libsumo run the same engine: the same encounters,
+// decisions and collisions, so `run --gui` results are the real results.
+TEST(RunGui, SameResultsAsTheInProcessRun) {
+  SKIP_WITHOUT_GUI();
+  TempDir tmp;
+  const std::string common = " run " + kPaper +
+                             " --quiet --set scenario.duration=150 --set policies=[no_trust,ta_ebp]";
+  const Result plain = Shell(kCli + common + " --out " + (tmp.path() / "plain").string(),
+                             tmp.path() / "plain.txt");
+  ASSERT_EQ(plain.code, 0) << plain.output;
+  const Result gui = Shell("env -u DISPLAY " + kXvfb + kCli + common + " --gui --out " +
+                               (tmp.path() / "gui").string(),
+                           tmp.path() / "gui.txt");
+  ASSERT_EQ(gui.code, 0) << gui.output;
+  const std::string rows = Rows(tmp.path() / "plain" / "encounters.csv");
+  EXPECT_THAT(rows, HasSubstr("no_trust,"));
+  EXPECT_THAT(rows, HasSubstr(",1\n")) << "expected at least one collision under no_trust";
+  EXPECT_EQ(rows, Rows(tmp.path() / "gui" / "encounters.csv"));
+  // The printed table (stdout) is the same too: sumo-gui's start-up chatter
+  // does not end up in it.
+  EXPECT_EQ(plain.output, gui.output);
+}
+
+}  // namespace

@@ -1,0 +1,216 @@
+#include "gui_cmd.h"
+
+#include "taebp/controller/config.h"
+#include "taebp/controller/experiment.h"
+#include "taebp/controller/sumo_adapter.h"
+#include "taebp/persuasion/outcomes.h"
+#include "taebp/persuasion/persuasion.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <unistd.h>
+
+namespace taebp::gui {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Set in the environment of the re-execution under xvfb-run (no second try).
+constexpr const char* kUnderXvfbEnv = "TAEBP_SNAPSHOT_UNDER_XVFB";
+constexpr const char* kXvfbScreen = "-screen 0 1280x1024x24";
+// The sumo-gui window for snapshots: the view inside it is about 1270 x 535
+// pixels, the figure-8's aspect ratio (about 2.4 : 1).
+constexpr const char* kSnapshotWindow = "1280,720";
+
+// Absolute path of an executable found on PATH, or "".
+std::string FindOnPath(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  if (!path) return "";
+  std::stringstream ss(path);
+  std::string dir;
+  while (std::getline(ss, dir, ':')) {
+    if (dir.empty()) dir = ".";
+    const fs::path p = fs::path(dir) / name;
+    if (access(p.c_str(), X_OK) == 0 && fs::is_regular_file(p)) return fs::absolute(p).string();
+  }
+  return "";
+}
+
+bool HasDisplay() {
+  const char* d = std::getenv("DISPLAY");
+  return d && *d;
+}
+
+void RequireSumoGui() {
+  if (FindOnPath("sumo-gui").empty())
+    throw GuiError("sumo-gui is not on PATH: install the Debian package 'sumo' (it ships sumo-gui)");
+}
+
+std::string Seconds(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+// Width and height from a PNG's IHDR chunk; {0, 0} when not a PNG.
+std::pair<unsigned, unsigned> PngSize(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  unsigned char h[24] = {};
+  if (!in.read(reinterpret_cast<char*>(h), sizeof h)) return {0, 0};
+  static const unsigned char kSig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (!std::equal(kSig, kSig + 8, h)) return {0, 0};
+  auto be32 = [&](int o) {
+    return (unsigned(h[o]) << 24) | (unsigned(h[o + 1]) << 16) | (unsigned(h[o + 2]) << 8) | h[o + 3];
+  };
+  return {be32(16), be32(20)};
+}
+
+}  // namespace
+
+void FrameTrack() {
+  const auto [lo, hi] = sumo::NetBoundary();
+  const double margin = std::max(2.0, 0.05 * std::max(hi.x - lo.x, hi.y - lo.y));
+  sumo::gui::SetSchema("real world");
+  sumo::gui::SetBoundary({lo.x - margin, lo.y - margin}, {hi.x + margin, hi.y + margin});
+}
+
+// ------------------------------------------------------------------ run --gui
+struct RunGui::Impl {
+  bool gui = false;
+  int delay_ms = 0;
+};
+
+RunGui::RunGui(CLI::App* run) : impl_(std::make_unique<Impl>()) {
+  run->add_flag("--gui", impl_->gui,
+                "watch the run in sumo-gui (policies one after another; vehicles coloured by "
+                "state; results written as usual)");
+  run->add_option("--delay", impl_->delay_ms,
+                  "with --gui: sumo-gui's delay per simulation step in ms (100 = real time "
+                  "at step 0.1 s)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+}
+RunGui::~RunGui() = default;
+
+RunOptions RunGui::Prepare() const {
+  if (!impl_->gui) return {};
+  RequireSumoGui();
+  if (!HasDisplay())
+    throw GuiError("--gui needs a display and DISPLAY is not set (for a picture without one, "
+                   "use `taebp snapshot`)");
+  sumo::SetBackend(sumo::Backend::kLibtraciGui, {"--delay", std::to_string(impl_->delay_ms)});
+  RunOptions o;
+  o.colour_states = true;
+  o.after_start = FrameTrack;
+  return o;
+}
+
+// ------------------------------------------------------------------ snapshot
+struct Snapshot::Impl {
+  CLI::App* cmd = nullptr;
+  std::string config_path, out, policy;
+  double at = 60.0;
+  std::vector<std::string> overrides;
+};
+
+Snapshot::Snapshot(CLI::App& app) : impl_(std::make_unique<Impl>()) {
+  Impl& o = *impl_;
+  o.cmd = app.add_subcommand(
+      "snapshot",
+      "Run a config's scenario in sumo-gui up to a time and save a picture of the track "
+      "(uses xvfb-run when DISPLAY is unset)");
+  o.cmd->add_option("CONFIG", o.config_path, "experiment YAML (e.g. configs/paper.yaml)")->required();
+  o.cmd->add_option("--out", o.out, "the picture to write (PNG)")->required();
+  o.cmd->add_option("--at", o.at, "simulated time of the picture (s, > 0)")->capture_default_str();
+  o.cmd->add_option("--set", o.overrides,
+                    "override a config key, KEY=VALUE with VALUE read as YAML (repeatable)");
+  o.cmd->add_option("--policy", o.policy,
+                    "the policy to run (default: the config's first listed policy)");
+}
+Snapshot::~Snapshot() = default;
+
+bool Snapshot::Parsed() const { return impl_->cmd->parsed(); }
+
+int Snapshot::Run(int argc, char** argv) {
+  const Impl& o = *impl_;
+  if (!(std::isfinite(o.at) && o.at > 0))
+    throw persuasion::InvalidArgument("--at " + Seconds(o.at) +
+                                      ": the time must be a positive number of seconds");
+  RequireSumoGui();
+  // Config and policy errors before any re-execution.
+  ExperimentConfig config = LoadExperimentConfig(o.config_path, o.overrides);
+  const std::string name =
+      o.policy.empty() ? (config.policies.empty() ? "ta_ebp" : config.policies.front()) : o.policy;
+  const persuasion::Policy policy = persuasion::ParsePolicy(name);
+
+  if (!HasDisplay()) {
+    if (std::getenv(kUnderXvfbEnv))
+      throw GuiError("DISPLAY is still unset under xvfb-run: cannot open sumo-gui");
+    const std::string xvfb = FindOnPath("xvfb-run");
+    if (xvfb.empty())
+      throw GuiError("DISPLAY is not set and xvfb-run is not installed: install the Debian "
+                     "packages 'xvfb' and 'xauth', or run with a display");
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) throw GuiError("cannot find this program to re-run it under xvfb-run: " + ec.message());
+    std::vector<std::string> args = {xvfb, "-a", "-s", kXvfbScreen, self.string()};
+    for (int i = 1; i < argc; ++i) args.emplace_back(argv[i]);
+    std::vector<char*> cargs;
+    for (std::string& a : args) cargs.push_back(a.data());
+    cargs.push_back(nullptr);
+    setenv(kUnderXvfbEnv, "1", 1);
+    std::fflush(nullptr);
+    execv(xvfb.c_str(), cargs.data());
+    throw GuiError("cannot run " + xvfb + ": " + std::string(std::strerror(errno)));
+  }
+
+  const std::string config_dir = fs::path(o.config_path).parent_path().string();
+  const ScenarioFiles files = ResolveScenarioFiles(config, config_dir);
+  config.scenario.duration = o.at;
+
+  const fs::path out = fs::absolute(o.out);
+  if (out.has_parent_path()) fs::create_directories(out.parent_path());
+  std::error_code ec;
+  fs::remove(out, ec);  // so that a file afterwards is this run's
+
+  sumo::SetBackend(sumo::Backend::kLibtraciGui,
+                   {"--window-size", kSnapshotWindow, "--delay", "0"});
+  RunOptions ro;
+  ro.colour_states = true;
+  ro.after_start = FrameTrack;
+  ro.before_close = [&] {
+    sumo::gui::Screenshot(out.string());
+    sumo::Step();  // sumo-gui writes the picture during this step
+  };
+  const PolicyRun run = RunPolicy(config, policy, files, ro);
+  sumo::SetBackend(sumo::Backend::kLibsumo);
+
+  // sumo-gui has written the file by the end of the step; allow a moment for
+  // the file system all the same.
+  for (int i = 0; i < 50 && !(fs::exists(out) && fs::file_size(out) > 0); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  if (!fs::exists(out) || fs::file_size(out) == 0)
+    throw GuiError("sumo-gui did not write " + out.string());
+  const auto [w, h] = PngSize(out.string());
+  std::fprintf(stderr, "taebp: snapshot of %s at t = %s s (%zu encounters so far): %s", name.c_str(),
+               Seconds(o.at).c_str(), run.encounters.size(), out.string().c_str());
+  if (w > 0) std::fprintf(stderr, " (%u x %u)", w, h);
+  std::fprintf(stderr, "\n");
+  return 0;
+}
+
+}  // namespace taebp::gui
