@@ -291,7 +291,10 @@ int main(int argc, char** argv) {
   run->add_option("--out", out_dir, "output directory (default: results/<config name>)");
   run->add_flag("--quiet", quiet, "no progress on stderr");
   taebp::gui::RunGui run_gui(run);           // run --gui [--delay MS]
-  taebp::sweep::Commands sweep_commands(app);  // sweep, merge
+  taebp::sweep::Commands sweep_commands(  // sweep, merge; a task = `run` in a forked worker
+      app, [](const std::string& c, const std::vector<std::string>& o, const std::string& out) {
+        return RunExperiment(c, o, out, true);
+      });
   taebp::gui::Snapshot snapshot(app);
 
   CLI11_PARSE(app, argc, argv);

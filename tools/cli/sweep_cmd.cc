@@ -9,6 +9,8 @@
 #include "sweep.h"
 #include "taebp/controller/config.h"
 #include "taebp/controller/report.h"
+#include "taebp/controller/sumo_adapter.h"
+#include "taebp/persuasion/persuasion.h"
 
 #include <CLI/CLI.hpp>
 
@@ -54,14 +56,31 @@ constexpr int kExitInterrupted = 130;
 
 volatile std::sig_atomic_t g_signal = 0;
 extern "C" void OnSignal(int sig) { g_signal = sig; }
+int g_journal_fd = -1;  // closed in forked workers
 
+// SIGINT/SIGTERM set g_signal; SIGCHLD is blocked and waited for (WaitForChild).
 void InstallSignalHandlers() {
   struct sigaction sa {};
   sa.sa_handler = OnSignal;
   sigemptyset(&sa.sa_mask);
-  sa.sa_flags = 0;  // no SA_RESTART: sleeps wake up
+  sa.sa_flags = 0;  // no SA_RESTART: waits wake up
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
+  sigset_t chld;
+  sigemptyset(&chld);
+  sigaddset(&chld, SIGCHLD);
+  sigprocmask(SIG_BLOCK, &chld, nullptr);
+}
+
+// Sleeps until a child exits, a signal arrives or `ms` passed.
+void WaitForChild(long ms) {
+  sigset_t chld;
+  sigemptyset(&chld);
+  sigaddset(&chld, SIGCHLD);
+  struct timespec ts {};
+  ts.tv_sec = ms / 1000;
+  ts.tv_nsec = (ms % 1000) * 1000000L;
+  ::sigtimedwait(&chld, nullptr, &ts);
 }
 
 int Cores() {
@@ -236,6 +255,7 @@ class JournalFile {
     }
     return out;
   }
+  int fd() const { return fd_; }
   void Truncate(std::size_t size) {
     if (::ftruncate(fd_, static_cast<off_t>(size)) != 0 || ::fsync(fd_) != 0)
       throw std::runtime_error(path_.string() + ": truncate failed: " + std::strerror(errno));
@@ -323,30 +343,60 @@ fs::path TaskDir(const fs::path& out, const Task& t) {
   return out / "tasks" / (std::to_string(t.point) + "-" + std::to_string(t.replicate));
 }
 
-// Starts `taebp run CONFIG --set ... --out DIR --quiet` for one task.
-pid_t Launch(const Plan& plan, const Task& task, const fs::path& dir) {
+// In a forked worker: `run`'s code path in this process, with main's exit
+// codes and messages; never returns.
+[[noreturn]] void RunInChild(const RunFunction& run, const std::string& config,
+                             const std::vector<std::string>& overrides, const std::string& out) {
+  int code = 1;
+  try {
+    code = run(config, overrides, out);
+  } catch (const ConfigError& e) {
+    std::fprintf(stderr, "taebp: config error: %s\n", e.what());
+    code = 2;
+  } catch (const persuasion::InvalidArgument& e) {
+    std::fprintf(stderr, "taebp: invalid argument: %s\n", e.what());
+    code = 2;
+  } catch (const SumoError& e) {
+    std::fprintf(stderr, "taebp: %s\n", e.what());
+    code = 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "taebp: error: %s\n", e.what());
+    code = 1;
+  }
+  std::fflush(nullptr);
+  ::_exit(code);
+}
+
+// Starts one task: `taebp run CONFIG --set ... --out DIR --quiet`, either by
+// calling `run` in a fork of this process or (no `run`) by exec'ing this binary.
+pid_t Launch(const Plan& plan, const Task& task, const fs::path& dir, const RunFunction& run) {
   std::error_code ec;
   fs::remove_all(dir, ec);  // stale outputs of an interrupted or failed attempt
   fs::create_directories(dir);
+  std::vector<std::string> overrides = plan.overrides;
+  for (const std::string& o : plan.TaskOverrides(task)) overrides.push_back(o);
   std::vector<std::string> args = {"taebp", "run", plan.config_path};
-  for (const std::string& o : plan.overrides) args.insert(args.end(), {"--set", o});
-  for (const std::string& o : plan.TaskOverrides(task)) args.insert(args.end(), {"--set", o});
+  for (const std::string& o : overrides) args.insert(args.end(), {"--set", o});
   args.insert(args.end(), {"--out", dir.string(), "--quiet"});
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   const std::string log = (dir / "stderr.log").string();
+  const std::string out = dir.string();
   const pid_t parent = ::getpid();
+  std::fflush(nullptr);
 
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
   if (pid == 0) {
-    // Only async-signal-safe calls from here to exec.
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // the worker dies with its driver
     if (::getppid() != parent) ::_exit(127);
+    ::signal(SIGINT, SIG_DFL);
+    ::signal(SIGTERM, SIG_DFL);
     sigset_t none;
     sigemptyset(&none);
     ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    if (g_journal_fd >= 0) ::close(g_journal_fd);  // its lock stays with the driver
     const int null_fd = ::open("/dev/null", O_RDWR);
     const int log_fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (null_fd >= 0) {
@@ -354,6 +404,8 @@ pid_t Launch(const Plan& plan, const Task& task, const fs::path& dir) {
       ::dup2(null_fd, STDOUT_FILENO);
     }
     if (log_fd >= 0) ::dup2(log_fd, STDERR_FILENO);
+    if (run) RunInChild(run, plan.config_path, overrides, out);
+    // Only async-signal-safe calls from here (the parent may have threads).
     ::execv("/proc/self/exe", argv.data());
     static const char msg[] = "taebp: cannot exec /proc/self/exe\n";
     ssize_t ignored = ::write(STDERR_FILENO, msg, sizeof msg - 1);
@@ -406,7 +458,7 @@ Json Collect(const Plan& plan, const Running& r, int wait_status, int rank) {
 // Returns false if stopped early (signal or poll).
 template <typename Done, typename Poll>
 bool RunTasks(const Plan& plan, const fs::path& out, const std::vector<Task>& tasks, int jobs,
-              int rank, Done&& done, Poll&& poll) {
+              int rank, const RunFunction& run, Done&& done, Poll&& poll) {
   std::deque<Task> queue(tasks.begin(), tasks.end());
   std::vector<Running> running;
   bool stop = false;
@@ -428,7 +480,7 @@ bool RunTasks(const Plan& plan, const fs::path& out, const std::vector<Task>& ta
       queue.pop_front();
       r.dir = TaskDir(out, r.task);
       r.start = Clock::now();
-      r.pid = Launch(plan, r.task, r.dir);
+      r.pid = Launch(plan, r.task, r.dir, run);
       running.push_back(r);
     }
     if (running.empty() && (stop || queue.empty())) break;
@@ -449,7 +501,7 @@ bool RunTasks(const Plan& plan, const fs::path& out, const std::vector<Task>& ta
         ++i;
       }
     }
-    if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(15));
+    if (!reaped) WaitForChild(20);
   }
   return !stop;
 }
@@ -541,7 +593,7 @@ int CountOk(const Scope& scope, const Journal& j) {
   return n;
 }
 
-int RunSweep(const SweepOptions& o) {
+int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
   const Plan plan = ExpandSweep(ReadText(o.config), o.config, o.overrides);
   int shard_index = 0, shard_count = 1;
   ParseShard(o.shard, &shard_index, &shard_count);
@@ -624,6 +676,9 @@ int RunSweep(const SweepOptions& o) {
     std::fprintf(stderr, "taebp sweep: resuming in %s: %d of %zu tasks already done\n",
                  out.c_str(), already_ok, scope.tasks.size());
 
+  // Forked workers only without MPI: MPI's threads make fork-without-exec unsafe.
+  const RunFunction worker = mpi.active() ? RunFunction() : run_function;
+  if (journal_file) g_journal_fd = journal_file->fd();
   InstallSignalHandlers();
   Progress progress(show, static_cast<int>(scope.tasks.size()), already_ok);
   auto record = [&](const Json& e) {  // rank 0
@@ -647,7 +702,7 @@ int RunSweep(const SweepOptions& o) {
         progress.Update();
         return false;
       };
-      completed = RunTasks(plan, out, mine, jobs, 0, record, poll);
+      completed = RunTasks(plan, out, mine, jobs, 0, worker, record, poll);
       // Gather the other ranks' results until each reports done.
       const auto wait_from = Clock::now();
       while (ranks_done < mpi.size()) {
@@ -674,7 +729,7 @@ int RunSweep(const SweepOptions& o) {
         return stop;
       };
       auto send = [&](const Json& e) { mpi.Send(e.dump(), 0, kTagResult); };
-      completed = RunTasks(plan, out, mine, jobs, mpi.rank(), send, poll);
+      completed = RunTasks(plan, out, mine, jobs, mpi.rank(), worker, send, poll);
       mpi.Send(completed ? "ok" : "stopped", 0, kTagDone);
       return completed ? 0 : kExitInterrupted;
     }
@@ -805,13 +860,15 @@ int RunMerge(const MergeOptions& o) {
 
 // ------------------------------------------------------------------ CLI
 struct Commands::Impl {
+  RunFunction run;
   SweepOptions sweep;
   MergeOptions merge;
   CLI::App* sweep_cmd = nullptr;
   CLI::App* merge_cmd = nullptr;
 };
 
-Commands::Commands(CLI::App& app) : impl_(std::make_unique<Impl>()) {
+Commands::Commands(CLI::App& app, RunFunction run) : impl_(std::make_unique<Impl>()) {
+  impl_->run = std::move(run);
   SweepOptions& s = impl_->sweep;
   CLI::App* sw = app.add_subcommand(
       "sweep",
@@ -820,7 +877,8 @@ Commands::Commands(CLI::App& app) : impl_(std::make_unique<Impl>()) {
   sw->add_option("CONFIG", s.config, "experiment YAML with a sweep: section")->required();
   sw->add_option("--set", s.overrides,
                  "override a config key for every task, KEY=VALUE with VALUE read as YAML "
-                 "(repeatable), e.g. --set scenario.duration=300 --set sweep.replicates=2");
+                 "(repeatable), e.g. --set scenario.duration=300 --set sweep.replicates=2")
+      ->allow_extra_args(false);  // one value per --set: CONFIG may follow
   sw->add_option("--out", s.out, "output directory (default: results/<config name>)");
   sw->add_option("--jobs,-j", s.jobs,
                  "worker processes at once (default: the number of cores; 1 per MPI rank)");
@@ -850,7 +908,7 @@ Commands::~Commands() = default;
 bool Commands::Parsed() const { return impl_->sweep_cmd->parsed() || impl_->merge_cmd->parsed(); }
 
 int Commands::Run() {
-  if (impl_->sweep_cmd->parsed()) return RunSweep(impl_->sweep);
+  if (impl_->sweep_cmd->parsed()) return RunSweep(impl_->sweep, impl_->run);
   return RunMerge(impl_->merge);
 }
 
