@@ -459,6 +459,10 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
   struct Acc {
     long ok = 0, failed = 0;
     long enc = 0, collisions = 0, dc = 0;
+    // Weighted means as ref + sum n (x - ref) / N: exact when every run has
+    // the same value (a fixed trust's prediction).
+    bool has_ref = false;
+    double ref_c = 0, ref_d = 0, ref_gc = 0, ref_gd = 0;
     double th_c_w = 0, th_d_w = 0, th_c = 0, th_d = 0, thg_c_w = 0, thg_d_w = 0;
     std::vector<double> tp_av, tp_hv, tp_all, wait;
   };
@@ -482,10 +486,17 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
     a.th_c += tc;
     a.th_d += td;
     if (n > 0) {
-      a.th_c_w += tc * static_cast<double>(n);
-      a.th_d_w += td * static_cast<double>(n);
-      a.thg_c_w += Number(m["theory_given_hvs_collision_rate"]) * static_cast<double>(n);
-      a.thg_d_w += Number(m["theory_given_hvs_dc_rate"]) * static_cast<double>(n);
+      const double gc = Number(m["theory_given_hvs_collision_rate"]);
+      const double gd = Number(m["theory_given_hvs_dc_rate"]);
+      if (!a.has_ref) {
+        a.has_ref = true;
+        a.ref_c = tc, a.ref_d = td, a.ref_gc = gc, a.ref_gd = gd;
+      }
+      const double w = static_cast<double>(n);
+      a.th_c_w += w * (tc - a.ref_c);
+      a.th_d_w += w * (td - a.ref_d);
+      a.thg_c_w += w * (gc - a.ref_gc);
+      a.thg_d_w += w * (gd - a.ref_gd);
     }
     a.tp_av.push_back(Number(m["throughput_av"]));
     a.tp_hv.push_back(Number(m["throughput_hv"]));
@@ -534,8 +545,8 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
         const Interval ci_d = Wilson95(a.dc, a.enc);
         out << ',' << num(a.collisions / n) << ',' << num(ci_c.low) << ',' << num(ci_c.high)
             << ',' << num(a.dc / n) << ',' << num(ci_d.low) << ',' << num(ci_d.high) << ','
-            << num(a.th_c_w / n) << ',' << num(a.th_d_w / n) << ',' << num(a.thg_c_w / n) << ','
-            << num(a.thg_d_w / n);
+            << num(a.ref_c + a.th_c_w / n) << ',' << num(a.ref_d + a.th_d_w / n) << ','
+            << num(a.ref_gc + a.thg_c_w / n) << ',' << num(a.ref_gd + a.thg_d_w / n);
       } else {
         // No encounter in any run: the rates are undefined; the model's
         // prediction is still its plain mean over the runs.

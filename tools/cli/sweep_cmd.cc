@@ -428,7 +428,7 @@ Json Collect(const Plan& plan, const Running& r, int wait_status, int rank) {
     if (sig == SIGINT || sig == SIGTERM || g_signal) return nullptr;
     error = "killed by signal " + std::to_string(sig) + " (" + strsignal(sig) + ")";
     const std::string last = LastLine(r.dir / "stderr.log");
-    if (!last.empty()) error += ": " + last;
+    if (!last.empty() && last.rfind("warning:", 0) != 0) error += ": " + last;
   } else if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0) {
     try {
       const std::string text = ReadText(r.dir / "summary.json");
