@@ -511,7 +511,7 @@ struct SweepOptions {
   std::string config, out, shard;
   std::vector<std::string> overrides;
   int jobs = 0;
-  bool quiet = false, list = false, mpi = false;
+  bool quiet = false, list = false, mpi = false, exec = false;
 };
 
 struct MergeOptions {
@@ -677,7 +677,7 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
                  out.c_str(), already_ok, scope.tasks.size());
 
   // Forked workers only without MPI: MPI's threads make fork-without-exec unsafe.
-  const RunFunction worker = mpi.active() ? RunFunction() : run_function;
+  const RunFunction worker = mpi.active() || o.exec ? RunFunction() : run_function;
   if (journal_file) g_journal_fd = journal_file->fd();
   InstallSignalHandlers();
   Progress progress(show, static_cast<int>(scope.tasks.size()), already_ok);
@@ -887,6 +887,9 @@ Commands::Commands(CLI::App& app, RunFunction run) : impl_(std::make_unique<Impl
                  "`taebp merge`)");
   sw->add_flag("--list", s.list, "print the tasks and exit");
   sw->add_flag("--quiet", s.quiet, "no progress on stderr");
+  sw->add_flag("--exec-workers", s.exec,
+               "start each task by exec'ing `taebp run` instead of forking (as under MPI)")
+      ->group("");  // hidden: for debugging and benchmarks
 #ifdef TAEBP_HAVE_MPI
   sw->add_flag("--mpi", s.mpi,
                "use MPI (MPI_Init) even if no MPI launcher is detected; under mpirun/srun it is "
