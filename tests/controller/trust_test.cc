@@ -10,7 +10,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 namespace taebp {
@@ -248,6 +250,60 @@ TEST(Penetration, AllHvAndAllAvRunWithoutEncountersOrDeadlock) {
     EXPECT_EQ(run.teleports, 0);
     EXPECT_LT(run.longest_gap_without_crossing, 30.0);
     EXPECT_GT(run.crossings_av + run.crossings_hv, 50);
+  }
+}
+
+TEST(Penetration, PaperTrackFitsSixteenVehiclesWithoutGrowth) {
+  const ExperimentConfig cfg = LoadExperimentConfig(kPaper, {});
+  EXPECT_LE(RequiredLoopLength(cfg.scenario), cfg.scenario.loop_length);
+  const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
+  EXPECT_TRUE(files.notes.empty()) << files.notes[0];
+  EXPECT_DOUBLE_EQ(files.loop_length, 80.0);
+}
+
+// The required length is an estimate; this checks that vehicles are placed
+// and keep flowing at exactly that length, from a few vehicles to many.
+TEST(Penetration, RequiredLengthPlacesTheVehiclesAndTrafficFlows) {
+  for (int n : {2, 12, 24, 40}) {
+    const ExperimentConfig cfg = LoadExperimentConfig(
+        kPaper, {"scenario.avs=" + std::to_string(n / 2),
+                 "scenario.hvs=" + std::to_string(n - n / 2), "scenario.loop_length=10",
+                 "scenario.duration=300", "policies=[no_trust]"});
+    const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
+    ASSERT_DOUBLE_EQ(files.loop_length, RequiredLoopLength(cfg.scenario)) << n << " vehicles";
+    const PolicyRun run = RunPolicy(cfg, per::Policy::kNoTrust, files);
+    EXPECT_EQ(run.teleports, 0) << n << " vehicles";
+    EXPECT_LT(run.longest_gap_without_crossing, 30.0) << n << " vehicles";
+    // At least one crossing per vehicle-loop travelled at half the cruise speed.
+    EXPECT_GT(run.crossings_av + run.crossings_hv,
+              std::min(n, 2) * 300.0 * 2.0 / files.loop_length) << n << " vehicles";
+  }
+}
+
+// A 40 m figure-8 with 8 vehicles gridlocks (queues back up through the
+// centre); the run must stop with an error instead of measuring nothing.
+TEST(Penetration, GridlockIsAnErrorNamingTheTrack) {
+  const std::string dir = std::string(TAEBP_BINARY_DIR) + "/tests/gridlock_net";
+  const std::string src = std::string(TAEBP_SOURCE_DIR) + "/sumo_net";
+  const std::string cmd =
+      "rm -rf '" + dir + "' && mkdir -p '" + dir + "' && python3 '" + src +
+      "/make_figure8.py' --loop-length 40 --out-dir '" + dir + "' > /dev/null && netconvert " +
+      "--node-files '" + dir + "/figure8.nod.xml' --edge-files '" + dir + "/figure8.edg.xml' " +
+      "--connection-files '" + dir + "/figure8.con.xml' --no-turnarounds true " +
+      "--offset.disable-normalization true --precision 4 --xml-validation never " +
+      "--output-file '" + dir + "/figure8.net.xml' > /dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const ExperimentConfig cfg = LoadExperimentConfig(
+      kPaper, {"scenario.network=" + dir + "/figure8.net.xml", "scenario.duration=600",
+               "policies=[no_ebp]", "scenario.avs=4", "scenario.hvs=4"});
+  const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
+  try {
+    RunPolicy(cfg, per::Policy::kNoEbp, files);
+    FAIL() << "expected a deadlock error";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("deadlock"));
+    EXPECT_THAT(e.what(), HasSubstr("scenario.network = '" + dir + "/figure8.net.xml'"));
+    EXPECT_THAT(e.what(), HasSubstr("8 vehicles"));
   }
 }
 
