@@ -80,6 +80,12 @@ struct RunOptions {
   bool colour_states = false;
   std::function<void()> after_start;   // SUMO started, vehicles added (e.g. frame the view)
   std::function<void()> before_close;  // after the last step, SUMO still open (e.g. screenshot)
+  // A safety net: the run stops with a ConfigError when no vehicle has crossed
+  // the centre for this many simulated seconds (< 0: one lap at cruise speed
+  // + confirm_delay + arrival_window + 60 s). The keep-clear release rule
+  // prevents gridlock on the figure-8; this catches what it cannot foresee
+  // (e.g. a custom scenario.network).
+  double stall_limit = -1.0;
 };
 
 // Runs one policy for scenario.duration simulated seconds. Throws SumoError
