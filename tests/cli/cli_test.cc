@@ -281,7 +281,7 @@ void ExpectSolveMatches(const json& j, const per::Game& game, double trust) {
 
 TEST(CliSolve, ProsecutorMatchesLibraryAndTextbook) {
   const std::string problem = kSource + "/configs/problems/prosecutor.yaml";
-  if (!fs::exists(problem)) GTEST_SKIP() << problem << " does not exist yet";
+  if (!fs::exists(problem)) GTEST_FAIL() << problem << " is missing";
   const CliResult r = RunCli({"solve", problem, "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.Describe();
   const json j = json::parse(r.out);
@@ -301,7 +301,7 @@ TEST(CliSolve, ProsecutorMatchesLibraryAndTextbook) {
 
 TEST(CliSolve, AvHvGameMatchesTheTaebpDesign) {
   const std::string problem = kSource + "/configs/problems/av_hv.yaml";
-  if (!fs::exists(problem)) GTEST_SKIP() << problem << " does not exist yet";
+  if (!fs::exists(problem)) GTEST_FAIL() << problem << " is missing";
   const CliResult r = RunCli({"solve", problem, "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.Describe();
   const json j = json::parse(r.out);

@@ -205,7 +205,7 @@ TEST_F(SweepCli, RefusesToResumeIntoAnotherSweepsDirectory) {
 TEST_F(SweepCli, MpiRanksGiveTheSameTables) {
   ASSERT_EQ(Taebp("sweep --help"), 0);
   if (last_log_.find("--mpi") == std::string::npos)
-    GTEST_SKIP() << "taebp was built without MPI";
+    GTEST_FAIL() << "taebp was built without MPI (packages openmpi-bin libopenmpi-dev; tools/setup.sh installs them)";
   const fs::path cfg = Config();
   const fs::path ref = dir_ / "ref", out = dir_ / "mpi";
   ASSERT_EQ(Sweep(cfg, ref, "--jobs 2"), 0) << last_log_;
