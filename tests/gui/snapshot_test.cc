@@ -6,6 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -39,24 +41,7 @@ bool OnPath(const std::string& program) {
     if (!OnPath("xvfb-run")) GTEST_FAIL() << "xvfb-run is missing (Debian package xvfb)"; \
   } while (0)
 
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "taebp_gui_test.XXXXXX").string();
-    if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using taebp::test::TempDir;
 
 struct Result {
   int code = -1;

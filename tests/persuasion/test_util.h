@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <string>
 #include <utility>
 
@@ -14,16 +16,7 @@ namespace taebp::persuasion::testing {
 // recording a failure), to be checked with EXPECT_THAT(..., HasSubstr(...)).
 template <typename F>
 std::string InvalidArgumentMessage(F&& f) {
-  try {
-    std::forward<F>(f)();
-  } catch (const InvalidArgument& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InvalidArgument, got another exception: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "expected InvalidArgument, nothing was thrown";
-  return "";
+  return taebp::test::ErrorOf<InvalidArgument>(std::forward<F>(f));
 }
 
 }  // namespace taebp::persuasion::testing
