@@ -102,8 +102,9 @@ class Run {
   }
 
   double ExecuteBare() {
-    Start();
+    StartSumo();
     try {
+      SetUp();
       const long steps = std::lround(sc_.duration / sc_.step_length);
       for (long k = 0; k < steps; ++k) sumo::Step();
     } catch (...) {
@@ -116,8 +117,9 @@ class Run {
   }
 
   PolicyRun Execute() {
-    Start();
+    StartSumo();
     try {
+      SetUp();
       if (opts_.after_start) opts_.after_start();
       Loop();
       if (opts_.before_close) opts_.before_close();
@@ -130,7 +132,9 @@ class Run {
   }
 
  private:
-  void Start() {
+  // SUMO is closed by the caller's catch from here on: a scenario that does
+  // not fit the network (a ConfigError in SetUp) leaves no simulation open.
+  void StartSumo() {
     const fs::path net = files_.net;
     std::ostringstream dt, seed;
     dt.precision(17);
@@ -141,6 +145,9 @@ class Run {
                  "--collision.mingap-factor", "0", "--time-to-teleport", "-1",
                  "--no-step-log", "true", "--no-warnings", "true",
                  "--duration-log.disable", "true", "--xml-validation", "never"});
+  }
+
+  void SetUp() {
     out_.sumo_version = sumo::Version();
     ReadNetwork();
     sumo::AddVehicleType({"AV", sc_.cruise_speed, sc_.min_gap, sc_.vehicle_length,

@@ -326,6 +326,7 @@ TEST(ScenarioBadInput, TooManyVehiclesForTheTrackIsAConfigErrorAboutLoopLength) 
       ErrorOf<ConfigError>([&] { RunPolicy(given, per::Policy::kTaEbp, files); });
   EXPECT_THAT(run_msg, HasSubstr("loop_length"));
   EXPECT_THAT(run_msg, HasSubstr("60"));
+  EXPECT_FALSE(sumo::IsLoaded()) << "the failed run left SUMO open";
   ExpectAShortRunStillWorks();
 }
 
@@ -333,6 +334,7 @@ TEST(ScenarioBadInput, StopInsideTheJunctionIsAConfigError) {
   const ExperimentConfig cfg = Config({"scenario.stop_distance=1.0", "scenario.duration=60"});
   const std::string msg = ErrorOf<ConfigError>([&] { RunOne(cfg, per::Policy::kTaEbp); });
   EXPECT_THAT(msg, HasSubstr("scenario.stop_distance = 1"));
+  EXPECT_FALSE(sumo::IsLoaded()) << "the failed run left SUMO open";
   ExpectAShortRunStillWorks();
 }
 
