@@ -160,7 +160,10 @@ class Run {
 
   void ReadNetwork() {
     const XY centre = sumo::JunctionPosition(kCentre);
-    for (int i = 0; i < 4; ++i) lap_len_[i] = sumo::LaneLength(std::string(kLap[i]) + "_0");
+    for (int i = 0; i < 4; ++i) {
+      lap_len_[i] = sumo::LaneLength(std::string(kLap[i]) + "_0");
+      lap_ += lap_len_[i];
+    }
     for (int k = 0; k < 2; ++k) {
       const std::string lane = std::string(kIncoming[k]) + "_0";
       const std::vector<XY> shape = sumo::LaneShape(lane);
@@ -181,8 +184,7 @@ class Run {
   // hold zone before the stop line and the first vehicle length of each edge.
   void PlaceVehicles() {
     const int n = sc_.avs + sc_.hvs;
-    double lap = 0;
-    for (double l : lap_len_) lap += l;
+    const double lap = lap_;
     const double spacing = lap / n;
     const double need = sc_.vehicle_length + sc_.min_gap;
     if (spacing < need + 0.5)
@@ -282,14 +284,12 @@ class Run {
     for (Veh& v : vehs_) SetNextStop(v);
     double junction_free_since = sumo::Time();
     double last_crossing = junction_free_since;
-    double lap = 0;
-    for (double l : lap_len_) lap += l;
     // Free flow crosses at least once per loop; allow a full lap, the
     // controller's own waits and a minute.
     const double stall_limit =
         opts_.stall_limit >= 0
             ? opts_.stall_limit
-            : lap / sc_.cruise_speed + sc_.confirm_delay + sc_.arrival_window + 60.0;
+            : lap_ / sc_.cruise_speed + sc_.confirm_delay + sc_.arrival_window + 60.0;
     for (long k = 1; k < steps; ++k) {
       sumo::Step();
       const double now = sumo::Time();
@@ -346,7 +346,7 @@ class Run {
         }
         const RightOfWay row = DecideRightOfWay(heads[0], heads[1], now, sc_.arrival_window);
         if (row.kind == RightOfWay::Kind::kRelease) {
-          Release(row.first, now, false);
+          Release(row.first, now);
         } else if (row.kind == RightOfWay::Kind::kEncounter) {
           BeginEncounter(row.first, row.second, now);
         }
@@ -382,9 +382,10 @@ class Run {
     return in_loop * (sc_.vehicle_length + sc_.min_gap) <= queue_space;
   }
 
-  void Release(int i, double now, bool reckless) {
+  // Every release, DR or not, ignores SUMO's junction logic (kModeReleased):
+  // the controller has decided the junction.
+  void Release(int i, double now) {
     Veh& v = vehs_[i];
-    (void)reckless;  // both DR and controller releases ignore SUMO's junction logic
     if (v.speed_controlled) {
       sumo::SetSpeed(v.id, -1);
       v.speed_controlled = false;
@@ -463,7 +464,7 @@ class Run {
     }
     if (!e.sequence) return;
     for (const auto& rel : e.sequence->Update(now, e.av_cleared, e.hv_cleared)) {
-      Release(rel.av ? e.av : e.hv, now, rel.reckless);
+      Release(rel.av ? e.av : e.hv, now);
     }
   }
 
@@ -494,6 +495,7 @@ class Run {
   PolicyRun out_;
 
   std::array<double, 4> lap_len_{};
+  double lap_ = 0;  // sum of lap_len_
   std::array<double, 2> hold_pos_{};
   std::vector<Veh> vehs_;
   int head_[2] = {-1, -1};
@@ -528,8 +530,10 @@ int RunProgram(const std::vector<std::string>& args, const std::string& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// The figure-8 with `loop` m loops, generated once into the cache (atomically:
-// built in a private directory, then renamed into place).
+}  // namespace
+
+// Generated once into the cache (atomically: built in a private directory,
+// then renamed into place).
 std::string GeneratedFigure8(double loop) {
   const fs::path built = fs::path(DefaultNetworkPath()).parent_path();
   const fs::path script = built / "make_figure8.py";
@@ -563,8 +567,6 @@ std::string GeneratedFigure8(double loop) {
   if (ec) fs::remove_all(tmp);
   return net.string();
 }
-
-}  // namespace
 
 double RequiredLoopLength(const ScenarioConfig& sc) {
   const int n = sc.avs + sc.hvs;

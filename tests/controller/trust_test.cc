@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <string>
 
 namespace taebp {
@@ -310,18 +309,9 @@ TEST(Penetration, UnbalancedMixesOnThePaperTrackNeverGridlock) {
 // (queues backed up through the centre; 2 crossings in 20 minutes). Given as a
 // custom network (the built-in sizing would grow it), it must now flow.
 TEST(Penetration, TightCustomNetworkFlowsWithTheKeepClearRule) {
-  const std::string dir = std::string(TAEBP_BINARY_DIR) + "/tests/gridlock_net";
-  const std::string src = std::string(TAEBP_SOURCE_DIR) + "/sumo_net";
-  const std::string cmd =
-      "rm -rf '" + dir + "' && mkdir -p '" + dir + "' && python3 '" + src +
-      "/make_figure8.py' --loop-length 40 --out-dir '" + dir + "' > /dev/null && netconvert " +
-      "--node-files '" + dir + "/figure8.nod.xml' --edge-files '" + dir + "/figure8.edg.xml' " +
-      "--connection-files '" + dir + "/figure8.con.xml' --no-turnarounds true " +
-      "--offset.disable-normalization true --precision 4 --xml-validation never " +
-      "--output-file '" + dir + "/figure8.net.xml' > /dev/null 2>&1";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const std::string net = GeneratedFigure8(40.0);
   const ExperimentConfig cfg = LoadExperimentConfig(
-      kPaper, {"scenario.network=" + dir + "/figure8.net.xml", "scenario.duration=600",
+      kPaper, {"scenario.network=" + net, "scenario.duration=600",
                "scenario.avs=4", "scenario.hvs=4"});
   const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
   for (per::Policy policy : {per::Policy::kNoEbp, per::Policy::kTaEbp}) {
@@ -338,7 +328,7 @@ TEST(Penetration, TightCustomNetworkFlowsWithTheKeepClearRule) {
       FAIL() << "expected a stall error";
     } catch (const ConfigError& e) {
       EXPECT_THAT(e.what(), HasSubstr("traffic stalled"));
-      EXPECT_THAT(e.what(), HasSubstr("scenario.network = '" + dir + "/figure8.net.xml'"));
+      EXPECT_THAT(e.what(), HasSubstr("scenario.network = '" + net + "'"));
       EXPECT_THAT(e.what(), HasSubstr("8 vehicles"));
     }
   }

@@ -64,6 +64,11 @@ double RequiredLoopLength(const ScenarioConfig& scenario);
 // The built-in figure-8 network built with the project (build/sumo_net).
 std::string DefaultNetworkPath();
 
+// The figure-8 with `loop_length` m loops (make_figure8.py + netconvert),
+// generated once into build/sumo_net/cache; returns its .net.xml. Throws
+// ConfigError naming scenario.loop_length when generating fails.
+std::string GeneratedFigure8(double loop_length);
+
 // Resolves scenario.network (relative to `config_dir` when relative) or the
 // figure-8: the built-in one for the default loop length, else one generated
 // (make_figure8.py + netconvert, cached in build/sumo_net/cache) for
