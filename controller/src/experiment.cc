@@ -669,7 +669,8 @@ std::vector<std::string> ScenarioWarnings(const ExperimentConfig& config) {
 std::unique_ptr<persuasion::LikelihoodModel> MakeLikelihood(const LikelihoodConfig& c) {
   if (c.type == "logistic")
     return std::make_unique<persuasion::LogisticLikelihood>(c.s_max, c.steepness, c.midpoint);
-  return std::make_unique<persuasion::LinearLikelihood>(c.s_max);
+  if (c.type == "linear") return std::make_unique<persuasion::LinearLikelihood>(c.s_max);
+  throw persuasion::InvalidArgument("likelihood '" + c.type + "' is not linear or logistic");
 }
 
 double RunBareSumo(const ExperimentConfig& config, const ScenarioFiles& files) {

@@ -158,7 +158,7 @@ LpResult SolveTrustAwarePersuasion(const Game& game, double theta) {
       continue;
     }
     const Eigen::VectorXd full_trust = result.scheme.col(a).cwiseProduct(p0) / pa;
-    result.posteriors.col(a) = (1.0 - theta) * p0 + theta * full_trust;
+    result.posteriors.col(a) = TrustPosterior(p0, full_trust, theta);
   }
   return result;
 }

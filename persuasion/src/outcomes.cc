@@ -116,8 +116,9 @@ PredictedOutcome PredictOutcome(const CommittedScheme& scheme, const AvHvParams&
 PredictedOutcome PredictOutcome(Policy policy, const AvHvParams& params, double theta_true,
                                 const LikelihoodModel& model, std::optional<double> theta_hat) {
   internal::CheckTrust(theta_true, "trust theta_true");
-  const double assumed = policy == Policy::kNoTrust ? 1.0 : theta_hat.value_or(theta_true);
-  return PredictOutcome(CommitScheme(policy, params, assumed, model), params, theta_true, model);
+  // CommitScheme designs no_trust for theta_hat = 1 whatever is assumed.
+  return PredictOutcome(CommitScheme(policy, params, theta_hat.value_or(theta_true), model), params,
+                        theta_true, model);
 }
 
 }  // namespace taebp::persuasion

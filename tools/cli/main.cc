@@ -51,17 +51,15 @@ int Theory(const TheoryOptions& o) {
   if (!(o.trust >= 0 && o.trust <= 1))
     throw per::InvalidArgument("--trust theta = " + std::to_string(o.trust) + " is outside [0, 1]");
   taebp::LikelihoodConfig lc{o.likelihood, o.s_max, o.steepness, o.midpoint};
-  if (o.likelihood != "linear" && o.likelihood != "logistic")
-    throw per::InvalidArgument("--likelihood '" + o.likelihood + "' is not linear or logistic");
   const auto model = taebp::MakeLikelihood(lc);
   const double theta_hat = o.assumed_trust.value_or(o.trust);
   const per::TaebpDesign d = per::DesignTaebp(params, theta_hat, *model);
-  const per::PredictedOutcome predicted =
-      per::PredictOutcome(per::Policy::kTaEbp, params, o.trust, *model, theta_hat);
+  per::PredictedOutcome predicted;  // the TA-EBP design's outcome (the loop's ta_ebp)
   ordered_json policies;
   for (per::Policy p : {per::Policy::kNoEbp, per::Policy::kNoTrust, per::Policy::kTaEbp,
                         per::Policy::kFullReveal}) {
     const per::PredictedOutcome out = per::PredictOutcome(p, params, o.trust, *model, theta_hat);
+    if (p == per::Policy::kTaEbp) predicted = out;
     policies[per::ToString(p)] = {{"dc_rate", out.dc_rate},
                                   {"collision_rate", out.collision_rate},
                                   {"nudge_rate", out.nudge_rate}};

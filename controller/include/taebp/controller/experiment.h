@@ -116,7 +116,8 @@ persuasion::PredictedOutcome ExpectedOutcome(const ModelConfig& model, persuasio
 // crossing path), for stderr and summary.json.
 std::vector<std::string> ScenarioWarnings(const ExperimentConfig& config);
 
-// The HV likelihood model named by the config.
+// The HV likelihood model named by the config; throws persuasion::InvalidArgument
+// naming the type when it is not linear or logistic.
 std::unique_ptr<persuasion::LikelihoodModel> MakeLikelihood(const LikelihoodConfig& config);
 
 }  // namespace taebp
