@@ -240,6 +240,13 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
     plan.axes.push_back(std::move(axis));
   }
 
+  // Only a grid over these keys can change a point's policies or seed; other
+  // points keep the base ones without loading the config again (a large grid
+  // would otherwise load it once per point before the first task).
+  const bool points_may_differ =
+      std::any_of(plan.columns.begin(), plan.columns.end(), [](const std::string& k) {
+        return k == "policies" || k == "scenario" || k == "scenario.seed";
+      });
   for (std::size_t idx = 0; idx < total; ++idx) {
     Point point;
     point.index = static_cast<int>(idx);
@@ -260,11 +267,13 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
     // point keeps the base ones and fails in its worker with the loader's error.
     point.policies = plan.base.policies;
     std::uint64_t seed = plan.base.scenario.seed;
-    try {
-      const ExperimentConfig c = ParseExperimentConfig(config_text, config_path, point_overrides);
-      point.policies = c.policies;
-      seed = c.scenario.seed;
-    } catch (const ConfigError&) {
+    if (points_may_differ) {
+      try {
+        const ExperimentConfig c = ParseExperimentConfig(config_text, config_path, point_overrides);
+        point.policies = c.policies;
+        seed = c.scenario.seed;
+      } catch (const ConfigError&) {
+      }
     }
     for (int r = 0; r < plan.replicates; ++r) {
       Task t;
