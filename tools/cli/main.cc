@@ -243,6 +243,27 @@ int RunExperiment(const std::string& config_path, const std::vector<std::string>
   return 0;
 }
 
+// Runs `body`, turning an error into its message on stderr and the exit code
+// the README documents (2 bad configuration or argument, 3 SUMO, 1 other).
+template <typename F>
+int ReportErrors(F&& body) {
+  try {
+    return body();
+  } catch (const taebp::ConfigError& e) {
+    std::cerr << "taebp: config error: " << e.what() << "\n";
+    return kExitConfig;
+  } catch (const per::InvalidArgument& e) {
+    std::cerr << "taebp: invalid argument: " << e.what() << "\n";
+    return kExitConfig;
+  } catch (const taebp::SumoError& e) {
+    std::cerr << "taebp: " << e.what() << "\n";
+    return kExitSumo;
+  } catch (const std::exception& e) {
+    std::cerr << "taebp: error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -291,29 +312,17 @@ int main(int argc, char** argv) {
   taebp::gui::RunGui run_gui(run);           // run --gui [--delay MS]
   taebp::sweep::Commands sweep_commands(  // sweep, merge; a task = `run` in a forked worker
       app, [](const std::string& c, const std::vector<std::string>& o, const std::string& out) {
-        return RunExperiment(c, o, out, true);
+        return ReportErrors([&] { return RunExperiment(c, o, out, true); });
       });
   taebp::gui::Snapshot snapshot(app);
 
   CLI11_PARSE(app, argc, argv);
-  try {
+  return ReportErrors([&] {
     if (*theory) return Theory(th);
     if (*solve) return Solve(problem, solve_json);
     if (*run) return RunExperiment(config_path, overrides, out_dir, quiet, run_gui.Prepare());
     if (snapshot.Parsed()) return snapshot.Run(argc, argv);
     if (sweep_commands.Parsed()) return sweep_commands.Run();
-  } catch (const taebp::ConfigError& e) {
-    std::cerr << "taebp: config error: " << e.what() << "\n";
-    return kExitConfig;
-  } catch (const per::InvalidArgument& e) {
-    std::cerr << "taebp: invalid argument: " << e.what() << "\n";
-    return kExitConfig;
-  } catch (const taebp::SumoError& e) {
-    std::cerr << "taebp: " << e.what() << "\n";
-    return kExitSumo;
-  } catch (const std::exception& e) {
-    std::cerr << "taebp: error: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

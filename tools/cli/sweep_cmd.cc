@@ -343,25 +343,15 @@ fs::path TaskDir(const fs::path& out, const Task& t) {
   return out / "tasks" / (std::to_string(t.point) + "-" + std::to_string(t.replicate));
 }
 
-// In a forked worker: `run`'s code path in this process, with main's exit
-// codes and messages; never returns.
+// In a forked worker: `run`'s code path in this process (`run` reports its
+// errors and returns main's exit codes); never returns.
 [[noreturn]] void RunInChild(const RunFunction& run, const std::string& config,
                              const std::vector<std::string>& overrides, const std::string& out) {
   int code = 1;
   try {
     code = run(config, overrides, out);
-  } catch (const ConfigError& e) {
-    std::fprintf(stderr, "taebp: config error: %s\n", e.what());
-    code = 2;
-  } catch (const persuasion::InvalidArgument& e) {
-    std::fprintf(stderr, "taebp: invalid argument: %s\n", e.what());
-    code = 2;
-  } catch (const SumoError& e) {
-    std::fprintf(stderr, "taebp: %s\n", e.what());
-    code = 3;
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // not expected: `run` reports its own errors
     std::fprintf(stderr, "taebp: error: %s\n", e.what());
-    code = 1;
   }
   std::fflush(nullptr);
   ::_exit(code);

@@ -13,7 +13,8 @@ class App;
 namespace taebp::sweep {
 
 // What `taebp run CONFIG --set ... --out DIR --quiet` does, as a function
-// returning the exit code (it may throw like `run`).
+// returning its exit code; it reports its own errors on stderr as `taebp run`
+// does (an exception escaping it counts as exit code 1).
 using RunFunction = std::function<int(const std::string& config,
                                       const std::vector<std::string>& overrides,
                                       const std::string& out_dir)>;
