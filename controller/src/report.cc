@@ -29,13 +29,6 @@ using json = nlohmann::ordered_json;
 // 97.5% standard normal quantile.
 constexpr double kZ95 = 1.959963984540054;
 
-// Shortest text that reads back as exactly the same double.
-std::string G17(double v) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
-
 std::string PolicyLabel(const std::string& p) {
   if (p == "no_ebp") return "No EBP";
   if (p == "no_trust") return "No Trust";
@@ -76,6 +69,12 @@ Stats Compute(const PolicyRun& r) {
 double Rate(long k, long n) { return n > 0 ? static_cast<double>(k) / n : 0.0; }
 
 }  // namespace
+
+std::string FormatDouble(double v) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
 
 Interval Wilson95(long k, long n) {
   if (n <= 0) return {0.0, 1.0};
@@ -159,9 +158,9 @@ std::string EncountersCsv(const std::vector<PolicyRun>& runs, const Provenance& 
          "hv_posterior,hv_action,av_action,collision\n";
   for (const PolicyRun& r : runs) {
     for (const EncounterRecord& e : r.encounters) {
-      out << r.policy << ',' << G17(e.time) << ',' << e.av << ',' << e.hv << ','
-          << (e.intent_go ? "go" : "stop") << ',' << G17(e.commanded) << ',' << G17(e.observed)
-          << ',' << G17(e.hv_trust) << ',' << G17(e.posterior) << ','
+      out << r.policy << ',' << FormatDouble(e.time) << ',' << e.av << ',' << e.hv << ','
+          << (e.intent_go ? "go" : "stop") << ',' << FormatDouble(e.commanded) << ','
+          << FormatDouble(e.observed) << ',' << FormatDouble(e.hv_trust) << ',' << FormatDouble(e.posterior) << ','
           << (e.hv_dc ? "DC" : "DR") << ',' << (e.av_first ? "go" : "wait") << ','
           << (e.collision ? 1 : 0) << '\n';
     }

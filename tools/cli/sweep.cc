@@ -3,7 +3,6 @@
 #include "taebp/controller/report.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -96,12 +95,6 @@ void ForEachRow(const Plan& plan, const Journal& journal, F&& emit) {
 }
 
 }  // namespace
-
-std::string FormatDouble(double v) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
 
 std::string CsvQuote(const std::string& s) {
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
@@ -300,13 +293,15 @@ const std::vector<std::string>& MetricColumns() {
   return cols;
 }
 
-Json MetricsFromSummary(const std::string& summary_json, const std::vector<std::string>& policies) {
-  Json s;
+Json ParseSummary(const std::string& summary_json) {
   try {
-    s = Json::parse(summary_json);
+    return Json::parse(summary_json);
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("summary.json is not valid JSON: ") + e.what());
   }
+}
+
+Json MetricsFromSummary(const Json& s, const std::vector<std::string>& policies) {
   Json out = Json::object();
   for (const std::string& p : policies) {
     if (!s.contains("policies") || !s["policies"].contains(p))

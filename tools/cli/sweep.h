@@ -73,9 +73,13 @@ std::string ConfigHash(const ExperimentConfig& config);
 // The metric columns of results.csv, in order (after policy, status, error).
 const std::vector<std::string>& MetricColumns();
 
-// Per-policy metrics (the MetricColumns keys) from a task's summary.json text.
+// A task's summary.json text, parsed. Throws std::runtime_error when it is not
+// valid JSON.
+Json ParseSummary(const std::string& summary_json);
+
+// Per-policy metrics (the MetricColumns keys) from a task's parsed summary.json.
 // Throws std::runtime_error naming what is missing.
-Json MetricsFromSummary(const std::string& summary_json, const std::vector<std::string>& policies);
+Json MetricsFromSummary(const Json& summary, const std::vector<std::string>& policies);
 
 // A journal line (no newline) for a finished task.
 Json JournalEntry(const Plan& plan, const Task& task, const std::string& status,
@@ -103,8 +107,6 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal);
 // sweep.json: the resolved base config, the plan's shape and provenance.
 Json SweepHeader(const Plan& plan, const std::string& shard, const std::string& sumo_version);
 
-// Shortest text that reads back as the same double.
-std::string FormatDouble(double v);
 // A CSV cell, quoted when it holds a comma, quote or newline.
 std::string CsvQuote(const std::string& s);
 

@@ -421,9 +421,8 @@ Json Collect(const Plan& plan, const Running& r, int wait_status, int rank) {
     if (!last.empty() && last.rfind("warning:", 0) != 0) error += ": " + last;
   } else if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0) {
     try {
-      const std::string text = ReadText(r.dir / "summary.json");
-      metrics = MetricsFromSummary(text, point.policies);
-      const Json s = Json::parse(text);
+      const Json s = ParseSummary(ReadText(r.dir / "summary.json"));
+      metrics = MetricsFromSummary(s, point.policies);
       if (s.contains("provenance")) sumo_version = s["provenance"].value("sumo_version", "");
       status = "ok";
     } catch (const std::exception& e) {

@@ -33,6 +33,9 @@ std::string TaebpVersion();
 std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& provenance);
 // encounters.csv text: one row per AV-HV encounter, policy first.
 std::string EncountersCsv(const std::vector<PolicyRun>& runs, const Provenance& provenance);
+// Shortest text that reads back as exactly the same double (std::to_chars).
+std::string FormatDouble(double v);
+
 // Paper-style table: one row per metric, one column per policy, theory beside simulation.
 void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs);
 
