@@ -200,5 +200,27 @@ TEST(SweepJournal, TornTailIgnoredOtherSweepRefusedOkWins) {
   EXPECT_THAT(agg, HasSubstr("\n1,0.8,ta_ebp,0,1,,"));
 }
 
+// AddEntry says whether it stored the entry (merge takes a task's outputs
+// from the shard whose entry is kept); CountTasks tallies ok/failed/missing.
+TEST(SweepJournal, AddEntryReportsWhatItKeptAndCountTasksTallies) {
+  const Plan p = Expand("sweep:\n  replicates: 2\n  grid:\n    model.trust: [0.2, 0.8]\n");
+  const Json ok = JournalEntry(p, p.tasks[1], "ok", "", {{"no_trust", Metrics(10, 2)}});
+  const Json failed = JournalEntry(p, p.tasks[1], "failed", "boom", nullptr);
+  Journal j;
+  EXPECT_TRUE(AddEntry(&j, p, failed));   // first entry
+  EXPECT_TRUE(AddEntry(&j, p, ok));       // ok replaces failed
+  EXPECT_FALSE(AddEntry(&j, p, failed));  // failed never replaces ok
+  EXPECT_TRUE(IsOk(j.entries.at(1)));
+  EXPECT_TRUE(AddEntry(&j, p, ok));       // a later ok is the one kept
+  Json outside = ok;
+  outside["replicate"] = 5;
+  EXPECT_FALSE(AddEntry(&j, p, outside));
+  EXPECT_TRUE(AddEntry(&j, p, JournalEntry(p, p.tasks[2], "failed", "boom", nullptr)));
+  const Tally t = CountTasks(p.tasks, j);
+  EXPECT_EQ(t.ok, 1);
+  EXPECT_EQ(t.failed, 1);
+  EXPECT_EQ(t.missing, 2);
+}
+
 }  // namespace
 }  // namespace taebp::sweep

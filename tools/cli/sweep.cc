@@ -73,7 +73,7 @@ void ForEachRow(const Plan& plan, const Journal& journal, F&& emit) {
     if (it == journal.entries.end()) continue;
     const Json& e = it->second;
     const Point& point = plan.points[static_cast<std::size_t>(task.point)];
-    const bool ok = e.value("status", "") == "ok";
+    const bool ok = IsOk(e);
     for (const std::string& policy : point.policies) {
       Json metrics = Json::object();
       const Json* m = nullptr;
@@ -369,23 +369,35 @@ Json JournalEntry(const Plan& plan, const Task& task, const std::string& status,
   return e;
 }
 
-void AddEntry(Journal* journal, const Plan& plan, const Json& entry) {
+bool IsOk(const Json& entry) { return entry.value("status", "") == "ok"; }
+
+Tally CountTasks(const std::vector<Task>& tasks, const Journal& journal) {
+  Tally t;
+  for (const Task& task : tasks) {
+    const auto it = journal.entries.find(task.index);
+    if (it == journal.entries.end()) ++t.missing;
+    else if (IsOk(it->second)) ++t.ok;
+    else ++t.failed;
+  }
+  return t;
+}
+
+bool AddEntry(Journal* journal, const Plan& plan, const Json& entry) {
   if (!entry.contains("point") || !entry.contains("replicate") ||
       !entry["point"].is_number_integer() || !entry["replicate"].is_number_integer())
-    return;
+    return false;
   const long point = entry["point"].get<long>();
   const long replicate = entry["replicate"].get<long>();
   // Entries outside the plan (e.g. replicates lowered since) stay in the
   // journal but not in the tables.
   if (point < 0 || point >= static_cast<long>(plan.points.size()) || replicate < 0 ||
       replicate >= plan.replicates)
-    return;
+    return false;
   const int index = static_cast<int>(point) * plan.replicates + static_cast<int>(replicate);
   auto it = journal->entries.find(index);
-  if (it != journal->entries.end() && it->second.value("status", "") == "ok" &&
-      entry.value("status", "") != "ok")
-    return;
+  if (it != journal->entries.end() && IsOk(it->second) && !IsOk(entry)) return false;
   journal->entries[index] = entry;
+  return true;
 }
 
 Journal ParseJournal(const std::string& text, const Plan& plan, const std::string& origin) {

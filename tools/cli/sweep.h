@@ -96,8 +96,19 @@ struct Journal {
 // Parses journal text. Lines of another sweep (hash) throw ConfigError naming
 // `origin`; malformed complete lines are skipped.
 Journal ParseJournal(const std::string& text, const Plan& plan, const std::string& origin);
-// Adds `entry` (a journal line's JSON) to `journal` with the same precedence.
-void AddEntry(Journal* journal, const Plan& plan, const Json& entry);
+// Adds `entry` (a journal line's JSON) to `journal` with the same precedence;
+// returns whether it was stored (false: outside the plan, or a failure after
+// an ok entry).
+bool AddEntry(Journal* journal, const Plan& plan, const Json& entry);
+
+// A journal entry of a task that finished without error.
+bool IsOk(const Json& entry);
+
+// How many of `tasks` have an ok entry, a failed one, and none.
+struct Tally {
+  int ok = 0, failed = 0, missing = 0;
+};
+Tally CountTasks(const std::vector<Task>& tasks, const Journal& journal);
 
 // The final tables, byte-identical for the same entries.
 std::string ResultsCsv(const Plan& plan, const Journal& journal);

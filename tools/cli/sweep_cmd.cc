@@ -561,40 +561,29 @@ void CheckHeader(const fs::path& dir, const std::string& hash) {
                       "or remove that directory");
 }
 
-struct Scope {
-  std::vector<Task> tasks;  // the shard's tasks
-  std::vector<Task> Pending(const Journal& j) const {
-    std::vector<Task> out;
-    for (const Task& t : tasks) {
-      const auto it = j.entries.find(t.index);
-      if (it == j.entries.end() || it->second.value("status", "") != "ok") out.push_back(t);
-    }
-    return out;
-  }
-};
-
-int CountOk(const Scope& scope, const Journal& j) {
-  int n = 0;
-  for (const Task& t : scope.tasks) {
+// The tasks of `scope` (a shard's tasks) still to run: no ok entry yet.
+std::vector<Task> Pending(const std::vector<Task>& scope, const Journal& j) {
+  std::vector<Task> out;
+  for (const Task& t : scope) {
     const auto it = j.entries.find(t.index);
-    if (it != j.entries.end() && it->second.value("status", "") == "ok") ++n;
+    if (it == j.entries.end() || !IsOk(it->second)) out.push_back(t);
   }
-  return n;
+  return out;
 }
 
 int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
   const Plan plan = ExpandSweep(ReadText(o.config), o.config, o.overrides);
   int shard_index = 0, shard_count = 1;
   ParseShard(o.shard, &shard_index, &shard_count);
-  Scope scope;
+  std::vector<Task> scope;  // this shard's tasks
   for (const Task& t : plan.tasks)
-    if (t.index % shard_count == shard_index) scope.tasks.push_back(t);
+    if (t.index % shard_count == shard_index) scope.push_back(t);
 
   if (o.list) {
     std::printf("%zu points x %d replicates = %zu tasks%s\n", plan.points.size(), plan.replicates,
                 plan.tasks.size(),
-                o.shard.empty() ? "" : (", shard " + o.shard + ": " + std::to_string(scope.tasks.size())).c_str());
-    for (const Task& t : scope.tasks) {
+                o.shard.empty() ? "" : (", shard " + o.shard + ": " + std::to_string(scope.size())).c_str());
+    for (const Task& t : scope) {
       std::printf("%d point=%d replicate=%d seed=%llu", t.index, t.point, t.replicate,
                   static_cast<unsigned long long>(t.seed));
       const Point& p = plan.points[static_cast<std::size_t>(t.point)];
@@ -635,7 +624,7 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
       if (!fs::exists(out / "sweep.json"))
         WriteFilesAtomically(out.string(), {{"sweep.json", header.dump(2) + "\n"}});
       Json pending = Json::array();
-      for (const Task& t : scope.Pending(journal)) pending.push_back(t.index);
+      for (const Task& t : Pending(scope, journal)) pending.push_back(t.index);
       s["pending"] = pending;
     } catch (const ConfigError& e) {
       s["error"] = e.what();
@@ -660,20 +649,20 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
       if (static_cast<int>(k % static_cast<std::size_t>(mpi.size())) == mpi.rank())
         mine.push_back(plan.tasks[pending[k].get<std::size_t>()]);
   }
-  const int already_ok = root ? CountOk(scope, journal) : 0;
+  const int already_ok = root ? CountTasks(scope, journal).ok : 0;
   if (show && already_ok > 0)
     std::fprintf(stderr, "taebp sweep: resuming in %s: %d of %zu tasks already done\n",
-                 out.c_str(), already_ok, scope.tasks.size());
+                 out.c_str(), already_ok, scope.size());
 
   // Forked workers only without MPI: MPI's threads make fork-without-exec unsafe.
   const RunFunction worker = mpi.active() || o.exec ? RunFunction() : run_function;
   if (journal_file) g_journal_fd = journal_file->fd();
   InstallSignalHandlers();
-  Progress progress(show, static_cast<int>(scope.tasks.size()), already_ok);
+  Progress progress(show, static_cast<int>(scope.size()), already_ok);
   auto record = [&](const Json& e) {  // rank 0
     journal_file->Append(e.dump());
     AddEntry(&journal, plan, e);
-    progress.Finished(e.value("status", "") == "ok");
+    progress.Finished(IsOk(e));
     progress.Update();
   };
   int ranks_done = 1;
@@ -732,22 +721,15 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
   // Rank 0: the final tables from the journal.
   WriteOutputs(out, plan, journal, header);
   progress.Update(true);
-  int ok = 0, failed = 0;
-  for (const Task& t : scope.tasks) {
-    const auto it = journal.entries.find(t.index);
-    if (it == journal.entries.end()) continue;
-    if (it->second.value("status", "") == "ok") ++ok;
-    else ++failed;
-  }
-  const int missing = static_cast<int>(scope.tasks.size()) - ok - failed;
+  const auto [ok, failed, missing] = CountTasks(scope, journal);
   if (!o.quiet) {
     std::fprintf(stderr, "taebp sweep: %d of %zu tasks ok, %d failed%s (this run: %d in %s)\n", ok,
-                 scope.tasks.size(), failed,
+                 scope.size(), failed,
                  missing ? (", " + std::to_string(missing) + " not run").c_str() : "",
                  progress.this_run(), Hms(progress.Elapsed()).c_str());
-    for (const Task& t : scope.tasks) {
+    for (const Task& t : scope) {
       const auto it = journal.entries.find(t.index);
-      if (it != journal.entries.end() && it->second.value("status", "") != "ok")
+      if (it != journal.entries.end() && !IsOk(it->second))
         std::fprintf(stderr, "taebp sweep: task %d-%d failed: %s\n", t.point, t.replicate,
                      it->second.value("error", "").c_str());
     }
@@ -808,10 +790,8 @@ int RunMerge(const MergeOptions& o) {
     if (!fs::exists(jp)) continue;
     const Journal shard = ParseJournal(ReadText(jp), plan, jp.string());
     for (const auto& [index, e] : shard.entries) {
-      const auto before = journal.entries.find(index);
-      const bool had_ok = before != journal.entries.end() && before->second.value("status", "") == "ok";
-      AddEntry(&journal, plan, e);
-      if (!had_ok) source[index] = d;
+      // The task's outputs come from the shard whose entry the journal keeps.
+      if (AddEntry(&journal, plan, e)) source[index] = d;
     }
   }
   // Per-task outputs next to the merged tables.
@@ -831,14 +811,7 @@ int RunMerge(const MergeOptions& o) {
   WriteFilesAtomically(out.string(), {{"journal.jsonl", lines}});
   WriteOutputs(out, plan, journal, header);
 
-  int ok = 0, failed = 0;
-  for (const Task& t : plan.tasks) {
-    const auto it = journal.entries.find(t.index);
-    if (it == journal.entries.end()) continue;
-    if (it->second.value("status", "") == "ok") ++ok;
-    else ++failed;
-  }
-  const int missing = static_cast<int>(plan.tasks.size()) - ok - failed;
+  const auto [ok, failed, missing] = CountTasks(plan.tasks, journal);
   if (!o.quiet)
     std::fprintf(stderr, "taebp merge: %zu shard dirs, %d of %zu tasks ok, %d failed, %d missing; results in %s\n",
                  o.dirs.size(), ok, plan.tasks.size(), failed, missing, out.c_str());
