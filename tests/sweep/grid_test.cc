@@ -87,6 +87,14 @@ TEST(SweepGrid, NoGridIsOnePointOfReplicates) {
   EXPECT_TRUE(p.columns.empty());
 }
 
+TEST(SweepGrid, TaskOverridesAreTheUsersThenThePointsThenTheSeed) {
+  const Plan p = Expand("sweep:\n  replicates: 2\n  grid:\n    model.trust: [0.2, 0.8]\n",
+                        {"scenario.duration=30"});
+  EXPECT_EQ(p.TaskOverrides(p.tasks[3]),
+            (std::vector<std::string>{"scenario.duration=30", "model.trust=0.8",
+                                      "scenario.seed=11"}));
+}
+
 TEST(SweepGrid, SweptSeedAndPoliciesAreThePoints) {
   const Plan p = Expand(R"(
 sweep:

@@ -158,10 +158,15 @@ std::string ConfigHash(const ExperimentConfig& config) {
   return buf;
 }
 
+std::vector<std::string> Plan::PointOverrides(const Point& point) const {
+  std::vector<std::string> out = overrides;
+  for (std::size_t k = 0; k < columns.size(); ++k)
+    out.push_back(columns[k] + "=" + point.values[k]);
+  return out;
+}
+
 std::vector<std::string> Plan::TaskOverrides(const Task& task) const {
-  std::vector<std::string> out;
-  const Point& p = points[static_cast<std::size_t>(task.point)];
-  for (std::size_t k = 0; k < columns.size(); ++k) out.push_back(columns[k] + "=" + p.values[k]);
+  std::vector<std::string> out = PointOverrides(points[static_cast<std::size_t>(task.point)]);
   out.push_back("scenario.seed=" + std::to_string(task.seed));
   return out;
 }
@@ -249,20 +254,17 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
       pick[a] = rest % plan.axes[a].values.size();
       rest /= plan.axes[a].values.size();
     }
-    std::vector<std::string> point_overrides = overrides;
-    for (std::size_t a = 0; a < plan.axes.size(); ++a) {
-      for (std::size_t k = 0; k < plan.axes[a].keys.size(); ++k) {
+    for (std::size_t a = 0; a < plan.axes.size(); ++a)
+      for (std::size_t k = 0; k < plan.axes[a].keys.size(); ++k)
         point.values.push_back(plan.axes[a].values[pick[a]][k]);
-        point_overrides.push_back(plan.axes[a].keys[k] + "=" + point.values.back());
-      }
-    }
     // The point's own policies and seed (a grid may sweep either); an invalid
     // point keeps the base ones and fails in its worker with the loader's error.
     point.policies = plan.base.policies;
     std::uint64_t seed = plan.base.scenario.seed;
     if (points_may_differ) {
       try {
-        const ExperimentConfig c = ParseExperimentConfig(config_text, config_path, point_overrides);
+        const ExperimentConfig c =
+            ParseExperimentConfig(config_text, config_path, plan.PointOverrides(point));
         point.policies = c.policies;
         seed = c.scenario.seed;
       } catch (const ConfigError&) {

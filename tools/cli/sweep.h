@@ -50,8 +50,9 @@ struct Plan {
   int replicates = 1;
   std::vector<Task> tasks;               // point-major, replicate fastest
 
-  // The --set overrides of a task after the user's: the point's values, then
-  // scenario.seed.
+  // The --set overrides of a point: the user's, then the point's values.
+  std::vector<std::string> PointOverrides(const Point& point) const;
+  // Those of a task: its point's, then scenario.seed.
   std::vector<std::string> TaskOverrides(const Task& task) const;
 };
 

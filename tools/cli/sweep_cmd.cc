@@ -363,8 +363,7 @@ pid_t Launch(const Plan& plan, const Task& task, const fs::path& dir, const RunF
   std::error_code ec;
   fs::remove_all(dir, ec);  // stale outputs of an interrupted or failed attempt
   fs::create_directories(dir);
-  std::vector<std::string> overrides = plan.overrides;
-  for (const std::string& o : plan.TaskOverrides(task)) overrides.push_back(o);
+  const std::vector<std::string> overrides = plan.TaskOverrides(task);
   std::vector<std::string> args = {"taebp", "run", plan.config_path};
   for (const std::string& o : overrides) args.insert(args.end(), {"--set", o});
   args.insert(args.end(), {"--out", dir.string(), "--quiet"});
