@@ -193,7 +193,6 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
   for (const auto& [key_spec, values] : spec.grid) {
     const std::string where = config_path + ": sweep.grid key '" + key_spec + "'";
     Axis axis;
-    axis.spec = key_spec;
     std::stringstream ss(key_spec);
     for (std::string k; std::getline(ss, k, ',');) {
       k = Trim(k);

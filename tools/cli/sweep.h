@@ -20,7 +20,6 @@ using Json = nlohmann::ordered_json;
 // ("scenario.avs,scenario.hvs": [[0,16],[8,8]]): values[i][k] is the i-th value
 // of keys[k], as YAML flow text.
 struct Axis {
-  std::string spec;  // the grid key as written in the file
   std::vector<std::string> keys;
   std::vector<std::vector<std::string>> values;
 };
