@@ -1,5 +1,7 @@
 #include "taebp/controller/config.h"
 
+#include "taebp/persuasion/outcomes.h"
+
 #include <boost/math/special_functions/beta.hpp>
 
 #include <algorithm>
@@ -182,8 +184,11 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   if (policies.empty()) c.Fail("policies is empty: list at least one of no_ebp, no_trust, ta_ebp, full_reveal");
   std::set<std::string> seen;
   for (const std::string& p : policies) {
-    if (p != "no_ebp" && p != "no_trust" && p != "ta_ebp" && p != "full_reveal")
+    try {
+      persuasion::ParsePolicy(p);  // the one list of policy names
+    } catch (const persuasion::InvalidArgument&) {
       c.Fail("policies: '" + p + "' is not one of no_ebp, no_trust, ta_ebp, full_reveal");
+    }
     if (!seen.insert(p).second) c.Fail("policies: '" + p + "' is listed twice");
   }
   if (sweep) {

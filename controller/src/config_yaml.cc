@@ -98,13 +98,6 @@ class YamlReader {
     }
   }
 
-  template <typename T>
-  static void Read(const YAML::Node& node, const std::string& key, T* value,
-                   const Origins* origins, bool require_all) {
-    YamlReader r(node, "", origins, require_all);
-    r.Read(node, key, value);
-  }
-
  private:
   [[noreturn]] void Fail(const std::string& key, const YAML::Node& node,
                          const std::string& what) const {

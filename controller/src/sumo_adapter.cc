@@ -50,7 +50,6 @@ void SetBackend(Backend backend, std::vector<std::string> gui_args) {
   // not kill the process with SIGPIPE.
   if (backend == Backend::kLibtraciGui) std::signal(SIGPIPE, SIG_IGN);
 }
-Backend CurrentBackend() { return g_backend; }
 
 void Start(const std::vector<std::string>& args) {
   if (Gui()) {
@@ -142,10 +141,6 @@ void SetSchema(const std::string& scheme) {
 void SetBoundary(XY min, XY max) {
   RequireGui("setBoundary");
   libtraci_backend::gui::SetBoundary(kView, min, max);
-}
-void SetZoom(double percent) {
-  RequireGui("setZoom");
-  libtraci_backend::gui::SetZoom(kView, percent);
 }
 void Screenshot(const std::string& file, int width, int height) {
   RequireGui("screenshot");

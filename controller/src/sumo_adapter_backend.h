@@ -45,7 +45,6 @@ double LanePosition(const std::string& veh);
 namespace gui {
 void SetSchema(const std::string& view, const std::string& scheme);
 void SetBoundary(const std::string& view, XY min, XY max);
-void SetZoom(const std::string& view, double zoom);
 void Screenshot(const std::string& view, const std::string& file, int width, int height);
 }  // namespace gui
 

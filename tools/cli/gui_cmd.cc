@@ -153,8 +153,8 @@ int Snapshot::Run(int argc, char** argv) {
   RequireSumoGui();
   // Config and policy errors before any re-execution.
   ExperimentConfig config = LoadExperimentConfig(o.config_path, o.overrides);
-  const std::string name =
-      o.policy.empty() ? (config.policies.empty() ? "ta_ebp" : config.policies.front()) : o.policy;
+  // IsValid guarantees at least one policy.
+  const std::string name = o.policy.empty() ? config.policies.front() : o.policy;
   const persuasion::Policy policy = persuasion::ParsePolicy(name);
 
   if (!HasDisplay()) {

@@ -49,7 +49,6 @@ enum class Backend {
 // is loaded. With kLibtraciGui, Start runs "sumo-gui" in place of args[0] and
 // appends "--start", "--quit-on-end" and `gui_args` (e.g. {"--delay", "100"}).
 void SetBackend(Backend backend, std::vector<std::string> gui_args = {});
-Backend CurrentBackend();
 
 // Simulation
 void Start(const std::vector<std::string>& args);  // args[0] = "sumo"
@@ -96,7 +95,6 @@ double LanePosition(const std::string& veh);
 namespace gui {
 void SetSchema(const std::string& scheme);  // e.g. "real world", "standard"
 void SetBoundary(XY min, XY max);           // fit this box into the view
-void SetZoom(double percent);
 // Written by sumo-gui during the next Step(); format from the extension
 // (.png); -1: the view's size.
 void Screenshot(const std::string& file, int width = -1, int height = -1);
