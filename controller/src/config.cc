@@ -54,15 +54,18 @@ double TrustSpec::Mean() const {
   if (dist == "uniform") return 0.5 * (low + high);
   if (dist == "beta") return alpha / (alpha + beta);
   if (dist == "discrete") {
-    double w = 0, m = 0;
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      const double wi = weights.empty() ? 1.0 : weights[i];
-      w += wi;
-      m += wi * values[i];
-    }
+    double m = 0;
+    for (std::size_t i = 0; i < values.size(); ++i) m += Weight(i) * values[i];
+    const double w = TotalWeight();
     return w > 0 ? m / w : 0.0;
   }
   return value;
+}
+
+double TrustSpec::TotalWeight() const {
+  double total = 0;
+  for (std::size_t i = 0; i < values.size(); ++i) total += Weight(i);
+  return total;
 }
 
 double TrustSpec::Quantile(double q) const {
@@ -74,11 +77,10 @@ double TrustSpec::Quantile(double q) const {
     return boost::math::ibeta_inv(alpha, beta, q);
   }
   if (dist == "discrete") {
-    double total = 0;
-    for (std::size_t i = 0; i < values.size(); ++i) total += weights.empty() ? 1.0 : weights[i];
+    const double total = TotalWeight();
     double acc = 0;
     for (std::size_t i = 0; i < values.size(); ++i) {
-      acc += (weights.empty() ? 1.0 : weights[i]) / total;
+      acc += Weight(i) / total;
       if (q < acc) return values[i];
     }
     return values.empty() ? 0.0 : values.back();

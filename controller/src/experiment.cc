@@ -635,10 +635,9 @@ persuasion::PredictedOutcome ExpectedOutcome(const ModelConfig& model, Policy po
   std::vector<std::pair<double, double>> nodes;  // (theta, weight)
   const TrustSpec& t = model.trust;
   if (t.dist == "discrete") {
-    double total = 0;
-    for (std::size_t i = 0; i < t.values.size(); ++i) total += t.weights.empty() ? 1 : t.weights[i];
+    const double total = t.TotalWeight();
     for (std::size_t i = 0; i < t.values.size(); ++i)
-      nodes.emplace_back(t.values[i], (t.weights.empty() ? 1 : t.weights[i]) / total);
+      nodes.emplace_back(t.values[i], t.Weight(i) / total);
   } else {
     for (int j = 0; j < points; ++j) nodes.emplace_back(t.Quantile((j + 0.5) / points), 1.0 / points);
   }

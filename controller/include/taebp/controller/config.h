@@ -96,6 +96,10 @@ struct TrustSpec {
   }
   bool IsFixed() const { return dist == "fixed"; }
   double Mean() const;
+  // dist discrete: the weight of values[i] (1 when no weights are given) and
+  // the sum of all weights.
+  double Weight(std::size_t i) const { return weights.empty() ? 1.0 : weights[i]; }
+  double TotalWeight() const;
   // theta with cumulative probability q in (0, 1) (the quantile function).
   double Quantile(double q) const;
   // One draw from a uniform u in [0, 1) (inverse-CDF sampling).
