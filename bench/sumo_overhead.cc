@@ -3,7 +3,7 @@
 // hits all alike. Prints the median wall time of each and the ratio
 // median(policy) / median(bare). A benchmark, not a test: run it on demand
 // (tools/bench), not in ctest.
-#include "taebp/controller/config.h"
+#include "taebp/config/config.h"
 #include "taebp/controller/experiment.h"
 
 #include <algorithm>

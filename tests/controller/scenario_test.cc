@@ -2,9 +2,9 @@
 // checked against the library (nudge realised, posterior, HV action, AV action,
 // collision), the measured rates against the library's theory (99.9% Wilson
 // intervals), determinism, the run's health and bad input.
-#include "taebp/controller/config.h"
+#include "taebp/config/config.h"
 #include "taebp/controller/experiment.h"
-#include "taebp/controller/report.h"
+#include "taebp/report/report.h"
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/outcomes.h"

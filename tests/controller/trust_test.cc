@@ -1,9 +1,9 @@
 // Heterogeneous trust and penetration: TrustSpec, its YAML form, the expected
 // theory over a trust distribution (against an independent integration), the
 // per-HV draws in SUMO, and tracks that grow to fit the vehicles.
-#include "taebp/controller/config.h"
+#include "taebp/config/config.h"
 #include "taebp/controller/experiment.h"
-#include "taebp/controller/report.h"
+#include "taebp/report/report.h"
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/outcomes.h"
 

@@ -1,6 +1,6 @@
 // The sweep engine's pure parts: grid expansion (zipped axes, replicates),
 // spec errors naming the key, the config hash, journal parsing and tables.
-#include "sweep.h"
+#include "taebp/sweep/plan.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

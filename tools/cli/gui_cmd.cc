@@ -1,6 +1,6 @@
 #include "gui_cmd.h"
 
-#include "taebp/controller/config.h"
+#include "taebp/config/config.h"
 #include "taebp/controller/experiment.h"
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/outcomes.h"

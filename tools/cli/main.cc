@@ -1,7 +1,9 @@
 // taebp: the command-line program. Subcommands: theory, solve, run, sweep, merge, snapshot.
-#include "taebp/controller/config.h"
+#include "taebp/config/config.h"
 #include "taebp/controller/experiment.h"
-#include "taebp/controller/report.h"
+#include "taebp/report/report.h"
+#include "taebp/runner/runner.h"
+#include "taebp/junction/design.h"
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/lp.h"
@@ -201,44 +203,22 @@ int Solve(const std::string& path, bool json) {
 }
 
 // ------------------------------------------------------------------ run
-int RunExperiment(const std::string& config_path, const std::vector<std::string>& overrides,
-                  std::string out_dir, bool quiet, const taebp::RunOptions& run_options = {}) {
-  const taebp::ExperimentConfig config = taebp::LoadExperimentConfig(config_path, overrides);
-  const std::string config_dir = fs::path(config_path).parent_path().string();
-  const taebp::ScenarioFiles files = taebp::ResolveScenarioFiles(config, config_dir);
-  if (out_dir.empty()) out_dir = "results/" + fs::path(config_path).stem().string();
-  std::vector<std::string> warnings = taebp::ScenarioWarnings(config);
-  warnings.insert(warnings.end(), files.notes.begin(), files.notes.end());
-  for (const std::string& w : warnings) std::fprintf(stderr, "taebp: warning: %s\n", w.c_str());
-
-  std::vector<taebp::PolicyRun> runs;
-  double wall_total = 0;
-  for (const std::string& name : config.policies) {
-    const auto t0 = std::chrono::steady_clock::now();
-    runs.push_back(taebp::RunPolicy(config, per::ParsePolicy(name), files, run_options));
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    wall_total += wall;
+int RunExperimentCommand(const std::string& config_path, const std::vector<std::string>& overrides,
+                         std::string out_dir, bool quiet, const taebp::RunOptions& run_options = {}) {
+  if (out_dir.empty()) out_dir = taebp::DefaultOutDir(config_path);
+  taebp::ExperimentObserver observer;
+  observer.warning = [](const std::string& w) {
+    std::fprintf(stderr, "taebp: warning: %s\n", w.c_str());
+  };
+  observer.policy_done = [&](const taebp::PolicyRun& run, double wall) {
     if (!quiet)
       std::fprintf(stderr, "taebp: %-12s %.0f simulated s in %.2f s wall, %zu encounters\n",
-                   name.c_str(), runs.back().simulated_seconds, wall,
-                   runs.back().encounters.size());
-  }
-  taebp::Provenance prov;
-  prov.config_path = config_path;
-  prov.config_json = taebp::ToJson(config);
-  prov.seed = config.scenario.seed;
-  prov.git_revision = taebp::BuildGitRevision();
-  prov.sumo_version = runs.empty() ? "" : runs.front().sumo_version;
-  prov.taebp_version = taebp::TaebpVersion();
-  prov.warnings = warnings;
-  ordered_json timing;
-  timing["wall_seconds_total"] = wall_total;
-  taebp::WriteFilesAtomically(out_dir, {{"summary.json", taebp::SummaryJson(runs, prov)},
-                                        {"encounters.csv", taebp::EncountersCsv(runs, prov)},
-                                        {"config.yaml", taebp::ToYaml(config)},
-                                        {"timing.json", timing.dump(2) + "\n"}});
-  taebp::PrintTable(std::cout, runs);
+                   run.policy.c_str(), run.simulated_seconds, wall, run.encounters.size());
+  };
+  const taebp::ExperimentResult result =
+      taebp::RunExperiment(config_path, overrides, run_options, observer);
+  taebp::WriteExperiment(result, out_dir);
+  taebp::PrintTable(std::cout, result.runs);
   if (!quiet) std::fprintf(stderr, "taebp: results in %s\n", out_dir.c_str());
   return 0;
 }
@@ -312,7 +292,7 @@ int main(int argc, char** argv) {
   taebp::gui::RunGui run_gui(run);           // run --gui [--delay MS]
   taebp::sweep::Commands sweep_commands(  // sweep, merge; a task = `run` in a forked worker
       app, [](const std::string& c, const std::vector<std::string>& o, const std::string& out) {
-        return ReportErrors([&] { return RunExperiment(c, o, out, true); });
+        return ReportErrors([&] { return RunExperimentCommand(c, o, out, true); });
       });
   taebp::gui::Snapshot snapshot(app);
 
@@ -320,7 +300,7 @@ int main(int argc, char** argv) {
   return ReportErrors([&] {
     if (*theory) return Theory(th);
     if (*solve) return Solve(problem, solve_json);
-    if (*run) return RunExperiment(config_path, overrides, out_dir, quiet, run_gui.Prepare());
+    if (*run) return RunExperimentCommand(config_path, overrides, out_dir, quiet, run_gui.Prepare());
     if (snapshot.Parsed()) return snapshot.Run(argc, argv);
     if (sweep_commands.Parsed()) return sweep_commands.Run();
     return 0;

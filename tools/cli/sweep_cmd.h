@@ -1,6 +1,8 @@
 // `taebp sweep` and `taebp merge`: registered on the CLI11 app by main.cc.
 #pragma once
 
+#include "taebp/sweep/engine.h"
+
 #include <functional>
 #include <memory>
 #include <string>
@@ -11,13 +13,6 @@ class App;
 }
 
 namespace taebp::sweep {
-
-// What `taebp run CONFIG --set ... --out DIR --quiet` does, as a function
-// returning its exit code; it reports its own errors on stderr as `taebp run`
-// does (an exception escaping it counts as exit code 1).
-using RunFunction = std::function<int(const std::string& config,
-                                      const std::vector<std::string>& overrides,
-                                      const std::string& out_dir)>;
 
 class Commands {
  public:

@@ -1,7 +1,7 @@
 // The experiment and problem config loader: documented values, one schema for
 // load and save, and errors that name the key, the value and where they came
 // from (file:line or the --set text).
-#include "taebp/controller/config.h"
+#include "taebp/config/config.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "taebp/controller/report.h"
+#include "taebp/report/report.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,4 +1,4 @@
-#include "taebp/controller/intersection.h"
+#include "taebp/junction/intersection.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "taebp/controller/config.h"
+#include "taebp/config/config.h"
 
 #include "taebp/persuasion/outcomes.h"
 

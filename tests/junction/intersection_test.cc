@@ -1,7 +1,7 @@
 // The SUMO-free decision logic at the two-way stop: right of way, the AV's
 // draws, the HV's reading of a nudge, the release sequence of an encounter and
 // the creep profile of a nudge.
-#include "taebp/controller/intersection.h"
+#include "taebp/junction/intersection.h"
 
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/likelihood.h"

@@ -1,7 +1,7 @@
 // The one place that uses yaml-cpp: loading (with unknown-key rejection and
 // --set overrides) and saving of every config struct, through the structs'
 // Serialize() schema.
-#include "taebp/controller/config.h"
+#include "taebp/config/config.h"
 
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>

@@ -2,7 +2,7 @@
 // Table I printout. Outputs are deterministic (no timing inside them).
 #pragma once
 
-#include "taebp/controller/experiment.h"
+#include "taebp/report/results.h"
 
 #include <ostream>
 #include <string>

@@ -3,7 +3,7 @@
 // `taebp merge` (sweep_cmd.cc) drive them; tests/sweep links them directly.
 #pragma once
 
-#include "taebp/controller/config.h"
+#include "taebp/config/config.h"
 
 #include <nlohmann/json.hpp>
 

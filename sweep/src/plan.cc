@@ -1,6 +1,6 @@
-#include "sweep.h"
+#include "taebp/sweep/plan.h"
 
-#include "taebp/controller/report.h"
+#include "taebp/report/report.h"
 
 #include <algorithm>
 #include <cmath>

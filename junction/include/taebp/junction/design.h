@@ -1,0 +1,26 @@
+// What the AV commits to for a configured HV population: the likelihood model
+// named by the config, the trust each policy designs for, and the theory's
+// expected outcome over the trust distribution. SUMO-free.
+#pragma once
+
+#include "taebp/config/config.h"
+#include "taebp/persuasion/outcomes.h"
+
+#include <memory>
+
+namespace taebp {
+
+// The AV's design trust theta_hat for an HV of true trust `theta` under
+// `policy` and the config's trust_knowledge (no_trust: 1).
+double DesignTrust(const ModelConfig& model, persuasion::Policy policy, double theta);
+
+// Expected outcome over the trust distribution (quantile midpoint rule with
+// `points` nodes; exact for fixed and discrete trust).
+persuasion::PredictedOutcome ExpectedOutcome(const ModelConfig& model, persuasion::Policy policy,
+                                             int points = 4000);
+
+// The HV likelihood model named by the config; throws persuasion::InvalidArgument
+// naming the type when it is not linear or logistic.
+std::unique_ptr<persuasion::LikelihoodModel> MakeLikelihood(const LikelihoodConfig& config);
+
+}  // namespace taebp

@@ -1,0 +1,54 @@
+#include "taebp/junction/design.h"
+
+#include <utility>
+#include <vector>
+
+namespace taebp {
+
+using persuasion::Policy;
+
+double DesignTrust(const ModelConfig& model, Policy policy, double theta) {
+  if (policy == Policy::kNoTrust) return 1.0;
+  const std::string k = model.Knowledge();
+  if (k == "assumed") return model.assumed_trust.value_or(theta);
+  if (k == "population_mean") return model.trust.Mean();
+  return theta;
+}
+
+persuasion::PredictedOutcome ExpectedOutcome(const ModelConfig& model, Policy policy, int points) {
+  persuasion::AvHvParams params{model.prior_go, model.collision_penalty};
+  const auto lik = MakeLikelihood(model.likelihood);
+  auto at = [&](double theta) {
+    const auto scheme =
+        persuasion::CommitScheme(policy, params, DesignTrust(model, policy, theta), *lik);
+    return persuasion::PredictOutcome(scheme, params, theta, *lik);
+  };
+  if (model.trust.IsFixed()) return at(model.trust.value);
+  std::vector<std::pair<double, double>> nodes;  // (theta, weight)
+  const TrustSpec& t = model.trust;
+  if (t.dist == "discrete") {
+    const double total = t.TotalWeight();
+    for (std::size_t i = 0; i < t.values.size(); ++i)
+      nodes.emplace_back(t.values[i], t.Weight(i) / total);
+  } else {
+    for (int j = 0; j < points; ++j) nodes.emplace_back(t.Quantile((j + 0.5) / points), 1.0 / points);
+  }
+  persuasion::PredictedOutcome e;
+  for (const auto& [theta, w] : nodes) {
+    const auto o = at(theta);
+    e.dc_rate += w * o.dc_rate;
+    e.collision_rate += w * o.collision_rate;
+    e.nudge_rate += w * o.nudge_rate;
+    e.av_first_rate += w * o.av_first_rate;
+  }
+  return e;
+}
+
+std::unique_ptr<persuasion::LikelihoodModel> MakeLikelihood(const LikelihoodConfig& c) {
+  if (c.type == "logistic")
+    return std::make_unique<persuasion::LogisticLikelihood>(c.s_max, c.steepness, c.midpoint);
+  if (c.type == "linear") return std::make_unique<persuasion::LinearLikelihood>(c.s_max);
+  throw persuasion::InvalidArgument("likelihood '" + c.type + "' is not linear or logistic");
+}
+
+}  // namespace taebp

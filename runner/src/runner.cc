@@ -1,0 +1,64 @@
+#include "taebp/runner/runner.h"
+
+#include "taebp/persuasion/outcomes.h"
+#include "taebp/scenario/figure8.h"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <filesystem>
+
+namespace taebp {
+
+namespace fs = std::filesystem;
+
+std::vector<std::pair<std::string, std::string>> ExperimentResult::Files() const {
+  nlohmann::ordered_json timing;
+  timing["wall_seconds_total"] = wall_seconds;
+  return {{"summary.json", SummaryJson(runs, provenance)},
+          {"encounters.csv", EncountersCsv(runs, provenance)},
+          {"config.yaml", ToYaml(config)},
+          {"timing.json", timing.dump(2) + "\n"}};
+}
+
+ExperimentResult RunExperiment(const std::string& config_path,
+                               const std::vector<std::string>& overrides,
+                               const RunOptions& options, const ExperimentObserver& observer) {
+  ExperimentResult result;
+  result.config = LoadExperimentConfig(config_path, overrides);
+  const ExperimentConfig& config = result.config;
+  const std::string config_dir = fs::path(config_path).parent_path().string();
+  const ScenarioFiles files = ResolveScenarioFiles(config, config_dir);
+  result.warnings = ScenarioWarnings(config);
+  result.warnings.insert(result.warnings.end(), files.notes.begin(), files.notes.end());
+  if (observer.warning)
+    for (const std::string& w : result.warnings) observer.warning(w);
+
+  for (const std::string& name : config.policies) {
+    const auto t0 = std::chrono::steady_clock::now();
+    result.runs.push_back(RunPolicy(config, persuasion::ParsePolicy(name), files, options));
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    result.wall_seconds += wall;
+    if (observer.policy_done) observer.policy_done(result.runs.back(), wall);
+  }
+  Provenance& prov = result.provenance;
+  prov.config_path = config_path;
+  prov.config_json = ToJson(config);
+  prov.seed = config.scenario.seed;
+  prov.git_revision = BuildGitRevision();
+  prov.sumo_version = result.runs.empty() ? "" : result.runs.front().sumo_version;
+  prov.taebp_version = TaebpVersion();
+  prov.warnings = result.warnings;
+  return result;
+}
+
+void WriteExperiment(const ExperimentResult& result, const std::string& out_dir) {
+  WriteFilesAtomically(out_dir, result.Files());
+}
+
+std::string DefaultOutDir(const std::string& config_path) {
+  return (fs::path("results") / fs::path(config_path).stem()).string();
+}
+
+}  // namespace taebp

@@ -1,0 +1,814 @@
+// The sweep engine: the driver behind `taebp sweep` / `taebp merge`. Every task (one grid point x one
+// seed) is a separate process, `taebp run CONFIG --set ... --out TASKDIR`
+// (libsumo runs one simulation per process); up to --jobs of them at once,
+// optionally spread over MPI ranks or Slurm-array shards. Finished tasks are
+// appended to DIR/journal.jsonl (one write(2) + fsync each), which makes the
+// sweep resumable; the tables are rebuilt from the journal at the end.
+#include "taebp/sweep/engine.h"
+
+#include "taebp/sweep/plan.h"
+#include "taebp/config/config.h"
+#include "taebp/report/report.h"
+#include "taebp/persuasion/persuasion.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <sched.h>
+#include <sys/file.h>
+#include <sys/prctl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#ifdef TAEBP_HAVE_MPI
+#define OMPI_SKIP_MPICXX 1  // the C API only
+#define MPICH_SKIP_MPICXX 1
+#include <mpi.h>
+#endif
+
+namespace taebp::sweep {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kExitFailed = 1;
+constexpr int kExitInterrupted = 130;
+
+volatile std::sig_atomic_t g_signal = 0;
+extern "C" void OnSignal(int sig) { g_signal = sig; }
+int g_journal_fd = -1;  // closed in forked workers
+
+// SIGINT/SIGTERM set g_signal; SIGCHLD is blocked and waited for (WaitForChild).
+void InstallSignalHandlers() {
+  struct sigaction sa {};
+  sa.sa_handler = OnSignal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;  // no SA_RESTART: waits wake up
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  sigset_t chld;
+  sigemptyset(&chld);
+  sigaddset(&chld, SIGCHLD);
+  sigprocmask(SIG_BLOCK, &chld, nullptr);
+}
+
+// Sleeps until a child exits, a signal arrives or `ms` passed.
+void WaitForChild(long ms) {
+  sigset_t chld;
+  sigemptyset(&chld);
+  sigaddset(&chld, SIGCHLD);
+  struct timespec ts {};
+  ts.tv_sec = ms / 1000;
+  ts.tv_nsec = (ms % 1000) * 1000000L;
+  ::sigtimedwait(&chld, nullptr, &ts);
+}
+
+int Cores() {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The last non-empty line of a (log) file, without the "taebp: " prefix.
+std::string LastLine(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  const std::streamoff from = std::max<std::streamoff>(0, size - 8192);
+  in.seekg(from);
+  std::string tail((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::istringstream lines(tail);
+  std::string line, last;
+  while (std::getline(lines, line)) {
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (!line.empty()) last = line;
+  }
+  if (last.rfind("taebp: ", 0) == 0) last = last.substr(7);
+  return last;
+}
+
+std::string Hms(double seconds) {
+  if (!(seconds >= 0)) return "?";
+  const long s = static_cast<long>(seconds + 0.5);
+  char buf[32];
+  if (s >= 3600) std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
+  else std::snprintf(buf, sizeof buf, "%ld:%02ld", s / 60, s % 60);
+  return buf;
+}
+
+std::string Hostname() {
+  char buf[256] = {};
+  if (gethostname(buf, sizeof buf - 1) != 0) return "";
+  return buf;
+}
+
+// ------------------------------------------------------------------ MPI
+// Rank 0 owns the output directory; the others run their share of the tasks
+// and send each finished task's journal line to rank 0.
+enum Tag { kTagResult = 1, kTagDone = 2, kTagStop = 3 };
+
+bool MpiLaunchDetected() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"})
+    if (std::getenv(v)) return true;
+  return false;
+}
+
+class Mpi {
+ public:
+  explicit Mpi(bool use) {
+#ifdef TAEBP_HAVE_MPI
+    if (!use) return;
+    MPI_Init(nullptr, nullptr);
+    active_ = true;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+#else
+    (void)use;
+#endif
+  }
+  ~Mpi() {
+#ifdef TAEBP_HAVE_MPI
+    if (active_) MPI_Finalize();
+#endif
+  }
+  Mpi(const Mpi&) = delete;
+  Mpi& operator=(const Mpi&) = delete;
+
+  bool active() const { return active_; }
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+
+  void Bcast(std::string* s) {
+#ifdef TAEBP_HAVE_MPI
+    if (!active_) return;
+    long n = static_cast<long>(s->size());
+    MPI_Bcast(&n, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+    s->resize(static_cast<std::size_t>(n));
+    MPI_Bcast(s->data(), static_cast<int>(n), MPI_CHAR, 0, MPI_COMM_WORLD);
+#else
+    (void)s;
+#endif
+  }
+  void Send(const std::string& s, int to, int tag) {
+#ifdef TAEBP_HAVE_MPI
+    if (!active_) return;
+    MPI_Send(s.data(), static_cast<int>(s.size()), MPI_CHAR, to, tag, MPI_COMM_WORLD);
+#else
+    (void)s, (void)to, (void)tag;
+#endif
+  }
+  // A waiting message from `from` (-1: anyone), if any.
+  bool Receive(int from, std::string* msg, int* tag, int* source) {
+#ifdef TAEBP_HAVE_MPI
+    if (!active_) return false;
+    int flag = 0;
+    MPI_Status st;
+    MPI_Iprobe(from < 0 ? MPI_ANY_SOURCE : from, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
+    if (!flag) return false;
+    int count = 0;
+    MPI_Get_count(&st, MPI_CHAR, &count);
+    msg->assign(static_cast<std::size_t>(count), '\0');
+    MPI_Recv(msg->data(), count, MPI_CHAR, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD,
+             MPI_STATUS_IGNORE);
+    *tag = st.MPI_TAG;
+    *source = st.MPI_SOURCE;
+    return true;
+#else
+    (void)from, (void)msg, (void)tag, (void)source;
+    return false;
+#endif
+  }
+  [[noreturn]] void Abort(int code) {
+#ifdef TAEBP_HAVE_MPI
+    if (active_) MPI_Abort(MPI_COMM_WORLD, code);
+#endif
+    std::_Exit(code);
+  }
+
+ private:
+  bool active_ = false;
+  int rank_ = 0, size_ = 1;
+};
+
+// ------------------------------------------------------------------ journal file
+// journal.jsonl, opened O_APPEND and locked (flock) for the whole invocation:
+// a second driver on the same directory is refused, and the lock goes away
+// with the process however it ends.
+class JournalFile {
+ public:
+  explicit JournalFile(const fs::path& path) : path_(path) {
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    if (fd_ < 0)
+      throw ConfigError(path.string() + ": cannot open the journal: " + std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      ::close(fd_);
+      throw ConfigError(path.string() +
+                        ": another taebp sweep or merge is running on this directory");
+    }
+  }
+  ~JournalFile() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  JournalFile(const JournalFile&) = delete;
+  JournalFile& operator=(const JournalFile&) = delete;
+
+  std::string ReadAll() const {
+    std::string out;
+    char buf[65536];
+    off_t off = 0;
+    for (;;) {
+      const ssize_t n = ::pread(fd_, buf, sizeof buf, off);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) throw std::runtime_error(path_.string() + ": read failed: " + std::strerror(errno));
+      if (n == 0) break;
+      out.append(buf, static_cast<std::size_t>(n));
+      off += n;
+    }
+    return out;
+  }
+  int fd() const { return fd_; }
+  void Truncate(std::size_t size) {
+    if (::ftruncate(fd_, static_cast<off_t>(size)) != 0 || ::fsync(fd_) != 0)
+      throw std::runtime_error(path_.string() + ": truncate failed: " + std::strerror(errno));
+  }
+  // One line, one write(2) on the O_APPEND descriptor, then fsync: a crash
+  // leaves either the whole line or a torn tail that the next run truncates.
+  void Append(const std::string& line) {
+    const std::string data = line + "\n";
+    std::size_t done = 0;
+    while (done < data.size()) {
+      const ssize_t n = ::write(fd_, data.data() + done, data.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0)
+        throw std::runtime_error(path_.string() + ": write failed: " + std::strerror(errno));
+      done += static_cast<std::size_t>(n);
+    }
+    while (::fsync(fd_) != 0 && errno == EINTR) {
+    }
+  }
+
+ private:
+  fs::path path_;
+  int fd_ = -1;
+};
+
+// ------------------------------------------------------------------ progress
+class Progress {
+ public:
+  Progress(bool enabled, int total, int done_before)
+      : enabled_(enabled), tty_(::isatty(STDERR_FILENO) == 1), total_(total),
+        done_(done_before), start_(Clock::now()), last_(start_) {}
+
+  void Finished(bool ok) {
+    ++done_;
+    ++this_run_;
+    if (!ok) ++failed_;
+  }
+  int failed() const { return failed_; }
+  int this_run() const { return this_run_; }
+  double Elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+  void Update(bool final = false) {
+    if (!enabled_) return;
+    const auto now = Clock::now();
+    const double since = std::chrono::duration<double>(now - last_).count();
+    if (!final && since < (tty_ ? 0.2 : 5.0)) return;
+    last_ = now;
+    const double elapsed = Elapsed();
+    const int remaining = total_ - done_;
+    const double eta = this_run_ > 0 ? elapsed / this_run_ * remaining : -1;
+    std::string eta_text = remaining == 0 ? "0:00" : Hms(eta);
+    char line[256];
+    if (tty_) {
+      constexpr int kWidth = 24;
+      const int filled = total_ > 0 ? kWidth * done_ / total_ : kWidth;
+      std::string bar(static_cast<std::size_t>(filled), '#');
+      bar.resize(kWidth, '.');
+      std::snprintf(line, sizeof line, "\rtaebp sweep [%s] %d/%d tasks, %d failed, %s elapsed, ETA %s\033[K",
+                    bar.c_str(), done_, total_, failed_, Hms(elapsed).c_str(), eta_text.c_str());
+      std::fputs(line, stderr);
+      if (final) std::fputc('\n', stderr);
+    } else {
+      std::snprintf(line, sizeof line, "taebp sweep: %d/%d tasks done, %d failed, %s elapsed, ETA %s\n",
+                    done_, total_, failed_, Hms(elapsed).c_str(), eta_text.c_str());
+      std::fputs(line, stderr);
+    }
+    std::fflush(stderr);
+  }
+
+ private:
+  bool enabled_, tty_;
+  int total_, done_, this_run_ = 0, failed_ = 0;
+  Clock::time_point start_, last_;
+};
+
+// ------------------------------------------------------------------ workers
+struct Running {
+  pid_t pid = -1;
+  Task task;
+  fs::path dir;
+  Clock::time_point start;
+};
+
+fs::path TaskDir(const fs::path& out, const Task& t) {
+  return out / "tasks" / (std::to_string(t.point) + "-" + std::to_string(t.replicate));
+}
+
+// In a forked worker: `run`'s code path in this process (`run` reports its
+// errors and returns main's exit codes); never returns.
+[[noreturn]] void RunInChild(const RunFunction& run, const std::string& config,
+                             const std::vector<std::string>& overrides, const std::string& out) {
+  int code = 1;
+  try {
+    code = run(config, overrides, out);
+  } catch (const std::exception& e) {  // not expected: `run` reports its own errors
+    std::fprintf(stderr, "taebp: error: %s\n", e.what());
+  }
+  std::fflush(nullptr);
+  ::_exit(code);
+}
+
+// Starts one task: `taebp run CONFIG --set ... --out DIR --quiet`, either by
+// calling `run` in a fork of this process or (no `run`) by exec'ing this binary.
+pid_t Launch(const Plan& plan, const Task& task, const fs::path& dir, const RunFunction& run) {
+  std::error_code ec;
+  fs::remove_all(dir, ec);  // stale outputs of an interrupted or failed attempt
+  fs::create_directories(dir);
+  const std::vector<std::string> overrides = plan.TaskOverrides(task);
+  std::vector<std::string> args = {"taebp", "run", plan.config_path};
+  for (const std::string& o : overrides) args.insert(args.end(), {"--set", o});
+  args.insert(args.end(), {"--out", dir.string(), "--quiet"});
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const std::string log = (dir / "stderr.log").string();
+  const std::string out = dir.string();
+  const pid_t parent = ::getpid();
+  std::fflush(nullptr);
+
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
+  if (pid == 0) {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // the worker dies with its driver
+    if (::getppid() != parent) ::_exit(127);
+    ::signal(SIGINT, SIG_DFL);
+    ::signal(SIGTERM, SIG_DFL);
+    sigset_t none;
+    sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    if (g_journal_fd >= 0) ::close(g_journal_fd);  // its lock stays with the driver
+    const int null_fd = ::open("/dev/null", O_RDWR);
+    const int log_fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (null_fd >= 0) {
+      ::dup2(null_fd, STDIN_FILENO);
+      ::dup2(null_fd, STDOUT_FILENO);
+    }
+    if (log_fd >= 0) ::dup2(log_fd, STDERR_FILENO);
+    if (run) RunInChild(run, plan.config_path, overrides, out);
+    // Only async-signal-safe calls from here (the parent may have threads).
+    ::execv("/proc/self/exe", argv.data());
+    static const char msg[] = "taebp: cannot exec /proc/self/exe\n";
+    ssize_t ignored = ::write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)ignored;
+    ::_exit(127);
+  }
+  return pid;
+}
+
+// The journal entry of a finished worker; null if it was interrupted (killed
+// by SIGINT/SIGTERM or exited while we are stopping): such a task is not
+// recorded and runs again next time.
+Json Collect(const Plan& plan, const Running& r, int wait_status, int rank) {
+  const double wall = std::chrono::duration<double>(Clock::now() - r.start).count();
+  const Point& point = plan.points[static_cast<std::size_t>(r.task.point)];
+  std::string status = "failed", error, sumo_version;
+  Json metrics = Json::object();
+  if (WIFSIGNALED(wait_status)) {
+    const int sig = WTERMSIG(wait_status);
+    if (sig == SIGINT || sig == SIGTERM || g_signal) return nullptr;
+    error = "killed by signal " + std::to_string(sig) + " (" + strsignal(sig) + ")";
+    const std::string last = LastLine(r.dir / "stderr.log");
+    if (!last.empty() && last.rfind("warning:", 0) != 0) error += ": " + last;
+  } else if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0) {
+    try {
+      const Json s = ParseSummary(ReadText(r.dir / "summary.json"));
+      metrics = MetricsFromSummary(s, point.policies);
+      if (s.contains("provenance")) sumo_version = s["provenance"].value("sumo_version", "");
+      status = "ok";
+    } catch (const std::exception& e) {
+      error = e.what();
+      metrics = Json::object();
+    }
+  } else {
+    if (g_signal) return nullptr;
+    error = LastLine(r.dir / "stderr.log");
+    if (error.empty()) error = "exit code " + std::to_string(WEXITSTATUS(wait_status));
+  }
+  Json e = JournalEntry(plan, r.task, status, error, metrics);
+  e["wall_seconds"] = std::round(wall * 1000) / 1000;
+  e["sumo_version"] = sumo_version;
+  e["host"] = Hostname();
+  e["rank"] = rank;
+  return e;
+}
+
+// Runs `tasks` with up to `jobs` workers. `done` gets each finished task's
+// journal entry; `poll` runs every turn of the loop and may ask to stop.
+// Returns false if stopped early (signal or poll).
+template <typename Done, typename Poll>
+bool RunTasks(const Plan& plan, const fs::path& out, const std::vector<Task>& tasks, int jobs,
+              int rank, const RunFunction& run, Done&& done, Poll&& poll) {
+  std::deque<Task> queue(tasks.begin(), tasks.end());
+  std::vector<Running> running;
+  bool stop = false;
+  Clock::time_point stop_time;
+  bool killed_hard = false;
+  for (;;) {
+    if ((g_signal || poll()) && !stop) {
+      stop = true;
+      stop_time = Clock::now();
+      for (const Running& r : running) ::kill(r.pid, SIGTERM);
+    }
+    if (stop && !killed_hard && Clock::now() - stop_time > std::chrono::seconds(5)) {
+      for (const Running& r : running) ::kill(r.pid, SIGKILL);
+      killed_hard = true;
+    }
+    while (!stop && static_cast<int>(running.size()) < jobs && !queue.empty()) {
+      Running r;
+      r.task = queue.front();
+      queue.pop_front();
+      r.dir = TaskDir(out, r.task);
+      r.start = Clock::now();
+      r.pid = Launch(plan, r.task, r.dir, run);
+      running.push_back(r);
+    }
+    if (running.empty() && (stop || queue.empty())) break;
+    bool reaped = false;
+    for (std::size_t i = 0; i < running.size();) {
+      int st = 0;
+      const pid_t p = ::waitpid(running[i].pid, &st, WNOHANG);
+      if (p == running[i].pid) {
+        reaped = true;
+        Json e = Collect(plan, running[i], st, rank);
+        running.erase(running.begin() + static_cast<std::ptrdiff_t>(i));
+        if (e.is_null()) {
+          stop = stop || g_signal;
+          continue;
+        }
+        done(e);
+      } else {
+        ++i;
+      }
+    }
+    if (!reaped) WaitForChild(20);
+  }
+  return !stop;
+}
+
+// ------------------------------------------------------------------ sweep
+void ParseShard(const std::string& text, int* index, int* count) {
+  *index = 0;
+  *count = 1;
+  if (text.empty()) return;
+  const auto slash = text.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("");
+    std::size_t a = 0, b = 0;
+    *index = std::stoi(text.substr(0, slash), &a);
+    *count = std::stoi(text.substr(slash + 1), &b);
+    if (a != slash || b != text.size() - slash - 1) throw std::invalid_argument("");
+  } catch (const std::exception&) {
+    throw ConfigError("--shard " + text + ": expected I/N, e.g. --shard 0/4");
+  }
+  if (*count < 1 || *index < 0 || *index >= *count)
+    throw ConfigError("--shard " + text + ": expected I/N with 0 <= I < N");
+}
+
+std::string SumoVersionOf(const Journal& journal) {
+  for (const auto& [i, e] : journal.entries) {
+    const std::string v = e.value("sumo_version", "");
+    if (!v.empty()) return v;
+  }
+  return "";
+}
+
+void WriteOutputs(const fs::path& out, const Plan& plan, const Journal& journal, Json header) {
+  header["sumo_version"] = SumoVersionOf(journal);
+  WriteFilesAtomically(out.string(), {{"results.csv", ResultsCsv(plan, journal)},
+                                      {"results.jsonl", ResultsJsonl(plan, journal)},
+                                      {"aggregate.csv", AggregateCsv(plan, journal)},
+                                      {"sweep.json", header.dump(2) + "\n"}});
+}
+
+// Refuses a directory that holds another sweep.
+void CheckHeader(const fs::path& dir, const std::string& hash) {
+  const fs::path p = dir / "sweep.json";
+  if (!fs::exists(p)) return;
+  Json h;
+  try {
+    h = Json::parse(ReadText(p));
+  } catch (const std::exception& e) {
+    throw ConfigError(p.string() + ": unreadable (" + e.what() + "); remove it or use another --out");
+  }
+  const std::string other = h.value("config_hash", "");
+  if (other != hash)
+    throw ConfigError(p.string() + ": " + dir.string() + " holds a different sweep (config hash " +
+                      other + ", this one " + hash +
+                      "): the config, its grid or the --set overrides differ; use another --out "
+                      "or remove that directory");
+}
+
+// The tasks of `scope` (a shard's tasks) still to run: no ok entry yet.
+std::vector<Task> Pending(const std::vector<Task>& scope, const Journal& j) {
+  std::vector<Task> out;
+  for (const Task& t : scope) {
+    const auto it = j.entries.find(t.index);
+    if (it == j.entries.end() || !IsOk(it->second)) out.push_back(t);
+  }
+  return out;
+}
+
+}  // namespace
+
+bool HaveMpi() {
+#ifdef TAEBP_HAVE_MPI
+  return true;
+#else
+  return false;
+#endif
+}
+
+int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
+  const Plan plan = ExpandSweep(ReadText(o.config), o.config, o.overrides);
+  int shard_index = 0, shard_count = 1;
+  ParseShard(o.shard, &shard_index, &shard_count);
+  std::vector<Task> scope;  // this shard's tasks
+  for (const Task& t : plan.tasks)
+    if (t.index % shard_count == shard_index) scope.push_back(t);
+
+  if (o.list) {
+    std::printf("%zu points x %d replicates = %zu tasks%s\n", plan.points.size(), plan.replicates,
+                plan.tasks.size(),
+                o.shard.empty() ? "" : (", shard " + o.shard + ": " + std::to_string(scope.size())).c_str());
+    for (const Task& t : scope) {
+      std::printf("%d point=%d replicate=%d seed=%llu", t.index, t.point, t.replicate,
+                  static_cast<unsigned long long>(t.seed));
+      const Point& p = plan.points[static_cast<std::size_t>(t.point)];
+      for (std::size_t k = 0; k < plan.columns.size(); ++k)
+        std::printf(" %s=%s", plan.columns[k].c_str(), p.values[k].c_str());
+      std::printf("\n");
+    }
+    return 0;
+  }
+  if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 1");
+
+  Mpi mpi(o.mpi || MpiLaunchDetected());
+  const fs::path out = o.out.empty() ? fs::path("results") / fs::path(o.config).stem() : fs::path(o.out);
+  const int jobs = o.jobs > 0 ? o.jobs : (mpi.active() ? 1 : Cores());
+  const bool root = mpi.rank() == 0;
+  const bool show = root && !o.quiet;
+
+  // Rank 0 prepares the directory and decides what is left to do.
+  std::unique_ptr<JournalFile> journal_file;
+  Journal journal;
+  Json header;
+  std::string setup;  // JSON: {"error", "code", "pending": [...]}
+  if (root) {
+    Json s;
+    try {
+      fs::create_directories(out / "tasks");
+      CheckHeader(out, plan.hash);
+      journal_file = std::make_unique<JournalFile>(out / "journal.jsonl");
+      const std::string text = journal_file->ReadAll();
+      journal = ParseJournal(text, plan, (out / "journal.jsonl").string());
+      if (journal.partial_tail) {
+        if (show)
+          std::fprintf(stderr, "taebp sweep: dropping a half-written last line of %s\n",
+                       (out / "journal.jsonl").c_str());
+        journal_file->Truncate(journal.valid_bytes);
+      }
+      header = SweepHeader(plan, o.shard, SumoVersionOf(journal));
+      if (!fs::exists(out / "sweep.json"))
+        WriteFilesAtomically(out.string(), {{"sweep.json", header.dump(2) + "\n"}});
+      Json pending = Json::array();
+      for (const Task& t : Pending(scope, journal)) pending.push_back(t.index);
+      s["pending"] = pending;
+    } catch (const ConfigError& e) {
+      s["error"] = e.what();
+      s["code"] = 2;
+    } catch (const std::exception& e) {
+      s["error"] = e.what();
+      s["code"] = 1;
+    }
+    setup = s.dump();
+  }
+  mpi.Bcast(&setup);
+  const Json s = Json::parse(setup);
+  if (s.contains("error")) {
+    if (!root) return s.value("code", 1);
+    if (s.value("code", 1) == 2) throw ConfigError(s["error"].get<std::string>());
+    throw std::runtime_error(s["error"].get<std::string>());
+  }
+  std::vector<Task> mine;
+  {
+    const Json& pending = s["pending"];
+    for (std::size_t k = 0; k < pending.size(); ++k)
+      if (static_cast<int>(k % static_cast<std::size_t>(mpi.size())) == mpi.rank())
+        mine.push_back(plan.tasks[pending[k].get<std::size_t>()]);
+  }
+  const int already_ok = root ? CountTasks(scope, journal).ok : 0;
+  if (show && already_ok > 0)
+    std::fprintf(stderr, "taebp sweep: resuming in %s: %d of %zu tasks already done\n",
+                 out.c_str(), already_ok, scope.size());
+
+  // Forked workers only without MPI: MPI's threads make fork-without-exec unsafe.
+  const RunFunction worker = mpi.active() || o.exec ? RunFunction() : run_function;
+  if (journal_file) g_journal_fd = journal_file->fd();
+  InstallSignalHandlers();
+  Progress progress(show, static_cast<int>(scope.size()), already_ok);
+  auto record = [&](const Json& e) {  // rank 0
+    journal_file->Append(e.dump());
+    AddEntry(&journal, plan, e);
+    progress.Finished(IsOk(e));
+    progress.Update();
+  };
+  int ranks_done = 1;
+  bool stop_sent = false;
+  bool completed = false;
+  try {
+    if (root) {
+      auto poll = [&]() {
+        std::string msg;
+        int tag = 0, source = 0;
+        while (mpi.Receive(-1, &msg, &tag, &source)) {
+          if (tag == kTagResult) record(Json::parse(msg));
+          else if (tag == kTagDone) ++ranks_done;
+        }
+        progress.Update();
+        return false;
+      };
+      completed = RunTasks(plan, out, mine, jobs, 0, worker, record, poll);
+      // Gather the other ranks' results until each reports done.
+      const auto wait_from = Clock::now();
+      while (ranks_done < mpi.size()) {
+        if (g_signal && !stop_sent) {
+          for (int r = 1; r < mpi.size(); ++r) mpi.Send("", r, kTagStop);
+          stop_sent = true;
+        }
+        poll();
+        if (g_signal && Clock::now() - wait_from > std::chrono::seconds(30)) {
+          std::fprintf(stderr, "taebp sweep: ranks did not stop in time, aborting\n");
+          WriteOutputs(out, plan, journal, header);
+          mpi.Abort(kExitInterrupted);
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(15));
+      }
+      completed = completed && !g_signal;
+    } else {
+      bool stop = false;
+      auto poll = [&]() {
+        std::string msg;
+        int tag = 0, source = 0;
+        while (mpi.Receive(0, &msg, &tag, &source))
+          if (tag == kTagStop) stop = true;
+        return stop;
+      };
+      auto send = [&](const Json& e) { mpi.Send(e.dump(), 0, kTagResult); };
+      completed = RunTasks(plan, out, mine, jobs, mpi.rank(), worker, send, poll);
+      mpi.Send(completed ? "ok" : "stopped", 0, kTagDone);
+      return completed ? 0 : kExitInterrupted;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "taebp sweep: error (rank %d): %s\n", mpi.rank(), e.what());
+    if (root) WriteOutputs(out, plan, journal, header);
+    if (mpi.active() && mpi.size() > 1) mpi.Abort(kExitFailed);
+    throw;
+  }
+
+  // Rank 0: the final tables from the journal.
+  WriteOutputs(out, plan, journal, header);
+  progress.Update(true);
+  const auto [ok, failed, missing] = CountTasks(scope, journal);
+  if (!o.quiet) {
+    std::fprintf(stderr, "taebp sweep: %d of %zu tasks ok, %d failed%s (this run: %d in %s)\n", ok,
+                 scope.size(), failed,
+                 missing ? (", " + std::to_string(missing) + " not run").c_str() : "",
+                 progress.this_run(), Hms(progress.Elapsed()).c_str());
+    for (const Task& t : scope) {
+      const auto it = journal.entries.find(t.index);
+      if (it != journal.entries.end() && !IsOk(it->second))
+        std::fprintf(stderr, "taebp sweep: task %d-%d failed: %s\n", t.point, t.replicate,
+                     it->second.value("error", "").c_str());
+    }
+    std::fprintf(stderr, "taebp sweep: results in %s\n", out.c_str());
+  }
+  if (!completed) {
+    if (!o.quiet)
+      std::fprintf(stderr, "taebp sweep: interrupted; the same command resumes the sweep\n");
+    return kExitInterrupted;
+  }
+  return failed || missing ? kExitFailed : 0;
+}
+
+// ------------------------------------------------------------------ merge
+int RunMerge(const MergeOptions& o) {
+  if (o.dirs.empty()) throw ConfigError("taebp merge: no shard directories given");
+  std::vector<Json> headers;
+  for (const std::string& d : o.dirs) {
+    const fs::path p = fs::path(d) / "sweep.json";
+    if (!fs::exists(p))
+      throw ConfigError(p.string() + ": missing (is " + d + " the --out of a taebp sweep?)");
+    try {
+      headers.push_back(Json::parse(ReadText(p)));
+    } catch (const std::exception& e) {
+      throw ConfigError(p.string() + ": unreadable: " + e.what());
+    }
+    const std::string h = headers.back().value("config_hash", "");
+    if (h != headers.front().value("config_hash", ""))
+      throw ConfigError(p.string() + ": " + d + " holds a different sweep (config hash " + h +
+                        ") than " + o.dirs.front() + " (" +
+                        headers.front().value("config_hash", "") + ")");
+  }
+  const Json& first = headers.front();
+  int replicates = 0;
+  for (const Json& h : headers) replicates = std::max(replicates, h.value("replicates", 1));
+  std::vector<std::string> overrides = first.value("overrides", std::vector<std::string>{});
+  if (replicates != first.value("replicates", 1))
+    overrides.push_back("sweep.replicates=" + std::to_string(replicates));
+  Plan plan = ExpandSweep(first.value("config_text", ""), first.value("config_path", ""), overrides);
+  const std::string hash = first.value("config_hash", "");
+  if (plan.hash != hash) {
+    std::fprintf(stderr,
+                 "taebp merge: warning: this taebp computes config hash %s for the sweep "
+                 "recorded as %s (another version?); using the recorded one\n",
+                 plan.hash.c_str(), hash.c_str());
+    plan.hash = hash;
+  }
+
+  const fs::path out(o.out);
+  fs::create_directories(out);
+  CheckHeader(out, plan.hash);
+  JournalFile lock(out / "journal.jsonl");
+  Journal journal = ParseJournal(lock.ReadAll(), plan, (out / "journal.jsonl").string());
+  std::map<int, fs::path> source;  // task index -> shard dir holding its outputs
+  for (const std::string& d : o.dirs) {
+    if (fs::exists(out) && fs::exists(d) && fs::equivalent(out, d)) continue;
+    const fs::path jp = fs::path(d) / "journal.jsonl";
+    if (!fs::exists(jp)) continue;
+    const Journal shard = ParseJournal(ReadText(jp), plan, jp.string());
+    for (const auto& [index, e] : shard.entries) {
+      // The task's outputs come from the shard whose entry the journal keeps.
+      if (AddEntry(&journal, plan, e)) source[index] = d;
+    }
+  }
+  // Per-task outputs next to the merged tables.
+  for (const auto& [index, dir] : source) {
+    const Task& t = plan.tasks[static_cast<std::size_t>(index)];
+    const fs::path from = TaskDir(dir, t), to = TaskDir(out, t);
+    if (!fs::exists(from)) continue;
+    std::error_code ec;
+    fs::remove_all(to, ec);
+    fs::create_directories(to.parent_path());
+    fs::copy(from, to, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+  }
+  std::string lines;
+  for (const auto& [index, e] : journal.entries) lines += e.dump() + "\n";
+  Json header = SweepHeader(plan, "", SumoVersionOf(journal));
+  header["merged_from"] = o.dirs;
+  WriteFilesAtomically(out.string(), {{"journal.jsonl", lines}});
+  WriteOutputs(out, plan, journal, header);
+
+  const auto [ok, failed, missing] = CountTasks(plan.tasks, journal);
+  if (!o.quiet)
+    std::fprintf(stderr, "taebp merge: %zu shard dirs, %d of %zu tasks ok, %d failed, %d missing; results in %s\n",
+                 o.dirs.size(), ok, plan.tasks.size(), failed, missing, out.c_str());
+  return failed || missing ? kExitFailed : 0;
+}
+
+}  // namespace taebp::sweep
