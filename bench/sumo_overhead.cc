@@ -43,14 +43,14 @@ int main(int argc, char** argv) {
   }
   try {
     const taebp::ExperimentConfig config = taebp::LoadExperimentConfig(path, overrides);
-    const taebp::ScenarioFiles files = taebp::ResolveScenarioFiles(config, "");
+    const taebp::Scenario files = taebp::BuildScenario(config, "");
     std::vector<double> bare;
     std::map<std::string, std::vector<double>> policy;
     for (int r = 0; r < rounds; ++r) {
       bare.push_back(Time([&] { taebp::RunBareSumo(config, files); }));
       for (const std::string& p : config.policies)
         policy[p].push_back(
-            Time([&] { taebp::RunPolicy(config, taebp::persuasion::ParsePolicy(p), files); }));
+            Time([&] { taebp::RunPolicy(config, p, files); }));
     }
     const double b = Median(bare);
     std::printf("%.0f simulated s, %d vehicles, step %.2f s, %d interleaved rounds\n",

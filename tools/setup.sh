@@ -11,7 +11,7 @@ TAEBP_PACKAGES=(
   build-essential cmake pkg-config
   sumo sumo-tools
   libeigen3-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libboost-dev
-  libglpk-dev libgtest-dev libgmock-dev
+  libglpk-dev libgtest-dev libgmock-dev libpugixml-dev
   openmpi-bin libopenmpi-dev
   python3 python3-matplotlib
   xvfb xauth

@@ -156,6 +156,78 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   c.NonNegative("scenario.confirm_delay", s.confirm_delay);
   c.Positive("scenario.creep_speed", s.creep_speed);
   c.Positive("scenario.loop_length", s.loop_length);
+  if (s.kind != "figure8" && s.kind != "network")
+    c.Fail("scenario.kind = '" + s.kind + "' is not one of: figure8, network");
+  if (s.kind == "figure8" && c.ok() && s.stop_distance < 1.7 - 1e-9)
+    c.Fail("scenario.stop_distance = " + Num(s.stop_distance) +
+           " is inside the junction: on the figure-8 the stop line is 1.6 m from the centre and "
+           "SUMO holds vehicles 0.1 m before it, so it must be >= 1.7");
+  if (s.IsNetwork()) {
+    const int sources = !s.network.empty() + !s.sumocfg.empty() + s.grid.has_value();
+    if (sources == 0)
+      c.Fail("scenario.kind = 'network' needs one of scenario.network, scenario.sumocfg or "
+             "scenario.grid");
+    else if (sources > 1)
+      c.Fail("scenario.network, scenario.sumocfg and scenario.grid are alternatives: give one");
+    if (s.sumocfg.empty() && s.routes.empty() && !s.demand)
+      c.Fail("scenario.kind = 'network' has no vehicles: give scenario.routes, scenario.demand "
+             "or a scenario.sumocfg with route files");
+  }
+  if (s.grid) {
+    const GridConfig& g = *s.grid;
+    if (g.columns < 2 || g.rows < 2)
+      c.Fail("scenario.grid = " + std::to_string(g.columns) + " x " + std::to_string(g.rows) +
+             " junctions: netgenerate needs at least 2 x 2 (scenario.grid.columns, .rows)");
+    if (g.columns > 100 || g.rows > 100)
+      c.Fail("scenario.grid.columns/rows must be <= 100");
+    if (!(g.length >= 20.0 && g.length <= 10000.0))
+      c.Fail("scenario.grid.length = " + Num(g.length) + " must be in [20, 10000] m");
+    if (!(g.attach_length == 0.0 || (g.attach_length >= 20.0 && g.attach_length <= 10000.0)))
+      c.Fail("scenario.grid.attach_length = " + Num(g.attach_length) +
+             " must be 0 or in [20, 10000] m");
+    if (g.lanes < 1 || g.lanes > 4)
+      c.Fail("scenario.grid.lanes = " + std::to_string(g.lanes) + " must be in 1..4");
+    c.Positive("scenario.grid.speed", g.speed);
+    static const std::set<std::string> kGridTypes = {"allway_stop", "priority_stop", "priority",
+                                                     "right_before_left"};
+    if (!kGridTypes.count(g.junction_type))
+      c.Fail("scenario.grid.junction_type = '" + g.junction_type +
+             "' is not one of: allway_stop, priority_stop, priority, right_before_left");
+  }
+  if (s.demand) {
+    const DemandConfig& d = *s.demand;
+    if (!(std::isfinite(d.flow) && d.flow > 0 && d.flow <= 3600.0 / s.step_length))
+      c.Fail("scenario.demand.flow = " + Num(d.flow) +
+             " veh/h must be > 0 and at most one vehicle per step and edge");
+    if (d.routing != "random")
+      c.Fail("scenario.demand.routing = '" + d.routing + "' is not one of: random");
+    if (!(std::isfinite(d.end)))
+      c.Fail("scenario.demand.end = " + Num(d.end) + " must be a number of seconds");
+  }
+  {
+    const JunctionSelection& j = s.junctions;
+    static const std::set<std::string> kTypes = {"allway_stop", "priority_stop", "priority",
+                                                 "right_before_left", "unregulated"};
+    for (const std::string& t : j.types)
+      if (!kTypes.count(t))
+        c.Fail("scenario.junctions.types: '" + t +
+               "' is not a junction type the rules cover (allway_stop, priority_stop, priority, "
+               "right_before_left, unregulated)");
+    for (const auto& [key, value] : {std::pair<const char*, const std::string*>{"priority", &j.priority},
+                                     {"right_before_left", &j.right_before_left},
+                                     {"unregulated", &j.unregulated}})
+      if (*value != "all_way" && *value != "two_way")
+        c.Fail(std::string("scenario.junctions.") + key + " = '" + *value +
+               "' is not one of: all_way, two_way");
+  }
+  if (s.av_share) c.Closed01("scenario.av_share", *s.av_share);
+  c.NonNegative("scenario.warmup", s.warmup);
+  if (c.ok() && s.warmup >= s.duration)
+    c.Fail("scenario.warmup = " + Num(s.warmup) + " leaves nothing of scenario.duration = " +
+           Num(s.duration));
+  c.Positive("scenario.critical_gap", s.critical_gap);
+  if (s.nudge_check != "error" && s.nudge_check != "count")
+    c.Fail("scenario.nudge_check = '" + s.nudge_check + "' is not one of: error, count");
 
   const ModelConfig& m = model;
   c.Open01("model.prior_go", m.prior_go);
@@ -183,13 +255,18 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   if (c.ok() && l.s_max >= s.stop_distance + 50.0)
     c.Fail("model.likelihood.s_max = " + Num(l.s_max) + " is not a nudge (> 50 m past the stop)");
 
-  if (policies.empty()) c.Fail("policies is empty: list at least one of no_ebp, no_trust, ta_ebp, full_reveal");
+  if (policies.empty())
+    c.Fail("policies is empty: list at least one of sumo_native, no_ebp, no_trust, ta_ebp, "
+           "full_reveal");
   std::set<std::string> seen;
   for (const std::string& p : policies) {
-    try {
-      persuasion::ParsePolicy(p);  // the one list of policy names
-    } catch (const persuasion::InvalidArgument&) {
-      c.Fail("policies: '" + p + "' is not one of no_ebp, no_trust, ta_ebp, full_reveal");
+    if (p != kSumoNative) {
+      try {
+        persuasion::ParsePolicy(p);  // the one list of persuasion policy names
+      } catch (const persuasion::InvalidArgument&) {
+        c.Fail("policies: '" + p +
+               "' is not one of sumo_native, no_ebp, no_trust, ta_ebp, full_reveal");
+      }
     }
     if (!seen.insert(p).second) c.Fail("policies: '" + p + "' is listed twice");
   }

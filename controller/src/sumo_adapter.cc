@@ -96,10 +96,14 @@ void Step() { TAEBP_SUMO_CALL(Step()); }
 double Time() { return TAEBP_SUMO_CALL(Time()); }
 std::string Version() { return TAEBP_SUMO_CALL(Version()); }
 std::vector<SumoCollision> Collisions() { return TAEBP_SUMO_CALL(Collisions()); }
-int StopStartingNumber() { return TAEBP_SUMO_CALL(StopStartingNumber()); }
-std::vector<std::string> StopStartingIDs() { return TAEBP_SUMO_CALL(StopStartingIDs()); }
 int TeleportNumber() { return TAEBP_SUMO_CALL(TeleportNumber()); }
 int CollidingNumber() { return TAEBP_SUMO_CALL(CollidingNumber()); }
+int DepartedNumber() { return TAEBP_SUMO_CALL(DepartedNumber()); }
+std::vector<std::string> DepartedIDs() { return TAEBP_SUMO_CALL(DepartedIDs()); }
+int ArrivedNumber() { return TAEBP_SUMO_CALL(ArrivedNumber()); }
+std::vector<std::string> ArrivedIDs() { return TAEBP_SUMO_CALL(ArrivedIDs()); }
+std::vector<std::string> PendingVehicles() { return TAEBP_SUMO_CALL(PendingVehicles()); }
+std::vector<std::string> VehicleIDs() { return TAEBP_SUMO_CALL(VehicleIDs()); }
 
 double LaneLength(const std::string& lane) { return TAEBP_SUMO_CALL(LaneLength(lane)); }
 std::vector<XY> LaneShape(const std::string& lane) { return TAEBP_SUMO_CALL(LaneShape(lane)); }
@@ -107,6 +111,14 @@ XY JunctionPosition(const std::string& junction) {
   return TAEBP_SUMO_CALL(JunctionPosition(junction));
 }
 std::pair<XY, XY> NetBoundary() { return TAEBP_SUMO_CALL(NetBoundary()); }
+std::vector<std::string> LaneInternalFoes(const std::string& lane) {
+  return TAEBP_SUMO_CALL(LaneInternalFoes(lane));
+}
+std::vector<std::string> LaneVehicleIDs(const std::string& lane) {
+  return TAEBP_SUMO_CALL(LaneVehicleIDs(lane));
+}
+int LaneVehicleNumber(const std::string& lane) { return TAEBP_SUMO_CALL(LaneVehicleNumber(lane)); }
+int LaneHaltingNumber(const std::string& lane) { return TAEBP_SUMO_CALL(LaneHaltingNumber(lane)); }
 
 void AddVehicleType(const VehicleTypeSpec& spec) { TAEBP_SUMO_CALL(AddVehicleType(spec)); }
 void AddRoute(const std::string& id, const std::vector<std::string>& edges) {
@@ -117,10 +129,6 @@ void AddVehicle(const std::string& id, const std::string& route, const std::stri
                 double depart_pos) {
   TAEBP_SUMO_CALL(AddVehicle(id, route, type, depart_pos));
 }
-void SetStop(const std::string& veh, const std::string& edge, double pos, double duration) {
-  TAEBP_SUMO_CALL(SetStop(veh, edge, pos, duration));
-}
-void Resume(const std::string& veh) { TAEBP_SUMO_CALL(Resume(veh)); }
 void SetSpeedMode(const std::string& veh, int mode) { TAEBP_SUMO_CALL(SetSpeedMode(veh, mode)); }
 void SetSpeed(const std::string& veh, double speed) { TAEBP_SUMO_CALL(SetSpeed(veh, speed)); }
 void SetColor(const std::string& veh, int r, int g, int b) {
@@ -130,6 +138,18 @@ double Distance(const std::string& veh) { return TAEBP_SUMO_CALL(Distance(veh));
 double Speed(const std::string& veh) { return TAEBP_SUMO_CALL(Speed(veh)); }
 std::string RoadID(const std::string& veh) { return TAEBP_SUMO_CALL(RoadID(veh)); }
 double LanePosition(const std::string& veh) { return TAEBP_SUMO_CALL(LanePosition(veh)); }
+std::string LaneID(const std::string& veh) { return TAEBP_SUMO_CALL(LaneID(veh)); }
+std::string TypeID(const std::string& veh) { return TAEBP_SUMO_CALL(TypeID(veh)); }
+double Length(const std::string& veh) { return TAEBP_SUMO_CALL(Length(veh)); }
+double MinGap(const std::string& veh) { return TAEBP_SUMO_CALL(MinGap(veh)); }
+int RouteIndex(const std::string& veh) { return TAEBP_SUMO_CALL(RouteIndex(veh)); }
+std::vector<std::string> Route(const std::string& veh) { return TAEBP_SUMO_CALL(Route(veh)); }
+void SetRoute(const std::string& veh, const std::vector<std::string>& edges) {
+  TAEBP_SUMO_CALL(SetRoute(veh, edges));
+}
+void SetRouteID(const std::string& veh, const std::string& route) {
+  TAEBP_SUMO_CALL(SetRouteID(veh, route));
+}
 
 #undef TAEBP_SUMO_CALL
 

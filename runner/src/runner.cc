@@ -1,7 +1,7 @@
 #include "taebp/runner/runner.h"
 
 #include "taebp/persuasion/outcomes.h"
-#include "taebp/scenario/figure8.h"
+#include "taebp/scenario/scenario.h"
 
 #include <nlohmann/json.hpp>
 
@@ -28,15 +28,15 @@ ExperimentResult RunExperiment(const std::string& config_path,
   result.config = LoadExperimentConfig(config_path, overrides);
   const ExperimentConfig& config = result.config;
   const std::string config_dir = fs::path(config_path).parent_path().string();
-  const ScenarioFiles files = ResolveScenarioFiles(config, config_dir);
+  const Scenario scenario = BuildScenario(config, config_dir);
   result.warnings = ScenarioWarnings(config);
-  result.warnings.insert(result.warnings.end(), files.notes.begin(), files.notes.end());
+  result.warnings.insert(result.warnings.end(), scenario.notes.begin(), scenario.notes.end());
   if (observer.warning)
     for (const std::string& w : result.warnings) observer.warning(w);
 
   for (const std::string& name : config.policies) {
     const auto t0 = std::chrono::steady_clock::now();
-    result.runs.push_back(RunPolicy(config, persuasion::ParsePolicy(name), files, options));
+    result.runs.push_back(RunPolicy(config, name, scenario, options));
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     result.wall_seconds += wall;

@@ -67,8 +67,8 @@ ExperimentConfig Config(const std::vector<std::string>& overrides) {
   return LoadExperimentConfig(kPaper, overrides);
 }
 
-PolicyRun RunOne(const ExperimentConfig& config, per::Policy policy) {
-  return RunPolicy(config, policy, ResolveScenarioFiles(config, ""));
+PolicyRun RunOne(const ExperimentConfig& config, const std::string& policy) {
+  return RunPolicy(config, policy, BuildScenario(config, ""));
 }
 
 TEST(Wilson, OurIntervalMatchesReportAt95) {
@@ -108,7 +108,7 @@ TEST_P(ScenarioPoint, EveryEncounterFollowsTheLibraryAndRatesAgreeWithTheory) {
   const per::AvHvParams params{cfg.model.prior_go, cfg.model.collision_penalty};
   const auto model = MakeLikelihood(cfg.model.likelihood);
   const double s_max = model->SMax();
-  const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
+  const Scenario files = BuildScenario(cfg, "");
 
   for (const std::string& name : cfg.policies) {
     SCOPED_TRACE(GetParam().name + " / " + name);
@@ -129,7 +129,7 @@ TEST_P(ScenarioPoint, EveryEncounterFollowsTheLibraryAndRatesAgreeWithTheory) {
       expected_nudge = s_max;
     }
 
-    const PolicyRun run = RunPolicy(cfg, policy, files);
+    const PolicyRun run = RunPolicy(cfg, name, files);
     EXPECT_EQ(run.policy, name);
     EXPECT_NEAR(run.simulated_seconds, kDuration, 1e-6);
     EXPECT_NEAR(run.theory.dc_rate, theory.dc_rate, 1e-12);
@@ -163,7 +163,8 @@ TEST_P(ScenarioPoint, EveryEncounterFollowsTheLibraryAndRatesAgreeWithTheory) {
         EXPECT_GE(e.observed, e.commanded);
         EXPECT_LE(e.observed - e.commanded, kNudgeTolerance);
       } else {
-        EXPECT_EQ(e.observed, 0.0);
+        // A still AV: the HV reads what SUMO reports, which is (nearly) nothing.
+        EXPECT_LE(std::abs(e.observed), kNudgeTolerance);
       }
       // The HV's belief and action follow eq:pp at the observed displacement
       // (read as s_max when SUMO's overshoot passes it).
@@ -242,10 +243,9 @@ Provenance TestProvenance(const ExperimentConfig& cfg) {
 }
 
 std::vector<PolicyRun> RunAll(const ExperimentConfig& cfg) {
-  const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
+  const Scenario files = BuildScenario(cfg, "");
   std::vector<PolicyRun> runs;
-  for (const std::string& name : cfg.policies)
-    runs.push_back(RunPolicy(cfg, per::ParsePolicy(name), files));
+  for (const std::string& name : cfg.policies) runs.push_back(RunPolicy(cfg, name, files));
   return runs;
 }
 
@@ -280,34 +280,38 @@ using test::TempDir;
 // After a failed run libsumo is closed and the next run works.
 void ExpectAShortRunStillWorks() {
   const ExperimentConfig cfg = Config({"scenario.duration=60"});
-  const PolicyRun run = RunOne(cfg, per::Policy::kTaEbp);
+  const PolicyRun run = RunOne(cfg, "ta_ebp");
   EXPECT_GT(run.crossings_av + run.crossings_hv, 0);
   EXPECT_FALSE(sumo::IsLoaded());
 }
 
 TEST(ScenarioBadInput, MissingNetworkIsAConfigErrorNamingTheKey) {
   const ExperimentConfig cfg = Config({"scenario.network=/nonexistent/dir/x.net.xml"});
-  const std::string msg = ErrorOf<ConfigError>([&] { ResolveScenarioFiles(cfg, ""); });
+  const std::string msg = ErrorOf<ConfigError>([&] { BuildScenario(cfg, ""); });
   EXPECT_THAT(msg, HasSubstr("scenario.network"));
   EXPECT_THAT(msg, HasSubstr("/nonexistent/dir/x.net.xml"));
   // Relative paths are resolved against the config's directory.
   const ExperimentConfig rel = Config({"scenario.network=figure8.net.xml"});
   const std::string built = fs::path(DefaultNetworkPath()).parent_path().string();
-  EXPECT_EQ(fs::path(ResolveScenarioFiles(rel, built).net), fs::path(built) / "figure8.net.xml");
-  EXPECT_THAT(ErrorOf<ConfigError>([&] { ResolveScenarioFiles(rel, TAEBP_SOURCE_DIR); }),
+  EXPECT_EQ(fs::path(BuildScenario(rel, built).net), fs::path(built) / "figure8.net.xml");
+  EXPECT_THAT(ErrorOf<ConfigError>([&] { BuildScenario(rel, TAEBP_SOURCE_DIR); }),
               HasSubstr("scenario.network"));
 }
 
-TEST(ScenarioBadInput, CorruptNetworkIsASumoError) {
+TEST(ScenarioBadInput, CorruptNetworkIsAConfigErrorNamingTheFile) {
   TempDir dir;
   const fs::path net = dir.path() / "garbage.net.xml";
   std::ofstream(net) << "this is not a SUMO network <net <<<\n\x01\x02 garbage\n";
   const ExperimentConfig cfg = Config({"scenario.network=" + net.string(),
                                        "scenario.duration=60"});
-  const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
-  EXPECT_EQ(fs::path(files.net), net);
-  const std::string msg = ErrorOf<SumoError>([&] { RunPolicy(cfg, per::Policy::kTaEbp, files); });
+  const std::string msg = ErrorOf<ConfigError>([&] { BuildScenario(cfg, ""); });
+  EXPECT_THAT(msg, HasSubstr("scenario.network"));
   EXPECT_THAT(msg, HasSubstr(net.string()));
+  EXPECT_THAT(msg, HasSubstr("not a readable XML file"));
+  // XML, but not a SUMO network.
+  std::ofstream(net, std::ios::trunc) << "<routes><vehicle id=\"a\"/></routes>\n";
+  EXPECT_THAT(ErrorOf<ConfigError>([&] { BuildScenario(cfg, ""); }),
+              HasSubstr("not a SUMO network"));
   ExpectAShortRunStillWorks();
 }
 
@@ -315,26 +319,24 @@ TEST(ScenarioBadInput, TooManyVehiclesForTheTrackIsAConfigErrorAboutLoopLength) 
   // Without auto_length the track does not grow: refused before SUMO starts.
   const ExperimentConfig fixed =
       Config({"scenario.avs=30", "scenario.hvs=30", "scenario.auto_length=false"});
-  const std::string msg = ErrorOf<ConfigError>([&] { ResolveScenarioFiles(fixed, ""); });
+  const std::string msg = ErrorOf<ConfigError>([&] { BuildScenario(fixed, ""); });
   EXPECT_THAT(msg, HasSubstr("loop_length"));
   EXPECT_THAT(msg, HasSubstr("60 vehicles"));
   // A given network cannot grow: refused when placing the vehicles.
   const ExperimentConfig given = Config({"scenario.avs=30", "scenario.hvs=30",
                                          "scenario.network=" + DefaultNetworkPath()});
-  const ScenarioFiles files = ResolveScenarioFiles(given, "");
-  const std::string run_msg =
-      ErrorOf<ConfigError>([&] { RunPolicy(given, per::Policy::kTaEbp, files); });
+  const std::string run_msg = ErrorOf<ConfigError>([&] { BuildScenario(given, ""); });
   EXPECT_THAT(run_msg, HasSubstr("loop_length"));
   EXPECT_THAT(run_msg, HasSubstr("60"));
-  EXPECT_FALSE(sumo::IsLoaded()) << "the failed run left SUMO open";
+  EXPECT_FALSE(sumo::IsLoaded());
   ExpectAShortRunStillWorks();
 }
 
 TEST(ScenarioBadInput, StopInsideTheJunctionIsAConfigError) {
-  const ExperimentConfig cfg = Config({"scenario.stop_distance=1.0", "scenario.duration=60"});
-  const std::string msg = ErrorOf<ConfigError>([&] { RunOne(cfg, per::Policy::kTaEbp); });
+  const std::string msg =
+      ErrorOf<ConfigError>([&] { Config({"scenario.stop_distance=1.0", "scenario.duration=60"}); });
   EXPECT_THAT(msg, HasSubstr("scenario.stop_distance = 1"));
-  EXPECT_FALSE(sumo::IsLoaded()) << "the failed run left SUMO open";
+  EXPECT_THAT(msg, HasSubstr("--set"));
   ExpectAShortRunStillWorks();
 }
 

@@ -176,8 +176,8 @@ TEST(HeterogeneousRun, DrawsPerHvTrustAndAgreesWithTheoryGivenHvs) {
   const ExperimentConfig cfg = LoadExperimentConfig(
       kPaper, {"model.trust={dist: uniform, low: 0.1, high: 0.9}", "scenario.duration=900",
                "policies=[ta_ebp]"});
-  const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
-  const PolicyRun run = RunPolicy(cfg, per::Policy::kTaEbp, files);
+  const Scenario files = BuildScenario(cfg, "");
+  const PolicyRun run = RunPolicy(cfg, "ta_ebp", files);
   ASSERT_EQ(run.hv_trust.size(), 8u);
   double lo = 1, hi = 0;
   for (double t : run.hv_trust) {
@@ -187,7 +187,7 @@ TEST(HeterogeneousRun, DrawsPerHvTrustAndAgreesWithTheoryGivenHvs) {
     EXPECT_LE(t, 0.9);
   }
   EXPECT_LT(lo, hi);  // they differ
-  const PolicyRun again = RunPolicy(cfg, per::Policy::kTaEbp, files);
+  const PolicyRun again = RunPolicy(cfg, "ta_ebp", files);
   EXPECT_EQ(run.hv_trust, again.hv_trust);
 
   ASSERT_GT(run.encounters.size(), 80u);
@@ -215,13 +215,13 @@ TEST(HeterogeneousRun, DrawsPerHvTrustAndAgreesWithTheoryGivenHvs) {
 
 TEST(Penetration, TrackGrowsToFitAndSaysSo) {
   const ExperimentConfig cfg = LoadExperimentConfig(
-      kPaper, {"scenario.avs=14", "scenario.hvs=14", "scenario.duration=120", "policies=[ta_ebp]"});
+      kPaper, {"scenario.avs=14", "scenario.hvs=14", "scenario.duration=240", "policies=[ta_ebp]"});
   EXPECT_GT(RequiredLoopLength(cfg.scenario), 80.0);
-  const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
+  const Scenario files = BuildScenario(cfg, "");
   EXPECT_DOUBLE_EQ(files.loop_length, RequiredLoopLength(cfg.scenario));
   ASSERT_EQ(files.notes.size(), 1u);
   EXPECT_THAT(files.notes[0], HasSubstr("grown"));
-  const PolicyRun run = RunPolicy(cfg, per::Policy::kTaEbp, files);
+  const PolicyRun run = RunPolicy(cfg, "ta_ebp", files);
   EXPECT_EQ(run.teleports, 0);
   EXPECT_GT(run.crossings_av + run.crossings_hv, 28);
 }
@@ -230,7 +230,7 @@ TEST(Penetration, TooManyVehiclesWithoutAutoLengthIsAClearError) {
   const ExperimentConfig cfg = LoadExperimentConfig(
       kPaper, {"scenario.avs=14", "scenario.hvs=14", "scenario.auto_length=false"});
   try {
-    ResolveScenarioFiles(cfg, "");
+    BuildScenario(cfg, "");
     FAIL() << "expected ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_THAT(e.what(), HasSubstr("scenario.loop_length = 80"));
@@ -243,8 +243,8 @@ TEST(Penetration, AllHvAndAllAvRunWithoutEncountersOrDeadlock) {
     const ExperimentConfig cfg = LoadExperimentConfig(
         kPaper, {"scenario.avs=" + std::to_string(avs), "scenario.hvs=" + std::to_string(hvs),
                  "scenario.duration=300"});
-    const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
-    const PolicyRun run = RunPolicy(cfg, per::Policy::kTaEbp, files);
+    const Scenario files = BuildScenario(cfg, "");
+    const PolicyRun run = RunPolicy(cfg, "ta_ebp", files);
     EXPECT_TRUE(run.encounters.empty());
     EXPECT_EQ(run.teleports, 0);
     EXPECT_LT(run.longest_gap_without_crossing, 30.0);
@@ -255,7 +255,7 @@ TEST(Penetration, AllHvAndAllAvRunWithoutEncountersOrDeadlock) {
 TEST(Penetration, PaperTrackFitsSixteenVehiclesWithoutGrowth) {
   const ExperimentConfig cfg = LoadExperimentConfig(kPaper, {});
   EXPECT_LE(RequiredLoopLength(cfg.scenario), cfg.scenario.loop_length);
-  const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
+  const Scenario files = BuildScenario(cfg, "");
   EXPECT_TRUE(files.notes.empty()) << files.notes[0];
   EXPECT_DOUBLE_EQ(files.loop_length, 80.0);
 }
@@ -268,9 +268,9 @@ TEST(Penetration, RequiredLengthPlacesTheVehiclesAndTrafficFlows) {
         kPaper, {"scenario.avs=" + std::to_string(n / 2),
                  "scenario.hvs=" + std::to_string(n - n / 2), "scenario.loop_length=10",
                  "scenario.duration=300", "policies=[no_trust]"});
-    const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
+    const Scenario files = BuildScenario(cfg, "");
     ASSERT_DOUBLE_EQ(files.loop_length, RequiredLoopLength(cfg.scenario)) << n << " vehicles";
-    const PolicyRun run = RunPolicy(cfg, per::Policy::kNoTrust, files);
+    const PolicyRun run = RunPolicy(cfg, "no_trust", files);
     EXPECT_EQ(run.teleports, 0) << n << " vehicles";
     EXPECT_LT(run.longest_gap_without_crossing, 30.0) << n << " vehicles";
     // At least one crossing per vehicle-loop travelled at half the cruise speed.
@@ -291,9 +291,9 @@ TEST(Penetration, UnbalancedMixesOnThePaperTrackNeverGridlock) {
             kPaper, {"scenario.avs=" + std::to_string(avs),
                      "scenario.hvs=" + std::to_string(16 - avs), "scenario.duration=900",
                      "scenario.seed=" + std::to_string(seed)});
-        const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
+        const Scenario files = BuildScenario(cfg, "");
         ASSERT_DOUBLE_EQ(files.loop_length, 80.0);
-        const PolicyRun run = RunPolicy(cfg, per::ParsePolicy(policy), files);
+        const PolicyRun run = RunPolicy(cfg, policy, files);
         const std::string what = std::to_string(avs) + " AVs, " + policy + ", seed " +
                                  std::to_string(seed);
         EXPECT_LT(run.longest_gap_without_crossing, 30.0) << what;
@@ -309,12 +309,12 @@ TEST(Penetration, UnbalancedMixesOnThePaperTrackNeverGridlock) {
 // (queues backed up through the centre; 2 crossings in 20 minutes). Given as a
 // custom network (the built-in sizing would grow it), it must now flow.
 TEST(Penetration, TightCustomNetworkFlowsWithTheKeepClearRule) {
-  const std::string net = GeneratedFigure8(40.0);
+  const std::string net = GeneratedFigure8(40.0, 3.0);
   const ExperimentConfig cfg = LoadExperimentConfig(
       kPaper, {"scenario.network=" + net, "scenario.duration=600",
                "scenario.avs=4", "scenario.hvs=4"});
-  const ScenarioFiles files = ResolveScenarioFiles(cfg, "");
-  for (per::Policy policy : {per::Policy::kNoEbp, per::Policy::kTaEbp}) {
+  const Scenario files = BuildScenario(cfg, "");
+  for (const char* policy : {"no_ebp", "ta_ebp"}) {
     const PolicyRun run = RunPolicy(cfg, policy, files);
     EXPECT_LT(run.longest_gap_without_crossing, 30.0);
     EXPECT_GT(run.crossings_av + run.crossings_hv, 100);  // 2 before the rule
@@ -328,8 +328,8 @@ TEST(Penetration, TightCustomNetworkFlowsWithTheKeepClearRule) {
       FAIL() << "expected a stall error";
     } catch (const ConfigError& e) {
       EXPECT_THAT(e.what(), HasSubstr("traffic stalled"));
-      EXPECT_THAT(e.what(), HasSubstr("scenario.network = '" + net + "'"));
-      EXPECT_THAT(e.what(), HasSubstr("8 vehicles"));
+      EXPECT_THAT(e.what(), HasSubstr("junction 'C'"));
+      EXPECT_THAT(e.what(), HasSubstr("vehicles waiting"));
     }
   }
 }

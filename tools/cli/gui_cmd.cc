@@ -155,7 +155,8 @@ int Snapshot::Run(int argc, char** argv) {
   ExperimentConfig config = LoadExperimentConfig(o.config_path, o.overrides);
   // IsValid guarantees at least one policy.
   const std::string name = o.policy.empty() ? config.policies.front() : o.policy;
-  const persuasion::Policy policy = persuasion::ParsePolicy(name);
+  if (name != kSumoNative) persuasion::ParsePolicy(name);  // throws for an unknown name
+  const std::string policy = name;
 
   if (!HasDisplay()) {
     if (std::getenv(kUnderXvfbEnv))
@@ -179,7 +180,7 @@ int Snapshot::Run(int argc, char** argv) {
   }
 
   const std::string config_dir = fs::path(o.config_path).parent_path().string();
-  const ScenarioFiles files = ResolveScenarioFiles(config, config_dir);
+  const Scenario scenario = BuildScenario(config, config_dir);
   config.scenario.duration = o.at;
 
   const fs::path out = fs::absolute(o.out);
@@ -196,7 +197,7 @@ int Snapshot::Run(int argc, char** argv) {
     sumo::gui::Screenshot(out.string());
     sumo::Step();  // sumo-gui writes the picture during this step
   };
-  const PolicyRun run = RunPolicy(config, policy, files, ro);
+  const PolicyRun run = RunPolicy(config, policy, scenario, ro);
   sumo::SetBackend(sumo::Backend::kLibsumo);
 
   // sumo-gui has written the file by the end of the step; allow a moment for

@@ -19,12 +19,78 @@ class ConfigError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Which junctions of a network the controller takes over (kind: network).
+// A junction is selected when its id is listed or its SUMO type is; SUMO
+// types without stop signs are turned into stop-controlled junctions for the
+// run (the net is patched with netconvert, geometry unchanged): `priority`
+// junctions become two-way stops (minor roads stop, SUMO's priorities), and
+// `right_before_left` / `unregulated` ones all-way stops, unless said here.
+struct JunctionSelection {
+  std::vector<std::string> ids;    // junction ids
+  std::vector<std::string> types = {"allway_stop", "priority_stop"};
+  std::string priority = "two_way";           // two_way | all_way
+  std::string right_before_left = "all_way";  // all_way | two_way
+  std::string unregulated = "all_way";        // all_way | two_way
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("ids", &ids);
+    a->Visit("types", &types);
+    a->Visit("priority", &priority);
+    a->Visit("right_before_left", &right_before_left);
+    a->Visit("unregulated", &unregulated);
+  }
+};
+
+// A grid generated with SUMO's netgenerate at run time (cached): columns x
+// rows junctions `length` m apart, fringe edges `attach_length` m long.
+struct GridConfig {
+  int columns = 4;
+  int rows = 4;
+  double length = 100.0;         // m between junctions
+  double attach_length = 100.0;  // m of the fringe edges (0: none)
+  int lanes = 1;                 // per direction
+  double speed = 13.89;          // m/s speed limit
+  std::string junction_type = "allway_stop";  // allway_stop | priority_stop | priority | right_before_left
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("columns", &columns);
+    a->Visit("rows", &rows);
+    a->Visit("length", &length);
+    a->Visit("attach_length", &attach_length);
+    a->Visit("lanes", &lanes);
+    a->Visit("speed", &speed);
+    a->Visit("junction_type", &junction_type);
+  }
+};
+
+// Generated demand: every fringe edge entering the network gets `flow`
+// vehicles per hour (random arrivals, seeded), each bound for a random
+// fringe exit (routing: random) and routed by SUMO on the fastest path.
+struct DemandConfig {
+  double flow = 300.0;           // veh/h entering per fringe edge
+  std::string routing = "random";  // random: uniformly random fringe exit (not the way back)
+  double end = -1.0;             // s, last departure (< 0: scenario.duration)
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("flow", &flow);
+    a->Visit("routing", &routing);
+    a->Visit("end", &end);
+  }
+};
+
 struct ScenarioConfig {
+  // figure8: the paper's track, vehicles circulating (avs, hvs, loop_length,
+  // stop_distance). network: any SUMO network with vehicles entering and
+  // leaving (network or sumocfg or grid; routes and/or demand).
+  std::string kind = "figure8";
   int avs = 8;                  // number of autonomous vehicles (blue)
   int hvs = 8;                  // number of human-driven vehicles (red)
   double cruise_speed = 4.0;    // m/s
   double min_gap = 2.0;         // m, SUMO minGap
-  double stop_distance = 1.7;   // m from the vehicle's front to the centre when held
+  double stop_distance = 3.0;   // m from the vehicle's front to the centre when held (figure-8)
   double step_length = 0.1;     // s
   double duration = 3600.0;     // simulated seconds per policy
   std::uint64_t seed = 1;       // run seed (SUMO --seed and the controller's RNG)
@@ -38,9 +104,28 @@ struct ScenarioConfig {
   double loop_length = 80.0;    // m per loop of the figure-8 (network generation)
   bool auto_length = true;      // grow the loops when the vehicles do not fit
   std::string network;          // path to a .net.xml; empty: the built-in figure-8
+  // kind: network
+  std::string sumocfg;                  // a .sumocfg: its net, route and additional files
+  std::vector<std::string> routes;      // SUMO route files (vehicles, flows, trips, vTypes)
+  std::vector<std::string> additional;  // SUMO additional files
+  std::optional<GridConfig> grid;       // generate the network instead
+  std::optional<DemandConfig> demand;   // generate demand on the fringe
+  JunctionSelection junctions;
+  // Each departing vehicle is an AV with this probability (seeded, by vehicle
+  // id); unset: the vehicles whose SUMO type is in av_types are AVs.
+  std::optional<double> av_share;
+  std::vector<std::string> av_types = {"AV"};
+  double warmup = 0.0;          // s: nothing before this counts in the outputs
+  double critical_gap = 5.0;    // s: a minor head at a two-way stop needs this gap on the major road
+  bool tripinfo_output = false;  // keep SUMO's tripinfo.xml in the output directory
+  bool summary_output = false;   // keep SUMO's summary.xml in the output directory
+  // A nudge SUMO did not realise (observed outside [s, s + 1 mm]): error
+  // (stop the run) or count (record it and go on).
+  std::string nudge_check = "error";
 
   template <typename Archive>
   void Serialize(Archive* a) {
+    a->Visit("kind", &kind);
     a->Visit("avs", &avs);
     a->Visit("hvs", &hvs);
     a->Visit("cruise_speed", &cruise_speed);
@@ -59,7 +144,21 @@ struct ScenarioConfig {
     a->Visit("loop_length", &loop_length);
     a->Visit("auto_length", &auto_length);
     a->Visit("network", &network);
+    a->Visit("sumocfg", &sumocfg);
+    a->Visit("routes", &routes);
+    a->Visit("additional", &additional);
+    a->Visit("grid", &grid);
+    a->Visit("demand", &demand);
+    a->Visit("junctions", &junctions);
+    a->Visit("av_share", &av_share);
+    a->Visit("av_types", &av_types);
+    a->Visit("warmup", &warmup);
+    a->Visit("critical_gap", &critical_gap);
+    a->Visit("tripinfo_output", &tripinfo_output);
+    a->Visit("summary_output", &summary_output);
+    a->Visit("nudge_check", &nudge_check);
   }
+  bool IsNetwork() const { return kind == "network"; }
 };
 
 struct LikelihoodConfig {
@@ -156,6 +255,9 @@ struct SweepConfig {
     a->Visit("grid", &grid);
   }
 };
+
+// The baseline policy without a controller: SUMO's own junction logic.
+inline constexpr const char* kSumoNative = "sumo_native";
 
 struct ExperimentConfig {
   ScenarioConfig scenario;

@@ -1,16 +1,16 @@
-// One policy's simulated run of the figure-8 scenario in SUMO (libsumo), and
-// the whole experiment (every listed policy) with its outputs.
+// One policy's run in SUMO (libsumo, or sumo-gui through libtraci): starts
+// SUMO on the scenario, steps it with the network controller, and returns
+// the run's results.
 #pragma once
 
 #include "taebp/config/config.h"
 #include "taebp/junction/design.h"
-#include "taebp/scenario/figure8.h"
 #include "taebp/junction/intersection.h"
-#include "taebp/report/results.h"
 #include "taebp/persuasion/outcomes.h"
+#include "taebp/report/results.h"
+#include "taebp/scenario/scenario.h"
 
 #include <functional>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,22 +24,24 @@ struct RunOptions {
   bool colour_states = false;
   std::function<void()> after_start;   // SUMO started, vehicles added (e.g. frame the view)
   std::function<void()> before_close;  // after the last step, SUMO still open (e.g. screenshot)
-  // A safety net: the run stops with a ConfigError when no vehicle has crossed
-  // the centre for this many simulated seconds (< 0: one lap at cruise speed
-  // + confirm_delay + arrival_window + 60 s). The keep-clear release rule
-  // prevents gridlock on the figure-8; this catches what it cannot foresee
-  // (e.g. a custom scenario.network).
+  // A safety net: the run stops with a ConfigError naming the junction when
+  // vehicles wait at one of its stop lines and nothing enters or leaves it
+  // for this many simulated seconds (< 0: on the figure-8 two loops at cruise
+  // speed + confirm_delay + arrival_window + 60 s; on a network 300 s). The
+  // keep-clear release rule prevents the controller's own gridlocks; this
+  // catches what it cannot foresee.
   double stall_limit = -1.0;
 };
 
-// Runs one policy for scenario.duration simulated seconds. Throws SumoError
-// (SUMO failed) or ConfigError (scenario does not fit the network).
-PolicyRun RunPolicy(const ExperimentConfig& config, persuasion::Policy policy,
-                    const ScenarioFiles& files, const RunOptions& options = {});
+// Runs one policy (a persuasion policy name or "sumo_native") for
+// scenario.duration simulated seconds. Throws SumoError (SUMO failed),
+// ConfigError (the scenario does not fit, a stall) or NudgeError.
+PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
+                    const Scenario& scenario, const RunOptions& options = {});
 
-// The speed floor: the same network, vehicles, types and step, with SUMO's own
-// junction logic and no controller (only Simulation::step in the loop). For
-// tools/bench. Returns the simulated seconds.
-double RunBareSumo(const ExperimentConfig& config, const ScenarioFiles& files);
+// The speed floor for tools/bench: the same network, vehicles and step with
+// SUMO's own junction logic and nothing but Simulation::step in the loop.
+// Returns the simulated seconds.
+double RunBareSumo(const ExperimentConfig& config, const Scenario& scenario);
 
 }  // namespace taebp

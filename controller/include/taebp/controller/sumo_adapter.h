@@ -62,16 +62,27 @@ std::string Version();  // e.g. "SUMO 1.15.0"
 // entry per pair of vehicles whose collision started this step, type
 // "unknown", no lane/speeds.
 std::vector<SumoCollision> Collisions();
-int StopStartingNumber();
-std::vector<std::string> StopStartingIDs();
 int TeleportNumber();  // vehicles starting a teleport this step
 int CollidingNumber();  // vehicles in a collision that started this step
+int DepartedNumber();   // vehicles that entered the network this step
+std::vector<std::string> DepartedIDs();
+int ArrivedNumber();    // vehicles that left the network this step
+std::vector<std::string> ArrivedIDs();
+// Vehicles loaded but not yet inserted (the demand waiting to depart).
+std::vector<std::string> PendingVehicles();
+std::vector<std::string> VehicleIDs();  // vehicles in the network
 
 // Network
 double LaneLength(const std::string& lane);
 std::vector<XY> LaneShape(const std::string& lane);
 XY JunctionPosition(const std::string& junction);
 std::pair<XY, XY> NetBoundary();  // bounding box (min, max) of the network's shapes
+std::vector<std::string> LaneInternalFoes(const std::string& lane);  // internal lanes only
+// Per step on a lane: vehicles (ids ordered from the lane's start to its end:
+// the last one is nearest the end), their number, those halting (< 0.1 m/s).
+std::vector<std::string> LaneVehicleIDs(const std::string& lane);
+int LaneVehicleNumber(const std::string& lane);
+int LaneHaltingNumber(const std::string& lane);
 
 // Types and routes
 void AddVehicleType(const VehicleTypeSpec& spec);
@@ -80,8 +91,6 @@ void AddRoute(const std::string& id, const std::vector<std::string>& edges);
 // Vehicles
 void AddVehicle(const std::string& id, const std::string& route, const std::string& type,
                 double depart_pos);
-void SetStop(const std::string& veh, const std::string& edge, double pos, double duration);
-void Resume(const std::string& veh);
 void SetSpeedMode(const std::string& veh, int mode);
 void SetSpeed(const std::string& veh, double speed);  // < 0: back to car-following
 void SetColor(const std::string& veh, int r, int g, int b);
@@ -89,6 +98,17 @@ double Distance(const std::string& veh);  // odometer (m)
 double Speed(const std::string& veh);
 std::string RoadID(const std::string& veh);
 double LanePosition(const std::string& veh);
+std::string LaneID(const std::string& veh);
+std::string TypeID(const std::string& veh);
+double Length(const std::string& veh);
+double MinGap(const std::string& veh);
+int RouteIndex(const std::string& veh);  // index of the current edge in its route
+std::vector<std::string> Route(const std::string& veh);  // the route's edges
+void SetRoute(const std::string& veh, const std::vector<std::string>& edges);  // from its edge
+// Replaces the route by a route added with AddRoute that contains the current
+// edge (SUMO swaps the route; nothing accumulates, unlike SetRoute, which
+// keeps the edges already driven).
+void SetRouteID(const std::string& veh, const std::string& route);
 
 // The sumo-gui view ("View #0"). Only with Backend::kLibtraciGui; SumoError
 // otherwise.

@@ -1,0 +1,62 @@
+// The network controller: owns one JunctionLogic per controlled junction and
+// makes every per-step SUMO call (through the adapter): it registers vehicles
+// as they depart (AV or HV, the HV's trust and the AV's design for it),
+// notices heads coming to a halt at a stop line and holds them
+// (setSpeed 0), releases them (speed mode 55: SUMO's right of way off, car
+// following on), runs nudges (speed mode 0, exact creep), reads SUMO's
+// displacements and collisions, and collects the outputs.
+//
+// Per-step work is proportional to what happens at controlled junctions:
+// one halting count per controlled approach lane without a held head, two
+// getters per vehicle crossing or nudging; every vehicle is read once per
+// simulated second (route progress), not every step.
+#pragma once
+
+#include "taebp/config/config.h"
+#include "taebp/report/results.h"
+#include "taebp/scenario/net_file.h"
+#include "taebp/scenario/scenario.h"
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace taebp {
+
+// A nudge SUMO did not realise (scenario.nudge_check: error).
+class NudgeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ControllerOptions {
+  bool colour_states = false;  // paint vehicles by state (sumo-gui)
+  double stall_limit = -1;     // s; < 0: the scenario's default
+};
+
+class NetworkController {
+ public:
+  // `policy` empty: sumo_native (SUMO's own junction logic; the controller
+  // only observes and measures).
+  NetworkController(const ExperimentConfig& config, std::optional<persuasion::Policy> policy,
+                    const Scenario& scenario, const net::NetFile& net,
+                    const ControllerOptions& options);
+  ~NetworkController();
+  NetworkController(const NetworkController&) = delete;
+  NetworkController& operator=(const NetworkController&) = delete;
+
+  // SUMO has started: vehicle types and the figure-8's vehicles.
+  void Start();
+  // After each sumo::Step(). Throws ConfigError (stall), NudgeError.
+  void Step();
+  // After the last step, SUMO still running: the totals so far.
+  PolicyRun Finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace taebp

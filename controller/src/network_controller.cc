@@ -1,0 +1,849 @@
+#include "taebp/controller/network_controller.h"
+
+#include "taebp/controller/sumo_adapter.h"
+#include "taebp/junction/design.h"
+#include "taebp/junction/intersection.h"
+#include "taebp/junction/junction_logic.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+
+namespace taebp {
+namespace {
+
+using junction::Command;
+using junction::JunctionLogic;
+using persuasion::Policy;
+
+// Speed modes (bits: 1 safe speed, 2 max accel, 4 max decel, 8 right of way,
+// 16 red light, 32 ignore foes already in the junction).
+constexpr int kModeDefault = 31;   // SUMO's own rules (stop signs included)
+constexpr int kModeReleased = 55;  // the controller decided the junction; keep car-following
+constexpr int kModeCreep = 0;      // exact commanded speeds during a nudge
+
+constexpr double kHaltSpeed = 0.1;      // m/s: SUMO's halting threshold
+constexpr double kAtLine = 1.0;         // m: a halted front this near the lane end is at the line
+constexpr double kMajorNear = 3.0;      // m: a major-road vehicle this near the line is entering
+
+enum class State { kFree, kHeld, kNudging, kNudged, kCrossing };
+
+// Vehicle colours under colour_states (r, g, b).
+enum class Paint { kType, kNudging, kDr, kDc, kCollided };
+constexpr std::array<std::array<int, 3>, 5> kPaintRgb = {
+    {{0, 0, 0}, {255, 220, 0}, {255, 140, 0}, {0, 200, 0}, {255, 0, 255}}};
+constexpr std::array<int, 3> kAvRgb = {0, 0, 255};
+constexpr std::array<int, 3> kHvRgb = {255, 0, 0};
+
+std::string Fmt(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+// A uniform in [0, 1) that depends only on (seed, text, salt): each vehicle's
+// draws are independent of departure order and of the other vehicles.
+double HashUniform(std::uint64_t seed, const std::string& text, std::uint64_t salt) {
+  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  std::uint64_t x = seed * 0x9E3779B97F4A7C15ULL ^ h ^ (salt << 1);
+  for (int i = 0; i < 2; ++i) {  // splitmix64 finaliser, twice
+    x += 0x9E3779B97F4A7C15ULL;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+    x ^= x >> 31;
+  }
+  return static_cast<double>(x >> 11) * 0x1.0p-53;
+}
+constexpr std::uint64_t kSaltAv = 0x6176;     // "av"
+constexpr std::uint64_t kSaltTrust = 0x7472;  // "tr"
+
+struct Veh {
+  std::string id;
+  bool alive = false;
+  VehicleKind kind = VehicleKind::kHV;
+  double trust = 0;
+  persuasion::CommittedScheme scheme;
+  persuasion::PredictedOutcome theory;
+  double length = 5, min_gap = 2;
+  std::vector<int> route;  // edge indices
+  int route_pos = 0;       // route index already counted
+  State state = State::kFree;
+  int junction = -1, movement = -1, approach = -1;
+  double arrival = 0, hold_odometer = 0;
+  double target = 0, creep_speed = 0, commanded = 0;
+  std::string lane;        // while crossing: the lane it was last seen on
+  Paint paint = Paint::kType;
+};
+
+struct Chain {  // the lanes a movement's exit fills before the next stop line
+  std::vector<std::string> lanes;
+  double capacity = 0;
+};
+
+struct MovementRt {
+  std::string from_lane, to_lane;
+  std::vector<std::string> internal;
+  std::string to_edge;
+  char dir = 's';
+  bool controlled = false;
+  int chain = -1;
+  std::vector<int> major_foes;  // major movements (same junction) in conflict
+  // Lanes feeding this (major) movement with the distance from their end to
+  // the line, for the gap check.
+  std::vector<std::pair<std::string, double>> feeders;
+};
+
+struct ApproachRt {
+  std::string lane;
+  double length = 0;
+  int junction = -1;
+  int head = -1;          // vehicle held at (or nudging from) this line
+  int skip = -1;          // a halted front that cannot be held (no movement for its route)
+  ApproachStats stats;
+};
+
+struct JunctionRt {
+  ControlledJunction info;
+  std::unique_ptr<JunctionLogic> logic;
+  std::vector<MovementRt> movements;
+  std::vector<int> approaches;  // global approach indices
+  JunctionRun run;
+  double waiting_since = -1;    // first time a head waited with nothing moving
+  double last_gap_refusal = -1;
+};
+
+}  // namespace
+
+struct NetworkController::Impl : junction::EncounterModel {
+  Impl(const ExperimentConfig& config, std::optional<Policy> policy, const Scenario& scenario,
+       const net::NetFile& net, const ControllerOptions& options)
+      : cfg(config),
+        sc(config.scenario),
+        policy(policy),
+        scenario(scenario),
+        net(net),
+        opts(options),
+        model(MakeLikelihood(config.model.likelihood)),
+        rng(config.scenario.seed) {
+    params.prior_go = config.model.prior_go;
+    params.collision_penalty = config.model.collision_penalty;
+    out.policy = policy ? persuasion::ToString(*policy) : kSumoNative;
+    out.scenario_kind = sc.kind;
+    if (policy) {
+      const ModelConfig& m = config.model;
+      out.scheme = persuasion::CommitScheme(*policy, params, DesignTrust(m, *policy, m.trust.Mean()),
+                                            *model);
+      out.theory = ExpectedOutcome(m, *policy);
+    }
+    dt = sc.step_length;
+    sample_every = std::max(1L, std::lround(1.0 / dt));
+    BuildTopology();
+  }
+
+  // ------------------------------------------------------------ topology
+  int EdgeIndex(const std::string& edge) {
+    const auto it = edge_index.find(edge);
+    if (it != edge_index.end()) return it->second;
+    const int k = static_cast<int>(edge_junction.size());
+    edge_index.emplace(edge, k);
+    const std::string end = net.EdgeEnd(edge);
+    const auto jt = junction_index.find(end);
+    edge_junction.push_back(jt == junction_index.end() ? -1 : jt->second);
+    edge_names.push_back(edge);
+    return k;
+  }
+
+  bool Controlled(const std::string& junction_id) const { return junction_index.count(junction_id); }
+
+  int ChainFor(const std::string& to_lane) {
+    const auto it = chain_index.find(to_lane);
+    if (it != chain_index.end()) return it->second;
+    Chain c;
+    std::string lane = to_lane;
+    for (int guard = 0; guard < 64 && !lane.empty(); ++guard) {
+      const net::Lane* l = net.FindLane(lane);
+      if (!l) break;
+      c.lanes.push_back(lane);
+      c.capacity += l->length;
+      const std::string end = net.EdgeEnd(l->edge);
+      if (end.empty() || Controlled(end)) {
+        if (!end.empty()) c.capacity -= 0.1;  // SUMO halts 0.1 m before the line
+        break;
+      }
+      const std::vector<int>& out_links = net.LinksFrom(lane);
+      if (out_links.size() != 1 || c.capacity > 1000.0) break;
+      const net::Link& link = net.links()[out_links[0]];
+      for (const std::string& in : link.internal) {
+        c.lanes.push_back(in);
+        if (const net::Lane* il = net.FindLane(in)) c.capacity += il->length;
+      }
+      lane = link.to_lane;
+    }
+    const int k = static_cast<int>(chains.size());
+    chains.push_back(c);
+    chain_index.emplace(to_lane, k);
+    return k;
+  }
+
+  void BuildTopology() {
+    for (std::size_t j = 0; j < scenario.junctions.size(); ++j)
+      junction_index.emplace(scenario.junctions[j].id, static_cast<int>(j));
+    for (const ControlledJunction& cj : scenario.junctions) {
+      const net::Junction* nj = net.FindJunction(cj.id);
+      if (!nj) throw ConfigError("junction '" + cj.id + "' is not in " + net.path());
+      JunctionRt rt;
+      rt.info = cj;
+      junction::JunctionSpec spec;
+      spec.id = cj.id;
+      spec.rule = cj.type == "priority_stop" ? junction::Rule::kTwoWay : junction::Rule::kAllWay;
+      std::map<std::string, int> approach_of;  // lane -> approach within junction
+      std::vector<int> link_of;                // movement -> request index
+      for (std::size_t li = 0; li < nj->links.size(); ++li) {
+        const int id = nj->links[li];
+        if (id < 0) continue;
+        const net::Link& link = net.links()[id];
+        MovementRt m;
+        m.from_lane = link.from_lane;
+        m.to_lane = link.to_lane;
+        m.internal = link.internal;
+        m.dir = link.dir;
+        m.controlled = link.state == 's' || link.state == 'w';
+        if (const net::Lane* tl = net.FindLane(link.to_lane)) m.to_edge = tl->edge;
+        if (!approach_of.count(link.from_lane)) {
+          const int a = static_cast<int>(approach_of.size());
+          approach_of.emplace(link.from_lane, a);
+        }
+        junction::Movement jm;
+        jm.approach = approach_of[link.from_lane];
+        jm.controlled = m.controlled;
+        jm.dir = m.dir;
+        jm.from_lane = m.from_lane;
+        jm.to_lane = m.to_lane;
+        spec.movements.push_back(jm);
+        link_of.push_back(static_cast<int>(li));
+        rt.movements.push_back(std::move(m));
+      }
+      spec.approaches = static_cast<int>(approach_of.size());
+      const std::size_t n = spec.movements.size();
+      spec.conflict.assign(n, std::vector<bool>(n, false));
+      for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t b = 0; b < n; ++b)
+          spec.conflict[a][b] = nj->foes[link_of[a]][link_of[b]];
+      const int jx = static_cast<int>(junctions.size());
+      for (std::size_t a = 0; a < n; ++a) {
+        MovementRt& m = rt.movements[a];
+        m.chain = ChainFor(m.to_lane);
+        if (!m.controlled) continue;
+        for (std::size_t b = 0; b < n; ++b)
+          if (!rt.movements[b].controlled && spec.Conflict(static_cast<int>(a), static_cast<int>(b)))
+            m.major_foes.push_back(static_cast<int>(b));
+      }
+      // Approaches with a stop link: where heads are held.
+      std::map<std::string, bool> stop_lane;
+      for (const MovementRt& m : rt.movements) stop_lane[m.from_lane] |= m.controlled;
+      for (const auto& [lane, has_stop] : stop_lane) {
+        if (!has_stop) continue;
+        ApproachRt ap;
+        ap.lane = lane;
+        const net::Lane* l = net.FindLane(lane);
+        ap.length = l ? l->length : 0;
+        ap.junction = jx;
+        ap.stats.lane = lane;
+        rt.approaches.push_back(static_cast<int>(approaches.size()));
+        approaches.push_back(ap);
+      }
+      // Feeders of the major movements (two-way stops): the gap check looks
+      // this far upstream.
+      if (spec.rule == junction::Rule::kTwoWay) {
+        for (MovementRt& m : rt.movements) {
+          if (m.controlled) continue;
+          const net::Lane* l = net.FindLane(m.from_lane);
+          const double reach = (l ? l->speed : 13.89) * sc.critical_gap + kMajorNear;
+          std::vector<std::pair<std::string, double>> frontier = {{m.from_lane, 0.0}};
+          std::set<std::string> seen;
+          while (!frontier.empty()) {
+            auto [lane, offset] = frontier.back();
+            frontier.pop_back();
+            if (!seen.insert(lane).second) continue;
+            m.feeders.emplace_back(lane, offset);
+            const net::Lane* fl = net.FindLane(lane);
+            const double next = offset + (fl ? fl->length : 0);
+            if (next >= reach) continue;
+            for (const std::string& p : net.Predecessors(lane)) frontier.emplace_back(p, next);
+          }
+        }
+      }
+      junction::Timing timing{sc.arrival_window, sc.confirm_delay};
+      rt.logic = std::make_unique<JunctionLogic>(std::move(spec), timing);
+      rt.run.id = cj.id;
+      rt.run.type = cj.type;
+      rt.run.original_type = cj.original_type;
+      rt.run.rule = junction::ToString(rt.logic->spec().rule);
+      junctions.push_back(std::move(rt));
+    }
+    for (JunctionRt& j : junctions)
+      for (int a : j.approaches) j.run.approaches.push_back(approaches[a].stats);
+  }
+
+  // ------------------------------------------------------------ environment
+  struct Env : junction::Environment {
+    Impl* self = nullptr;
+    JunctionRt* j = nullptr;
+    bool ExitHasRoom(int movement, int vehicle) override {
+      return self->ExitHasRoom(*j, movement, vehicle);
+    }
+    bool MajorClear(int movement) override {
+      const bool clear = self->MajorClear(*j, movement);
+      if (!clear) j->last_gap_refusal = self->now;
+      return clear;
+    }
+  };
+
+  // Keep clear: the exit takes the vehicle with its rear off the junction
+  // even if everything already headed there ends up queued.
+  bool ExitHasRoom(const JunctionRt& j, int movement, int vehicle) {
+    const Chain& c = chains[j.movements[movement].chain];
+    const Veh& v = vehs[vehicle];
+    long ahead = 0;
+    for (const std::string& lane : c.lanes) ahead += sumo::LaneVehicleNumber(lane);
+    for (int h : crossing) {  // released into this exit, not yet on it
+      const Veh& w = vehs[h];
+      if (w.junction < 0 || junctions[w.junction].movements[w.movement].chain !=
+                                j.movements[movement].chain)
+        continue;
+      if (std::find(c.lanes.begin(), c.lanes.end(), w.lane) == c.lanes.end()) ++ahead;
+    }
+    return ahead * (v.length + v.min_gap) + v.length <= c.capacity;
+  }
+
+  // Two-way stops: no major vehicle inside or about to reach a conflicting
+  // major movement within the critical gap.
+  bool MajorClear(const JunctionRt& j, int movement) {
+    for (int k : j.movements[movement].major_foes) {
+      const MovementRt& mk = j.movements[k];
+      for (const std::string& in : mk.internal)
+        if (sumo::LaneVehicleNumber(in) > 0) return false;
+      for (const auto& [lane, offset] : mk.feeders) {
+        const std::vector<std::string> ids = sumo::LaneVehicleIDs(lane);
+        if (ids.empty()) continue;
+        const std::string& front = ids.back();
+        const net::Lane* l = net.FindLane(lane);
+        const double dist = offset + (l ? l->length : 0) - sumo::LanePosition(front);
+        if (dist < kMajorNear) return false;
+        const double speed = sumo::Speed(front);
+        if (speed > kHaltSpeed && dist / speed < sc.critical_gap) return false;
+      }
+    }
+    return true;
+  }
+
+  // ------------------------------------------------------------ encounter model
+  AvDraw Draw(int /*av*/, int hv) override {
+    return DrawAv(vehs[hv].scheme, params.prior_go, rng);
+  }
+  HvReading Read(int /*av*/, int hv, double observed) override {
+    const HvReading r = ReadNudge(params, vehs[hv].trust, *model, observed);
+    SetPaint(hv, r.drives_if_clear ? Paint::kDc : Paint::kDr);
+    return r;
+  }
+
+  // ------------------------------------------------------------ vehicles
+  void SetPaint(int h, Paint paint) {
+    Veh& v = vehs[h];
+    if (!opts.colour_states || v.paint == paint) return;
+    const std::array<int, 3>& rgb = paint != Paint::kType
+                                        ? kPaintRgb[static_cast<int>(paint)]
+                                        : (v.kind == VehicleKind::kAV ? kAvRgb : kHvRgb);
+    sumo::SetColor(v.id, rgb[0], rgb[1], rgb[2]);
+    v.paint = paint;
+  }
+
+  void Register(const std::string& id) {
+    int h;
+    if (!free_slots.empty()) {
+      h = free_slots.back();
+      free_slots.pop_back();
+    } else {
+      h = static_cast<int>(vehs.size());
+      vehs.emplace_back();
+    }
+    Veh v;
+    v.id = id;
+    v.alive = true;
+    bool av;
+    if (sc.av_share) {
+      av = HashUniform(sc.seed, id, kSaltAv) < *sc.av_share;
+    } else {
+      const std::string type = sumo::TypeID(id);
+      av = std::find(sc.av_types.begin(), sc.av_types.end(), type) != sc.av_types.end();
+    }
+    v.kind = av ? VehicleKind::kAV : VehicleKind::kHV;
+    if (!av) {
+      const TrustSpec& t = cfg.model.trust;
+      v.trust = t.IsFixed() ? t.value : t.Draw(HashUniform(sc.seed, id, kSaltTrust));
+      if (policy) {
+        const double hat = DesignTrust(cfg.model, *policy, v.trust);
+        v.scheme = persuasion::CommitScheme(*policy, params, hat, *model);
+        v.theory = persuasion::PredictOutcome(v.scheme, params, v.trust, *model);
+      }
+      if (out.hv_trust.size() < kTrustListMax) out.hv_trust.push_back(v.trust);
+    }
+    v.length = sumo::Length(id);
+    v.min_gap = sumo::MinGap(id);
+    for (const std::string& e : sumo::Route(id)) v.route.push_back(EdgeIndex(e));
+    v.route_pos = std::max(0, sumo::RouteIndex(id));
+    vehs[h] = std::move(v);
+    index[id] = h;
+    if (opts.colour_states) {
+      vehs[h].paint = Paint::kNudging;  // force the first paint
+      SetPaint(h, Paint::kType);
+    }
+    if (now >= sc.warmup) ++out.network.departed;
+  }
+
+  // Counts the controlled junctions a vehicle passed since the last count.
+  void CountProgress(int h, int new_pos) {
+    Veh& v = vehs[h];
+    const int last = static_cast<int>(v.route.size()) - 1;
+    new_pos = std::min(new_pos, last);
+    for (int k = v.route_pos; k < new_pos; ++k) {
+      const int j = edge_junction[v.route[k]];
+      if (j < 0 || now < sc.warmup) continue;
+      (v.kind == VehicleKind::kAV ? junctions[j].run.crossings_av : junctions[j].run.crossings_hv)++;
+    }
+    v.route_pos = std::max(v.route_pos, new_pos);
+  }
+
+  void Unregister(const std::string& id) {
+    const auto it = index.find(id);
+    if (it == index.end()) return;
+    const int h = it->second;
+    Veh& v = vehs[h];
+    CountProgress(h, static_cast<int>(v.route.size()) - 1);
+    v.alive = false;
+    if (v.state == State::kCrossing) Clear(h);  // left the network inside a junction
+    if (v.approach >= 0 && approaches[v.approach].head == h) approaches[v.approach].head = -1;
+    if (now >= sc.warmup) ++out.network.arrived;
+    v.route.clear();
+    index.erase(it);
+    free_slots.push_back(h);
+  }
+
+  // ------------------------------------------------------------ holding
+  int MovementFor(const JunctionRt& j, const std::string& lane, const Veh& v) const {
+    const int next = v.route_pos + 1;
+    if (next >= static_cast<int>(v.route.size())) return -1;
+    const std::string& next_edge = edge_names[v.route[next]];
+    for (std::size_t m = 0; m < j.movements.size(); ++m) {
+      const MovementRt& mv = j.movements[m];
+      if (mv.controlled && mv.from_lane == lane && mv.to_edge == next_edge)
+        return static_cast<int>(m);
+    }
+    return -1;
+  }
+
+  void DetectArrivals() {
+    for (std::size_t a = 0; a < approaches.size(); ++a) {
+      ApproachRt& ap = approaches[a];
+      if (ap.head >= 0) continue;
+      if (sumo::LaneHaltingNumber(ap.lane) == 0) continue;
+      const std::vector<std::string> ids = sumo::LaneVehicleIDs(ap.lane);
+      if (ids.empty()) continue;
+      const auto it = index.find(ids.back());
+      if (it == index.end()) continue;
+      const int h = it->second;
+      Veh& v = vehs[h];
+      if (v.state != State::kFree || ap.skip == h) continue;
+      if (sumo::Speed(v.id) >= kHaltSpeed) continue;
+      if (ap.length - sumo::LanePosition(v.id) > kAtLine) continue;
+      JunctionRt& j = junctions[ap.junction];
+      CountProgress(h, sumo::RouteIndex(v.id));
+      KeepCirculating(h);
+      const int m = MovementFor(j, ap.lane, v);
+      if (m < 0) {
+        ap.skip = h;  // e.g. needs another lane for its next edge: SUMO's own logic
+        continue;
+      }
+      sumo::SetSpeed(v.id, 0.0);
+      v.state = State::kHeld;
+      v.junction = ap.junction;
+      v.movement = m;
+      v.approach = static_cast<int>(a);
+      v.arrival = now;
+      v.hold_odometer = sumo::Distance(v.id);
+      ap.head = h;
+      j.logic->Arrive(h, v.kind, m, now);
+    }
+  }
+
+  void Release(int h, bool reckless) {
+    (void)reckless;  // DR and DC alike: the controller decided the junction
+    Veh& v = vehs[h];
+    sumo::SetSpeedMode(v.id, kModeReleased);
+    sumo::SetSpeed(v.id, -1);
+    JunctionRt& j = junctions[v.junction];
+    if (now >= sc.warmup) {
+      const double wait = now - v.arrival;
+      j.run.wait_sum += wait;
+      j.run.wait_max = std::max(j.run.wait_max, wait);
+      ++j.run.held;
+    }
+    approaches[v.approach].head = -1;
+    v.state = State::kCrossing;
+    v.lane = j.movements[v.movement].from_lane;
+    crossing.push_back(h);
+  }
+
+  // The released vehicle's rear left the junction: SUMO's rules again.
+  void Clear(int h) {
+    Veh& v = vehs[h];
+    JunctionRt& j = junctions[v.junction];
+    j.logic->Cleared(h, now);
+    crossing.erase(std::remove(crossing.begin(), crossing.end(), h), crossing.end());
+    v.state = State::kFree;
+    v.junction = v.movement = v.approach = -1;
+    if (!v.alive) return;
+    sumo::SetSpeedMode(v.id, kModeDefault);
+    SetPaint(h, Paint::kType);
+    last_crossing = now;
+  }
+
+  // Figure-8: one shared route per starting edge, a lap long (added once at
+  // the start). A vehicle that cleared the centre switches to the one that
+  // starts on its edge, so it always reaches past the next stop line;
+  // nothing accumulates however long the run.
+  static std::string LapRoute(const std::string& edge) { return "lap_" + edge; }
+  std::vector<std::string> LapFrom(std::size_t start) const {
+    std::vector<std::string> route;
+    for (std::size_t i = 0; i < 4; ++i) route.push_back(scenario.lap[(start + i) % 4]);
+    return route;
+  }
+  // Figure-8: switches a vehicle on the last edge of its route to the lap
+  // starting there (from the once-a-second sampling, and at the stop line).
+  void KeepCirculating(int h) {
+    Veh& v = vehs[h];
+    if (scenario.lap.empty() || v.route_pos + 1 < static_cast<int>(v.route.size())) return;
+    ExtendLap(h);
+  }
+  void ExtendLap(int h) {
+    Veh& v = vehs[h];
+    const std::string edge = sumo::RoadID(v.id);
+    const auto it = std::find(scenario.lap.begin(), scenario.lap.end(), edge);
+    if (it == scenario.lap.end()) return;
+    CountProgress(h, sumo::RouteIndex(v.id));
+    sumo::SetRouteID(v.id, LapRoute(edge));
+    v.route.clear();
+    for (const std::string& e : LapFrom(static_cast<std::size_t>(it - scenario.lap.begin())))
+      v.route.push_back(EdgeIndex(e));
+    v.route_pos = 0;
+  }
+
+  bool ClearedJunction(const Veh& v, const std::string& lane) const {
+    const JunctionRt& j = junctions[v.junction];
+    const MovementRt& m = j.movements[v.movement];
+    if (lane == m.from_lane) return false;
+    if (std::find(m.internal.begin(), m.internal.end(), lane) != m.internal.end()) return false;
+    if (!lane.empty() && lane[0] == ':') return false;  // some other internal lane
+    if (lane == m.to_lane) return sumo::LanePosition(v.id) >= v.length;
+    return true;
+  }
+
+  void UpdateCrossing() {
+    const std::vector<int> now_crossing = crossing;
+    for (int h : now_crossing) {
+      Veh& v = vehs[h];
+      v.lane = sumo::LaneID(v.id);
+      if (ClearedJunction(v, v.lane)) Clear(h);
+    }
+  }
+
+  // ------------------------------------------------------------ nudges
+  void StartNudge(int h, double distance) {
+    Veh& v = vehs[h];
+    v.commanded = distance;
+    if (distance <= 0.0) {
+      v.state = State::kNudged;
+      FinishNudge(h, sumo::Distance(v.id) - v.hold_odometer);
+      return;
+    }
+    v.target = distance + kNudgeOvershoot;
+    sumo::SetSpeedMode(v.id, kModeCreep);
+    v.state = State::kNudging;
+    SetPaint(h, Paint::kNudging);
+    v.creep_speed = CreepSpeed(v.target, 0.0, 0.0, dt, sc.accel, sc.decel, sc.creep_speed);
+    sumo::SetSpeed(v.id, v.creep_speed);
+    nudging.push_back(h);
+  }
+
+  void UpdateNudges() {
+    const std::vector<int> now_nudging = nudging;
+    for (int h : now_nudging) {
+      Veh& v = vehs[h];
+      const double covered = sumo::Distance(v.id) - v.hold_odometer;
+      const double speed =
+          CreepSpeed(v.target, covered, v.creep_speed, dt, sc.accel, sc.decel, sc.creep_speed);
+      if (speed <= 0.0 && v.creep_speed <= 0.0) {
+        nudging.erase(std::remove(nudging.begin(), nudging.end(), h), nudging.end());
+        v.state = State::kNudged;
+        FinishNudge(h, covered);
+      } else {
+        v.creep_speed = speed;
+        sumo::SetSpeed(v.id, speed);
+      }
+    }
+  }
+
+  // The run checks every realised nudge: s <= d <= s + tolerance (a still
+  // AV: |d| <= tolerance).
+  void FinishNudge(int h, double observed) {
+    Veh& v = vehs[h];
+    const double s = v.commanded;
+    const bool ok = s > 0 ? (observed >= s - 1e-9 && observed <= s + kNudgeTolerance)
+                          : std::abs(observed) <= kNudgeTolerance;
+    if (!ok) {
+      if (sc.nudge_check == "error")
+        throw NudgeError("junction '" + junctions[v.junction].info.id + "', AV " + v.id +
+                         " at t = " + Fmt(now) + " s: commanded nudge " + Fmt(s) +
+                         " m, SUMO reported " + Fmt(observed) + " m (tolerance " +
+                         Fmt(kNudgeTolerance) +
+                         " m); set scenario.nudge_check: count to record it and go on");
+      ++out.nudges_unrealised;
+    }
+    junctions[v.junction].logic->NudgeDone(h, observed, now, *this);
+  }
+
+  // ------------------------------------------------------------ collisions
+  void AttributeCollisions() {
+    std::set<std::pair<std::string, std::string>> pairs;
+    for (const SumoCollision& c : sumo::Collisions())
+      pairs.insert(std::minmax(c.collider, c.victim));
+    for (const auto& pair : pairs) {
+      if (colliding.count(pair)) continue;  // the same episode as last step
+      const auto a = index.find(pair.first), b = index.find(pair.second);
+      bool matched = false;
+      if (a != index.end() && b != index.end()) {
+        for (JunctionRt& j : junctions) {
+          if (j.logic->Collided(a->second, b->second)) {
+            matched = true;
+            SetPaint(a->second, Paint::kCollided);
+            SetPaint(b->second, Paint::kCollided);
+            break;
+          }
+        }
+      }
+      if (!matched && now >= sc.warmup) ++out.other_collisions;
+    }
+    colliding = std::move(pairs);
+  }
+
+  // ------------------------------------------------------------ decisions
+  void Decide(JunctionRt& j) {
+    Env env;
+    env.self = this;
+    env.j = &j;
+    for (const Command& c : j.logic->Decide(now, env, *this)) {
+      if (c.kind == Command::Kind::kRelease) {
+        Release(c.vehicle, c.reckless);
+      } else {
+        StartNudge(c.vehicle, c.distance);
+      }
+    }
+    for (const junction::EncounterOutcome& e : j.logic->TakeFinished()) Record(j, e);
+  }
+
+  void Record(const JunctionRt& j, const junction::EncounterOutcome& e) {
+    if (e.time < sc.warmup) return;
+    EncounterRecord r;
+    r.time = e.time;
+    r.junction = j.info.id;
+    r.av = vehs[e.av].id;
+    r.hv = vehs[e.hv].id;
+    const MovementRt& am = j.movements[e.av_movement];
+    const MovementRt& hm = j.movements[e.hv_movement];
+    r.av_movement = am.from_lane + ">" + am.to_lane;
+    r.hv_movement = hm.from_lane + ">" + hm.to_lane;
+    r.av_dir = am.dir;
+    r.hv_dir = hm.dir;
+    r.intent_go = e.draw.intent_go;
+    r.commanded = e.draw.nudge_distance;
+    r.observed = e.reading.observed;
+    r.hv_trust = vehs[e.hv].trust;
+    r.posterior = e.reading.posterior;
+    r.hv_dc = e.reading.drives_if_clear;
+    r.av_first = e.draw.goes_first;
+    r.collision = e.collision;
+    r.decided_at = e.decided_at;
+    r.theory_dc = vehs[e.hv].theory.dc_rate;
+    r.theory_collision = vehs[e.hv].theory.collision_rate;
+    out.encounters.push_back(r);
+  }
+
+  void CheckStalls() {
+    for (JunctionRt& j : junctions) {
+      const JunctionLogic& l = *j.logic;
+      if (l.Waiting() == 0) {
+        j.waiting_since = -1;
+        continue;
+      }
+      if (j.waiting_since < 0) j.waiting_since = now;
+      const double since = std::max({j.waiting_since, l.LastActivity(), j.last_gap_refusal});
+      if (now - since > stall_limit)
+        throw ConfigError(
+            "junction '" + j.info.id + "' (" + j.run.rule + "): traffic stalled, " +
+            std::to_string(l.Waiting()) + " vehicles waiting at its stop lines and none " +
+            "entered or left it between t = " + Fmt(since) + " s and t = " + Fmt(now) + " s" +
+            (scenario.loop_length > 0
+                 ? " (scenario.loop_length = " + Fmt(scenario.loop_length) +
+                       " m; try a longer track or fewer vehicles)"
+                 : " (gridlock? lower the demand or check the network around it)"));
+    }
+  }
+
+  void Sample() {
+    if (now < sc.warmup) {
+      for (const auto& [id, h] : index) {
+        CountProgress(h, sumo::RouteIndex(id));
+        KeepCirculating(h);
+      }
+      return;
+    }
+    for (ApproachRt& ap : approaches) {
+      const double q = sumo::LaneHaltingNumber(ap.lane);
+      ap.stats.queue_max = std::max(ap.stats.queue_max, q);
+      ap.stats.queue_sum += q;
+      ++ap.stats.samples;
+    }
+    for (const auto& [id, h] : index) {
+      CountProgress(h, sumo::RouteIndex(id));
+      KeepCirculating(h);
+    }
+    if (scenario.kind == "network") {
+      const long pending = static_cast<long>(sumo::PendingVehicles().size());
+      out.network.pending_max = std::max(out.network.pending_max, pending);
+      out.network.pending_end = pending;
+    }
+  }
+
+  // ------------------------------------------------------------ members
+  const ExperimentConfig& cfg;
+  const ScenarioConfig& sc;
+  std::optional<Policy> policy;
+  const Scenario& scenario;
+  const net::NetFile& net;
+  ControllerOptions opts;
+  std::unique_ptr<persuasion::LikelihoodModel> model;
+  persuasion::AvHvParams params;
+  std::mt19937_64 rng;
+  PolicyRun out;
+  double dt = 0.1;
+  long sample_every = 10;
+  long steps = 0;
+  double now = 0;
+  double last_crossing = 0;
+  double stall_limit = 300;
+  static constexpr std::size_t kTrustListMax = 100000;
+
+  std::vector<Veh> vehs;
+  std::vector<int> free_slots;
+  std::unordered_map<std::string, int> index;
+  std::vector<JunctionRt> junctions;
+  std::map<std::string, int> junction_index;
+  std::vector<ApproachRt> approaches;
+  std::vector<Chain> chains;
+  std::map<std::string, int> chain_index;
+  std::unordered_map<std::string, int> edge_index;
+  std::vector<int> edge_junction;
+  std::vector<std::string> edge_names;
+  std::vector<int> crossing, nudging;
+  std::set<std::pair<std::string, std::string>> colliding;
+};
+
+NetworkController::NetworkController(const ExperimentConfig& config,
+                                     std::optional<persuasion::Policy> policy,
+                                     const Scenario& scenario, const net::NetFile& net,
+                                     const ControllerOptions& options)
+    : impl_(std::make_unique<Impl>(config, policy, scenario, net, options)) {}
+
+NetworkController::~NetworkController() = default;
+
+void NetworkController::Start() {
+  Impl& s = *impl_;
+  const ScenarioConfig& sc = s.sc;
+  s.out.sumo_version = sumo::Version();
+  if (!s.scenario.placed.empty()) {
+    sumo::AddVehicleType({"AV", sc.cruise_speed, sc.min_gap, sc.vehicle_length, sc.vehicle_width,
+                          sc.accel, sc.decel, kAvRgb[0], kAvRgb[1], kAvRgb[2]});
+    sumo::AddVehicleType({"HV", sc.cruise_speed, sc.min_gap, sc.vehicle_length, sc.vehicle_width,
+                          sc.accel, sc.decel, kHvRgb[0], kHvRgb[1], kHvRgb[2]});
+    for (std::size_t i = 0; i < s.scenario.lap.size(); ++i)
+      sumo::AddRoute(Impl::LapRoute(s.scenario.lap[i]), s.LapFrom(i));
+    for (const PlacedVehicle& v : s.scenario.placed)
+      sumo::AddVehicle(v.id, Impl::LapRoute(v.route.front()), v.is_av ? "AV" : "HV", v.depart_pos);
+  }
+  if (s.opts.stall_limit >= 0) {
+    s.stall_limit = s.opts.stall_limit;
+  } else if (s.scenario.loop_length > 0) {
+    // Free flow crosses at least once per loop; allow a full lap, the
+    // controller's own waits and a minute.
+    s.stall_limit =
+        2 * s.scenario.loop_length / sc.cruise_speed + sc.confirm_delay + sc.arrival_window + 60.0;
+  } else {
+    s.stall_limit = 300.0;
+  }
+  s.now = sumo::Time();
+  s.last_crossing = s.now;
+}
+
+void NetworkController::Step() {
+  Impl& s = *impl_;
+  s.now = sumo::Time();
+  ++s.steps;
+  if (sumo::TeleportNumber() > 0 && s.now >= s.sc.warmup) ++s.out.teleports;
+  if (sumo::DepartedNumber() > 0)
+    for (const std::string& id : sumo::DepartedIDs()) s.Register(id);
+  if (sumo::ArrivedNumber() > 0)
+    for (const std::string& id : sumo::ArrivedIDs()) s.Unregister(id);
+  if (sumo::CollidingNumber() > 0 || !s.colliding.empty()) s.AttributeCollisions();
+  if (s.policy) {
+    s.DetectArrivals();
+    s.UpdateCrossing();
+    s.UpdateNudges();
+    for (JunctionRt& j : s.junctions) s.Decide(j);
+    s.CheckStalls();
+    s.out.longest_gap_without_crossing =
+        std::max(s.out.longest_gap_without_crossing, s.now - s.last_crossing);
+  }
+  if (s.steps % s.sample_every == 0) s.Sample();
+}
+
+PolicyRun NetworkController::Finish() {
+  Impl& s = *impl_;
+  s.now = sumo::Time();
+  for (const auto& [id, h] : s.index) s.CountProgress(h, sumo::RouteIndex(id));
+  s.out.simulated_seconds = s.now;
+  s.out.measured_seconds = std::max(0.0, s.now - s.sc.warmup);
+  for (JunctionRt& j : s.junctions) {
+    for (std::size_t k = 0; k < j.approaches.size(); ++k)
+      j.run.approaches[k] = s.approaches[j.approaches[k]].stats;
+    s.out.crossings_av += j.run.crossings_av;
+    s.out.crossings_hv += j.run.crossings_hv;
+    s.out.wait_sum += j.run.wait_sum;
+    s.out.wait_max = std::max(s.out.wait_max, j.run.wait_max);
+    s.out.held += j.run.held;
+    s.out.junctions.push_back(j.run);
+  }
+  return std::move(s.out);
+}
+
+}  // namespace taebp

@@ -1,0 +1,96 @@
+#include "taebp/scenario/demand.h"
+
+#include "taebp/config/config.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <stdexcept>
+
+namespace taebp {
+namespace {
+
+// A portable uniform in [0, 1) (the standard distributions are
+// implementation-defined).
+double Uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+}  // namespace
+
+FringeEdges FindFringe(const net::NetFile& net) {
+  FringeEdges f;
+  for (const auto& [id, e] : net.edges()) {
+    if (!e.function.empty()) continue;
+    const net::Junction* from = net.FindJunction(e.from);
+    const net::Junction* to = net.FindJunction(e.to);
+    if (from && from->type == "dead_end") f.entries.push_back(id);
+    if (to && to->type == "dead_end") f.exits.push_back(id);
+  }
+  return f;
+}
+
+std::vector<Trip> FringeTrips(const net::NetFile& net, const DemandSpec& spec) {
+  const FringeEdges f = FindFringe(net);
+  if (f.entries.empty() || f.exits.empty())
+    throw std::invalid_argument("the network " + net.path() +
+                                " has no fringe (no edge from or to a dead-end junction) for "
+                                "generated demand; give scenario.routes instead");
+  std::vector<Trip> trips;
+  const double rate = spec.flow / 3600.0;  // per second
+  for (std::size_t k = 0; k < f.entries.size(); ++k) {
+    const std::string& entry = f.entries[k];
+    const std::string from_junction = net.FindEdge(entry)->from;
+    std::vector<std::string> exits;
+    for (const std::string& x : f.exits)
+      if (net.FindEdge(x)->to != from_junction) exits.push_back(x);
+    if (exits.empty()) continue;
+    // One stream per entry edge: adding an edge does not shift the others.
+    std::seed_seq seq{static_cast<std::uint32_t>(spec.seed & 0xffffffffu),
+                      static_cast<std::uint32_t>(spec.seed >> 32), 0x64656d64u,
+                      static_cast<std::uint32_t>(k)};
+    std::mt19937_64 rng(seq);
+    double t = spec.begin;
+    for (;;) {
+      t += -std::log1p(-Uniform01(rng)) / rate;
+      if (t >= spec.end) break;
+      const std::size_t pick =
+          std::min(exits.size() - 1, static_cast<std::size_t>(Uniform01(rng) * exits.size()));
+      trips.push_back({"", t, entry, exits[pick]});
+    }
+  }
+  std::stable_sort(trips.begin(), trips.end(),
+                   [](const Trip& a, const Trip& b) { return a.depart < b.depart; });
+  for (std::size_t i = 0; i < trips.size(); ++i) trips[i].id = "d" + std::to_string(i);
+  return trips;
+}
+
+long WriteFringeDemand(const net::NetFile& net, const DemandSpec& spec, const std::string& path) {
+  std::vector<Trip> trips;
+  try {
+    trips = FringeTrips(net, spec);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(std::string("scenario.demand: ") + e.what());
+  }
+  std::ofstream out(path);
+  if (!out) throw ConfigError("scenario.demand: cannot write " + path);
+  char buf[512];
+  out << "<routes>\n";
+  std::snprintf(buf, sizeof buf,
+                "    <vType id=\"car\" length=\"%.6g\" width=\"%.6g\" minGap=\"%.6g\" accel=\"%.6g\" "
+                "decel=\"%.6g\" maxSpeed=\"%.6g\" sigma=\"0\" speedDev=\"0\"/>\n",
+                spec.length, spec.width, spec.min_gap, spec.accel, spec.decel, spec.max_speed);
+  out << buf;
+  for (const Trip& t : trips) {
+    std::snprintf(buf, sizeof buf,
+                  "    <trip id=\"%s\" type=\"car\" depart=\"%.2f\" from=\"%s\" to=\"%s\" "
+                  "departLane=\"best\" departSpeed=\"max\"/>\n",
+                  t.id.c_str(), t.depart, t.from.c_str(), t.to.c_str());
+    out << buf;
+  }
+  out << "</routes>\n";
+  if (!out) throw ConfigError("scenario.demand: writing " + path + " failed");
+  return static_cast<long>(trips.size());
+}
+
+}  // namespace taebp
