@@ -5,42 +5,6 @@
 
 namespace taebp {
 
-RightOfWay DecideRightOfWay(const std::optional<Head>& a, const std::optional<Head>& b,
-                            double now, double window) {
-  RightOfWay out;
-  if (!a && !b) return out;
-  if (!a || !b) {
-    const Head& h = a ? *a : *b;
-    if (now >= h.ready + window) {
-      out.kind = RightOfWay::Kind::kRelease;
-      out.first = h.vehicle;
-    }
-    return out;
-  }
-  // Both heads present: they meet if they became ready within `window`.
-  const Head& early = (a->ready <= b->ready) ? *a : *b;
-  const Head& late = (a->ready <= b->ready) ? *b : *a;
-  if (late.ready - early.ready > window) {
-    // The early one had looked long enough before the other arrived.
-    out.kind = RightOfWay::Kind::kRelease;
-    out.first = early.vehicle;
-    return out;
-  }
-  if (a->kind != b->kind) {
-    out.kind = RightOfWay::Kind::kEncounter;
-    out.first = (a->kind == VehicleKind::kAV) ? a->vehicle : b->vehicle;
-    out.second = (a->kind == VehicleKind::kAV) ? b->vehicle : a->vehicle;
-    return out;
-  }
-  // Two of a kind: by arrival time, then approach 0 first.
-  const Head* first = a.operator->();
-  if (b->arrival < a->arrival || (b->arrival == a->arrival && b->approach < a->approach))
-    first = b.operator->();
-  out.kind = RightOfWay::Kind::kRelease;
-  out.first = first->vehicle;
-  return out;
-}
-
 double Uniform01(std::mt19937_64& rng) {
   return static_cast<double>(rng() >> 11) * 0x1.0p-53;
 }

@@ -33,13 +33,29 @@ void JunctionLogic::Arrive(int vehicle, VehicleKind kind, int movement, double n
 
 void JunctionLogic::Cleared(int vehicle, double now) {
   last_activity_ = now;
-  inside_.erase(std::remove_if(inside_.begin(), inside_.end(),
-                               [&](const Inside& in) { return in.vehicle == vehicle; }),
-                inside_.end());
+  // The heads this vehicle blocked are ready (start looking) from now on.
+  auto unblock = [&](int movement) {
+    for (HeadState& h : heads_)
+      if (spec_.Conflict(h.movement, movement)) h.ready = std::max(h.ready, now);
+  };
+  for (auto it = inside_.begin(); it != inside_.end();) {
+    if (it->vehicle == vehicle) {
+      unblock(it->movement);
+      it = inside_.erase(it);
+    } else {
+      ++it;
+    }
+  }
   for (auto it = encounters_.begin(); it != encounters_.end(); ++it) {
     Active& e = *it;
-    if (e.out.av == vehicle) e.av_cleared = true;
-    if (e.out.hv == vehicle) e.hv_cleared = true;
+    if (e.out.av == vehicle) {
+      e.av_cleared = true;
+      unblock(e.out.av_movement);
+    }
+    if (e.out.hv == vehicle) {
+      e.hv_cleared = true;
+      unblock(e.out.hv_movement);
+    }
     if (e.av_cleared && e.hv_cleared) {
       finished_.push_back(e.out);
       encounters_.erase(it);
@@ -104,21 +120,15 @@ std::vector<Command> JunctionLogic::Decide(double now, Environment& env, Encount
   }
   if (heads_.empty()) return out;
 
-  // A head that was blocked by a vehicle in the junction is ready again from
-  // the moment the junction became free for it.
+  // A head is ready from its arrival, or from when the vehicles it conflicted
+  // with cleared (Cleared), whichever is later.
   const std::size_t n = heads_.size();
-  std::vector<char> blocked(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    HeadState& h = heads_[i];
-    blocked[i] = Blocked(h.movement);
-    if (blocked[i]) h.ready = std::max(h.ready, now);
-  }
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
+  // First come, first served: by arrival at the line, then approach order.
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     const HeadState& x = heads_[a];
     const HeadState& y = heads_[b];
-    if (x.ready != y.ready) return x.ready < y.ready;
     if (x.arrival != y.arrival) return x.arrival < y.arrival;
     const int ax = spec_.movements[x.movement].approach, ay = spec_.movements[y.movement].approach;
     if (ax != ay) return ax < ay;
@@ -165,7 +175,7 @@ std::vector<Command> JunctionLogic::Decide(double now, Environment& env, Encount
       const std::size_t p = order[q];
       if (done[p] || !conflict(i, p)) continue;
       const HeadState& ph = heads_[p];
-      if (ph.ready > h.ready + timing_.arrival_window + eps) break;  // sorted by ready
+      if (ph.ready > h.ready + timing_.arrival_window + eps) continue;  // came too late
       if (Blocked(ph.movement) || earlier_conflict(q, p, i)) continue;
       if (!has_room(p) || !major_clear(p)) continue;
       partner = p;

@@ -1,6 +1,6 @@
-// The SUMO-free decision logic at the two-way stop: right of way, the AV's
-// draws, the HV's reading of a nudge, the release sequence of an encounter and
-// the creep profile of a nudge.
+// The SUMO-free pieces of an encounter: the AV's draws, the HV's reading of a
+// nudge, the release sequence and the creep profile of a nudge. (Right of way
+// at a junction: right_of_way_test.cc and the JunctionLogic tests.)
 #include "taebp/junction/intersection.h"
 
 #include "taebp/persuasion/av_hv.h"
@@ -21,116 +21,6 @@ namespace taebp {
 namespace {
 
 namespace per = persuasion;
-using Kind = RightOfWay::Kind;
-
-Head MakeHead(int vehicle, VehicleKind kind, int approach, double arrival, double ready) {
-  Head h;
-  h.vehicle = vehicle;
-  h.kind = kind;
-  h.approach = approach;
-  h.arrival = arrival;
-  h.ready = ready;
-  return h;
-}
-
-// ------------------------------------------------------------------ right of way
-
-TEST(RightOfWay, NobodyWaitingIsWait) {
-  EXPECT_EQ(DecideRightOfWay(std::nullopt, std::nullopt, 100.0, 1.0).kind, Kind::kWait);
-}
-
-TEST(RightOfWay, LoneHeadWaitsTheWindowThenGoes) {
-  const double window = 1.0;
-  for (VehicleKind kind : {VehicleKind::kAV, VehicleKind::kHV}) {
-    for (int approach : {0, 1}) {
-      const Head h = MakeHead(7, kind, approach, 10.0, 12.0);
-      const std::optional<Head> some = h, none;
-      const std::optional<Head>& a = approach == 0 ? some : none;
-      const std::optional<Head>& b = approach == 0 ? none : some;
-      // Looking both ways: still waiting until ready + window.
-      for (double now : {12.0, 12.5, 12.99}) {
-        EXPECT_EQ(DecideRightOfWay(a, b, now, window).kind, Kind::kWait) << now;
-      }
-      for (double now : {13.0, 13.1, 50.0}) {
-        const RightOfWay r = DecideRightOfWay(a, b, now, window);
-        EXPECT_EQ(r.kind, Kind::kRelease) << now;
-        EXPECT_EQ(r.first, 7);
-      }
-    }
-  }
-  // A zero window releases at once.
-  const RightOfWay r = DecideRightOfWay(MakeHead(3, VehicleKind::kHV, 0, 5, 5), std::nullopt, 5, 0);
-  EXPECT_EQ(r.kind, Kind::kRelease);
-  EXPECT_EQ(r.first, 3);
-}
-
-TEST(RightOfWay, AvAndHvWithinTheWindowMeetWithTheAvFirst) {
-  const double window = 1.0;
-  for (bool av_on_a : {true, false}) {
-    for (double gap : {0.0, 0.4, 1.0}) {
-      for (bool av_earlier : {true, false}) {
-        const double t_av = av_earlier ? 20.0 : 20.0 + gap;
-        const double t_hv = av_earlier ? 20.0 + gap : 20.0;
-        const Head av = MakeHead(1, VehicleKind::kAV, av_on_a ? 0 : 1, t_av, t_av);
-        const Head hv = MakeHead(2, VehicleKind::kHV, av_on_a ? 1 : 0, t_hv, t_hv);
-        const RightOfWay r = av_on_a ? DecideRightOfWay(av, hv, 21.0, window)
-                                     : DecideRightOfWay(hv, av, 21.0, window);
-        EXPECT_EQ(r.kind, Kind::kEncounter) << gap;
-        EXPECT_EQ(r.first, 1);
-        EXPECT_EQ(r.second, 2);
-      }
-    }
-  }
-}
-
-TEST(RightOfWay, BeyondTheWindowTheEarlierGoes) {
-  const double window = 1.0;
-  // Any kinds: the early head had looked both ways long enough.
-  for (VehicleKind ka : {VehicleKind::kAV, VehicleKind::kHV}) {
-    for (VehicleKind kb : {VehicleKind::kAV, VehicleKind::kHV}) {
-      const Head a = MakeHead(10, ka, 0, 30.0, 30.0);
-      const Head b = MakeHead(11, kb, 1, 31.2, 31.2);
-      RightOfWay r = DecideRightOfWay(a, b, 31.2, window);
-      EXPECT_EQ(r.kind, Kind::kRelease);
-      EXPECT_EQ(r.first, 10);
-      // Same with the early head on approach 1.
-      const Head a2 = MakeHead(10, ka, 0, 31.2, 31.2);
-      const Head b2 = MakeHead(11, kb, 1, 30.0, 30.0);
-      r = DecideRightOfWay(a2, b2, 31.2, window);
-      EXPECT_EQ(r.kind, Kind::kRelease);
-      EXPECT_EQ(r.first, 11);
-    }
-  }
-  // Readiness, not arrival, decides: both arrived long apart but the junction
-  // only became free at 40, so they are ready together and meet.
-  const Head av = MakeHead(1, VehicleKind::kAV, 0, 30.0, 40.0);
-  const Head hv = MakeHead(2, VehicleKind::kHV, 1, 38.0, 40.0);
-  const RightOfWay r = DecideRightOfWay(av, hv, 40.0, window);
-  EXPECT_EQ(r.kind, Kind::kEncounter);
-}
-
-TEST(RightOfWay, SameKindCrossByArrivalTiesToApproachZero) {
-  const double window = 1.0;
-  for (VehicleKind kind : {VehicleKind::kAV, VehicleKind::kHV}) {
-    // Ready together (junction became free at 50), b arrived first.
-    const Head a = MakeHead(4, kind, 0, 48.0, 50.0);
-    const Head b = MakeHead(5, kind, 1, 45.0, 50.0);
-    RightOfWay r = DecideRightOfWay(a, b, 50.0, window);
-    EXPECT_EQ(r.kind, Kind::kRelease);
-    EXPECT_EQ(r.first, 5);
-    // a arrived first.
-    r = DecideRightOfWay(MakeHead(4, kind, 0, 44.0, 50.0), b, 50.0, window);
-    EXPECT_EQ(r.kind, Kind::kRelease);
-    EXPECT_EQ(r.first, 4);
-    // Tie: approach 0 first, wherever it is passed.
-    const Head t0 = MakeHead(8, kind, 0, 47.0, 50.0);
-    const Head t1 = MakeHead(9, kind, 1, 47.0, 50.0);
-    EXPECT_EQ(DecideRightOfWay(t0, t1, 50.0, window).first, 8);
-    EXPECT_EQ(DecideRightOfWay(t1, t0, 50.0, window).first, 8);
-    EXPECT_EQ(DecideRightOfWay(t1, t0, 50.0, window).kind, Kind::kRelease);
-  }
-}
-
 // ------------------------------------------------------------------ randomness
 
 TEST(Uniform01, InUnitIntervalAndPortable) {

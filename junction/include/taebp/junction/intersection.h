@@ -1,44 +1,18 @@
-// Decision logic at the two-way stop, free of SUMO so it can be unit-tested:
-// right of way between the two approach heads, the AV's draw of intent and
-// signal, the HV's reading of the observed nudge, the encounter's sequence of
-// releases, and the creep profile of a nudge.
+// The pieces of one AV-HV encounter, free of SUMO so they can be unit-tested:
+// the AV's draw of intent and signal, the HV's reading of the observed nudge,
+// the encounter's sequence of releases, and the creep profile of a nudge.
+// (Who meets whom at a junction: junction_logic.h.)
 #pragma once
 
 #include "taebp/persuasion/outcomes.h"
 
 #include <cstdint>
-#include <optional>
 #include <random>
 #include <vector>
 
 namespace taebp {
 
 enum class VehicleKind { kAV, kHV };
-
-// ---------------------------------------------------------------- right of way
-// A vehicle held at the stop line of one approach (the head of its queue).
-struct Head {
-  int vehicle = -1;      // caller's index
-  VehicleKind kind = VehicleKind::kHV;
-  int approach = 0;      // 0 or 1
-  double arrival = 0.0;  // time it came to a stop at the line
-  double ready = 0.0;    // max(arrival, time the junction last became free)
-};
-
-struct RightOfWay {
-  enum class Kind { kWait, kRelease, kEncounter };
-  Kind kind = Kind::kWait;
-  int first = -1;   // kRelease: the vehicle to release; kEncounter: the AV
-  int second = -1;  // kEncounter: the HV
-};
-
-// Called when the junction is free. A head is released once it has been ready
-// for `window` seconds with no head ready on the other approach (it looks both
-// ways); if the other head becomes ready within `window` of the first, the two
-// meet: an AV and an HV form an encounter, two of a kind cross by arrival time
-// (earlier arrival first; ties: approach 0 first).
-RightOfWay DecideRightOfWay(const std::optional<Head>& a, const std::optional<Head>& b,
-                            double now, double window);
 
 // ---------------------------------------------------------------- randomness
 // A portable uniform draw in [0, 1) from a 64-bit Mersenne twister (the

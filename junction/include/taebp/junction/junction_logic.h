@@ -5,20 +5,21 @@
 //
 // Rules (README "Junctions and right of way"):
 // - all-way stop: every approach stops; heads go first come, first served
-//   (by the time they became ready, then arrival, then approach order); a
-//   head whose movement does not conflict with anything in or entering the
-//   junction, nor with an earlier waiting head, may go at the same time as
-//   others.
+//   (by arrival at the line, then approach order); a head whose movement
+//   conflicts with nothing in or entering the junction, nor with an earlier
+//   waiting head, may go at the same time as others (followers on the same
+//   movement, opposite straights, right turns).
 // - two-way stop: only the minor approaches (SUMO's stop links) are held;
 //   the major road keeps SUMO's priority. A minor head also needs the major
 //   road clear (Environment::MajorClear: no major vehicle within the
 //   critical gap on a conflicting movement).
 // - A head "looks both ways" for `arrival_window` seconds after it became
-//   ready (arrived, or the junction became free for it). If a conflicting
-//   head became ready within that window, the two meet: an AV and an HV form
-//   an AV-HV encounter (the paper's two-player game); two of a kind go by
-//   arrival time. Meetings are pairwise: a third conflicting head waits for
-//   the encounter to finish, so every decision stays the two-player game.
+//   ready (arrived, or the last conflicting vehicle in the junction cleared).
+//   A conflicting head that was ready by the end of that window meets it: an
+//   AV and an HV form an AV-HV encounter (the paper's two-player game); two
+//   of a kind go by arrival time. Meetings are pairwise: a third conflicting
+//   head waits for the encounter to finish, so every decision stays the
+//   two-player game.
 // - Keep clear: a head whose exit cannot take it with its rear off the
 //   junction (Environment::ExitHasRoom) is not considered; it blocks nobody.
 #pragma once
@@ -136,7 +137,7 @@ class JunctionLogic {
     VehicleKind kind;
     int movement;
     double arrival;
-    double ready;
+    double ready;  // max(arrival, when the last conflicting vehicle cleared)
   };
   struct Inside {  // released, not yet cleared
     int vehicle;
