@@ -68,7 +68,111 @@ Stats Compute(const PolicyRun& r) {
 
 double Rate(long k, long n) { return n > 0 ? static_cast<double>(k) / n : 0.0; }
 
+// The encounter statistics of one junction.
+Stats ComputeAt(const PolicyRun& r, const std::string& junction) {
+  PolicyRun only;
+  for (const EncounterRecord& e : r.encounters)
+    if (e.junction == junction) only.encounters.push_back(e);
+  return Compute(only);
+}
+
+double PerHour(double count, double seconds) { return seconds > 0 ? count * 3600.0 / seconds : 0.0; }
+
+json RatesJson(const Stats& s) {
+  const Interval ci_c = Wilson95(s.collisions, s.n);
+  const Interval ci_d = Wilson95(s.dc, s.n);
+  json j;
+  j["encounters"] = s.n;
+  j["collisions"] = s.collisions;
+  j["collision_rate"] = Rate(s.collisions, s.n);
+  j["collision_rate_ci95"] = {ci_c.low, ci_c.high};
+  j["dc"] = s.dc;
+  j["dc_rate"] = Rate(s.dc, s.n);
+  j["dc_rate_ci95"] = {ci_d.low, ci_d.high};
+  j["theory_given_hvs"] = {{"collision_rate", s.n ? s.theory_collision_sum / s.n : 0.0},
+                           {"dc_rate", s.n ? s.theory_dc_sum / s.n : 0.0}};
+  return j;
+}
+
+json JunctionJson(const PolicyRun& r, const JunctionRun& jr) {
+  json j;
+  j["id"] = jr.id;
+  j["type"] = jr.type;
+  j["original_type"] = jr.original_type;
+  j["rule"] = jr.rule;
+  const long all = jr.crossings_av + jr.crossings_hv;
+  j["crossings"] = {{"av", jr.crossings_av}, {"hv", jr.crossings_hv}, {"all", all}};
+  j["throughput_per_hour"] = PerHour(static_cast<double>(all), r.measured_seconds);
+  j["held"] = jr.held;
+  j["wait_at_stop_line"] = {{"mean", jr.held ? jr.wait_sum / jr.held : 0.0}, {"max", jr.wait_max}};
+  json approaches = json::array();
+  for (const ApproachStats& a : jr.approaches)
+    approaches.push_back({{"lane", a.lane},
+                          {"queue_max", a.queue_max},
+                          {"queue_mean", a.samples ? a.queue_sum / a.samples : 0.0}});
+  j["approaches"] = approaches;
+  const json rates = RatesJson(ComputeAt(r, jr.id));
+  for (auto it = rates.begin(); it != rates.end(); ++it) j[it.key()] = it.value();
+  return j;
+}
+
+json NetworkJson(const PolicyRun& r) {
+  const NetworkRun& n = r.network;
+  json j;
+  j["departed"] = n.departed;
+  j["arrived"] = n.arrived;
+  j["served_flow_per_hour"] = PerHour(static_cast<double>(n.arrived), r.measured_seconds);
+  j["waiting_to_depart"] = {{"max", n.pending_max}, {"end", n.pending_end}};
+  j["trips"] = n.trips;
+  j["trip_duration_mean"] = n.trips ? n.duration_sum / n.trips : 0.0;
+  j["time_loss_mean"] = n.trips ? n.time_loss_sum / n.trips : 0.0;
+  j["time_loss_max"] = n.time_loss_max;
+  j["waiting_time_mean"] = n.trips ? n.waiting_time_sum / n.trips : 0.0;
+  return j;
+}
+
 }  // namespace
+
+std::string CsvCell(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
+  std::ostringstream out;
+  out << "policy,junction,type,original_type,rule,crossings_av,crossings_hv,"
+         "throughput_per_hour,held,wait_mean,wait_max,queue_max,queue_mean,encounters,dc,"
+         "dc_rate,collisions,collision_rate,theory_dc_rate,theory_collision_rate\n";
+  for (const PolicyRun& r : runs) {
+    for (const JunctionRun& jr : r.junctions) {
+      const Stats s = ComputeAt(r, jr.id);
+      double qmax = 0, qsum = 0;
+      long samples = 0;
+      for (const ApproachStats& a : jr.approaches) {
+        qmax = std::max(qmax, a.queue_max);
+        qsum += a.queue_sum;
+        samples += a.samples;
+      }
+      // Mean queue per approach lane.
+      const double qmean = samples ? qsum / samples : 0.0;
+      out << CsvCell(r.policy) << ',' << CsvCell(jr.id) << ',' << jr.type << ','
+          << jr.original_type << ',' << jr.rule << ',' << jr.crossings_av << ','
+          << jr.crossings_hv << ','
+          << FormatDouble(PerHour(static_cast<double>(jr.crossings_av + jr.crossings_hv),
+                                  r.measured_seconds))
+          << ',' << jr.held << ',' << FormatDouble(jr.held ? jr.wait_sum / jr.held : 0.0) << ','
+          << FormatDouble(jr.wait_max) << ',' << FormatDouble(qmax) << ','
+          << FormatDouble(qmean) << ',' << s.n << ',' << s.dc << ','
+          << FormatDouble(Rate(s.dc, s.n)) << ',' << s.collisions << ','
+          << FormatDouble(Rate(s.collisions, s.n)) << ','
+          << FormatDouble(s.n ? s.theory_dc_sum / s.n : 0.0) << ','
+          << FormatDouble(s.n ? s.theory_collision_sum / s.n : 0.0) << '\n';
+    }
+  }
+  return out.str();
+}
 
 std::string FormatDouble(double v) {
   char buf[64];
@@ -106,7 +210,7 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
     const Stats s = Compute(r);
     const Interval ci_c = Wilson95(s.collisions, s.n);
     const Interval ci_d = Wilson95(s.dc, s.n);
-    const double hours = r.simulated_seconds / 3600.0;
+    const double hours = r.measured_seconds / 3600.0;
     json j;
     j["encounters"] = s.n;
     j["collisions"] = s.collisions;
@@ -133,7 +237,8 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
                                 {"hv", hours > 0 ? r.crossings_hv / hours : 0.0},
                                 {"all", hours > 0 ? all / hours : 0.0}};
     j["crossings"] = {{"av", r.crossings_av}, {"hv", r.crossings_hv}, {"all", all}};
-    j["wait_at_stop_line"] = {{"mean", all > 0 ? r.wait_sum / all : 0.0}, {"max", r.wait_max}};
+    j["wait_at_stop_line"] = {{"mean", r.held > 0 ? r.wait_sum / r.held : 0.0},
+                              {"max", r.wait_max}};
     j["nudges"] = {{"count", s.nudges},
                    {"mean_commanded", s.nudges ? s.commanded_sum / s.nudges : 0.0},
                    {"mean_observed", s.nudges ? s.observed_sum / s.nudges : 0.0},
@@ -144,6 +249,12 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
     j["teleports"] = r.teleports;
     j["longest_gap_without_crossing"] = r.longest_gap_without_crossing;
     j["simulated_seconds"] = r.simulated_seconds;
+    j["measured_seconds"] = r.measured_seconds;
+    j["nudges_unrealised"] = r.nudges_unrealised;
+    json junctions = json::array();
+    for (const JunctionRun& jr : r.junctions) junctions.push_back(JunctionJson(r, jr));
+    j["junctions"] = junctions;
+    if (r.scenario_kind == "network") j["network"] = NetworkJson(r);
     pol[r.policy] = j;
   }
   return root.dump(2) + "\n";
@@ -154,11 +265,14 @@ std::string EncountersCsv(const std::vector<PolicyRun>& runs, const Provenance& 
   out << "# taebp " << prov.taebp_version << " git " << prov.git_revision << " | "
       << prov.sumo_version << " | seed " << prov.seed << " | config " << prov.config_path
       << "\n# config " << prov.config_json << "\n";
-  out << "policy,time,av,hv,intent,commanded_nudge,observed_displacement,hv_trust,"
-         "hv_posterior,hv_action,av_action,collision\n";
+  out << "policy,time,junction,av,hv,av_movement,hv_movement,av_dir,hv_dir,intent,"
+         "commanded_nudge,observed_displacement,hv_trust,hv_posterior,hv_action,av_action,"
+         "collision\n";
   for (const PolicyRun& r : runs) {
     for (const EncounterRecord& e : r.encounters) {
-      out << r.policy << ',' << FormatDouble(e.time) << ',' << e.av << ',' << e.hv << ','
+      out << r.policy << ',' << FormatDouble(e.time) << ',' << CsvCell(e.junction) << ','
+          << CsvCell(e.av) << ',' << CsvCell(e.hv) << ',' << CsvCell(e.av_movement) << ','
+          << CsvCell(e.hv_movement) << ',' << e.av_dir << ',' << e.hv_dir << ','
           << (e.intent_go ? "go" : "stop") << ',' << FormatDouble(e.commanded) << ','
           << FormatDouble(e.observed) << ',' << FormatDouble(e.hv_trust) << ',' << FormatDouble(e.posterior) << ','
           << (e.hv_dc ? "DC" : "DR") << ',' << (e.av_first ? "go" : "wait") << ','
@@ -176,6 +290,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs) {
   auto cell = [&](long k, long n, double theory) {
     const Interval ci = Wilson95(k, n);
     char buf[96];
+    if (n == 0 && theory < 0) return std::string("- (SUMO's own logic)");
     if (n == 0) {
       std::snprintf(buf, sizeof buf, "n/a (no AV-HV encounter) th %.3f", theory);
       return std::string(buf);
@@ -188,15 +303,19 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs) {
   for (const PolicyRun& r : runs) stats.push_back(Compute(r));
   out << std::setw(w0) << "Collision Rate";
   for (std::size_t i = 0; i < runs.size(); ++i)
-    out << std::setw(w) << cell(stats[i].collisions, stats[i].n, runs[i].theory.collision_rate);
+    out << std::setw(w)
+        << cell(stats[i].collisions, stats[i].n,
+                runs[i].policy == "sumo_native" ? -1.0 : runs[i].theory.collision_rate);
   out << "\n" << std::setw(w0) << "DC Rate";
   for (std::size_t i = 0; i < runs.size(); ++i)
-    out << std::setw(w) << cell(stats[i].dc, stats[i].n, runs[i].theory.dc_rate);
+    out << std::setw(w)
+        << cell(stats[i].dc, stats[i].n, runs[i].policy == "sumo_native" ? -1.0 : runs[i].theory.dc_rate);
   out << "\n" << std::setw(w0) << "AV-HV encounters";
   for (std::size_t i = 0; i < runs.size(); ++i) out << std::setw(w) << stats[i].n;
-  out << "\n" << std::setw(w0) << "Crossings / hour";
+  const bool network = !runs.empty() && runs.front().scenario_kind == "network";
+  out << "\n" << std::setw(w0) << (network ? "Junction crossings/h" : "Crossings / hour");
   for (const PolicyRun& r : runs) {
-    const double h = r.simulated_seconds / 3600.0;
+    const double h = r.measured_seconds / 3600.0;
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.0f (AV %.0f, HV %.0f)",
                   h > 0 ? (r.crossings_av + r.crossings_hv) / h : 0.0,
@@ -205,12 +324,42 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs) {
   }
   out << "\n" << std::setw(w0) << "Mean / max wait (s)";
   for (const PolicyRun& r : runs) {
-    const long all = r.crossings_av + r.crossings_hv;
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%.1f / %.1f", all ? r.wait_sum / all : 0.0, r.wait_max);
+    if (r.held == 0)
+      std::snprintf(buf, sizeof buf, "n/a (SUMO's own logic)");
+    else
+      std::snprintf(buf, sizeof buf, "%.1f / %.1f", r.wait_sum / r.held, r.wait_max);
     out << std::setw(w) << buf;
   }
   out << "\n";
+  if (network) {
+    auto row = [&](const char* label, auto cell) {
+      out << std::setw(w0) << label;
+      for (const PolicyRun& r : runs) out << std::setw(w) << cell(r);
+      out << "\n";
+    };
+    row("Served flow (veh/h)", [](const PolicyRun& r) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.0f (%ld in, %ld out)",
+                    PerHour(static_cast<double>(r.network.arrived), r.measured_seconds),
+                    r.network.departed, r.network.arrived);
+      return std::string(buf);
+    });
+    row("Mean delay (s)", [](const PolicyRun& r) {
+      char buf[64];
+      const NetworkRun& n = r.network;
+      std::snprintf(buf, sizeof buf, "%.1f loss, %.1f waiting",
+                    n.trips ? n.time_loss_sum / n.trips : 0.0,
+                    n.trips ? n.waiting_time_sum / n.trips : 0.0);
+      return std::string(buf);
+    });
+    row("Waiting to depart", [](const PolicyRun& r) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%ld at end (max %ld)", r.network.pending_end,
+                    r.network.pending_max);
+      return std::string(buf);
+    });
+  }
   out << "(rate [95% Wilson interval] th = library theory for the same parameters)\n";
 }
 

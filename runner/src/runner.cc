@@ -17,6 +17,7 @@ std::vector<std::pair<std::string, std::string>> ExperimentResult::Files() const
   timing["wall_seconds_total"] = wall_seconds;
   return {{"summary.json", SummaryJson(runs, provenance)},
           {"encounters.csv", EncountersCsv(runs, provenance)},
+          {"junctions.csv", JunctionsCsv(runs)},
           {"config.yaml", ToYaml(config)},
           {"timing.json", timing.dump(2) + "\n"}};
 }

@@ -389,15 +389,17 @@ TEST(CliRun, WritesDocumentedOutputsDeterministically) {
   std::string header;
   const std::vector<std::string> rows = CsvRows(csv_a, &header);
   EXPECT_EQ(header,
-            "policy,time,av,hv,intent,commanded_nudge,observed_displacement,hv_trust,"
-            "hv_posterior,hv_action,av_action,collision");
+            "policy,time,junction,av,hv,av_movement,hv_movement,av_dir,hv_dir,intent,"
+            "commanded_nudge,observed_displacement,hv_trust,hv_posterior,hv_action,av_action,"
+            "collision");
   std::map<std::string, long> n, collisions, dc;
   for (const std::string& row : rows) {
     const std::vector<std::string> f = Split(row);
-    ASSERT_EQ(f.size(), 12u) << row;
+    ASSERT_EQ(f.size(), 17u) << row;
     ++n[f[0]];
-    collisions[f[0]] += f[11] == "1";
-    dc[f[0]] += f[9] == "DC";
+    EXPECT_EQ(f[2], "C") << row;  // the figure-8's centre
+    collisions[f[0]] += f[16] == "1";
+    dc[f[0]] += f[14] == "DC";
   }
 
   const per::AvHvParams params{0.2, 3.0};
@@ -442,7 +444,8 @@ TEST(CliRun, BadInputExitsNonZeroAndLeavesTheOutputUntouched) {
       {"scenario.avss=1", kExitConfig, {"--set scenario.avss=1", "scenario.avss"}},
       {"scenario.network=/nonexistent.net.xml", kExitConfig,
        {"scenario.network", "/nonexistent.net.xml"}},
-      {"scenario.network=" + garbage, kExitSumo, {garbage}},
+      // Not a SUMO network: refused before SUMO starts, naming the key and file.
+      {"scenario.network=" + garbage, kExitConfig, {"scenario.network", garbage}},
   };
   const std::string sentinel = "{\"sentinel\": true}\n";
   for (const Case& c : cases) {

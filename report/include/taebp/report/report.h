@@ -33,6 +33,11 @@ std::string TaebpVersion();
 std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& provenance);
 // encounters.csv text: one row per AV-HV encounter, policy first.
 std::string EncountersCsv(const std::vector<PolicyRun>& runs, const Provenance& provenance);
+// junctions.csv text: one row per (policy, controlled junction): crossings,
+// throughput, waits, queues, encounters and rates with the theory.
+std::string JunctionsCsv(const std::vector<PolicyRun>& runs);
+// A CSV cell, quoted when it holds a comma, quote or line break.
+std::string CsvCell(const std::string& s);
 // Shortest text that reads back as exactly the same double (std::to_chars).
 std::string FormatDouble(double v);
 
