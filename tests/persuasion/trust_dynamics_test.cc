@@ -156,6 +156,24 @@ TEST(BetaTrust, Validation) {
 
 // ------------------------------------------------------------------ one encounter
 
+TEST(SchemeFor, DefinedAtEveryTrustDownToTheToleranceBelowThetaStar) {
+  // The long-run scan bisects the TA-EBP switch at theta*, so it evaluates the
+  // design within round-off of theta*, where the p-space tie tolerance still
+  // persuades (down to theta* - kTieTolerance / (1 - lambda)).
+  const LinearLikelihood linear(2.0);
+  const double theta_star = AvHvThetaStar(kPaper);
+  for (int k = -20; k <= 20; ++k) {
+    const double theta = theta_star + k * 1e-10;
+    const CommittedScheme scheme = SchemeFor({Policy::kTaEbp, {}}, kPaper, theta, linear);
+    EXPECT_EQ(scheme.av_may_go, AvHvPersuadable(kPaper, theta, linear)) << "k " << k;
+    if (scheme.av_may_go) {
+      EXPECT_NEAR(scheme.nudge, 2.0, 1e-6);
+      EXPECT_LE(scheme.b, 1e-8);  // b(theta*) = 0, db/dtheta = 0.8 there
+    }
+  }
+}
+
+
 TEST(OutcomeProbabilities, PaperTaebpByHand) {
   // theta = 0.6, the AV designs for it: s* = 64/39, a = 1, b = 7/32.
   const LinearLikelihood linear(2.0);
