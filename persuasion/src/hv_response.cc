@@ -34,7 +34,21 @@ TrustInterval DcTrustInterval(const AvHvParams& params, const LikelihoodModel& m
   const bool at1 = dc(1.0);
   if (at0 && at1) return {0.0, 1.0};
   if (!at0 && !at1) return {};
-  if (at1) return {Bisect(0.0, 1.0, dc), 1.0};
+  if (at1) {
+    // Start from the closed form theta_needed = (p* - lambda) / (p_FT - lambda): the
+    // tie tolerance moves the switch by less than 1e-9 / (p_FT - lambda), so a
+    // bracket a few times that wide halves the bisection (checked, else [0, 1]).
+    const double lambda = params.prior_go;
+    const double go = model.PiGo(reading) * lambda;
+    const double p_ft = go / (go + model.PiStop(reading) * (1.0 - lambda));
+    const double guess = (AvHvPStar(params.collision_penalty) - lambda) / (p_ft - lambda);
+    const double margin = 4e-9 / (p_ft - lambda) + 1e-15;
+    const double lo = guess - margin, hi = guess + margin;
+    if (std::isfinite(guess) && lo > 0.0 && hi < 1.0 && !dc(lo) && dc(hi)) {
+      return {Bisect(lo, hi, dc), 1.0};
+    }
+    return {Bisect(0.0, 1.0, dc), 1.0};
+  }
   // DC at 0 only: the greatest trust with DC, by bisection on "not DC".
   auto dr = [&](double theta) { return !dc(theta); };
   return {0.0, std::nextafter(Bisect(0.0, 1.0, dr), 0.0)};
