@@ -18,8 +18,7 @@ using internal::Num;
 
 namespace {
 
-using DoublePrecision =
-    boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+using DoublePrecision = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
 
 boost::math::normal_distribution<double, DoublePrecision> Normal(double sigma) {
   return boost::math::normal_distribution<double, DoublePrecision>(0.0, sigma);
@@ -44,7 +43,8 @@ PerceptionNoise::Kind ParseNoiseKind(const std::string& name) {
                                      PerceptionNoise::Kind::kUniform}) {
     if (name == ToString(kind)) return kind;
   }
-  throw InvalidArgument("noise kind '" + name + "' is unknown (expected none, gaussian or uniform)");
+  throw InvalidArgument("noise kind '" + name +
+                        "' is unknown (expected none, gaussian or uniform)");
 }
 
 bool PerceptionNoise::IsValid(std::string* why) const {
@@ -132,7 +132,7 @@ double PersuasionProbability(const PerceptionNoise& noise, const AvHvParams& par
     return HvDrivesIfClear(params, HvPosteriorGo(params, theta, model, reading)) ? 1.0 : 0.0;
   }
   const std::optional<double> threshold = MinReadingForDc(params, model, theta);
-  if (!threshold) return 0.0;        // not even s_max persuades
+  if (!threshold) return 0.0;         // not even s_max persuades
   if (*threshold <= 0.0) return 1.0;  // every reading does
   // P(s + bias + eps >= r*) = 1 - F(r* - s - bias); the clamp changes no decision.
   return 1.0 - noise.Cdf(*threshold - s - noise.bias);
@@ -145,8 +145,8 @@ PredictedOutcome PredictOutcomeUnderNoise(const CommittedScheme& scheme, const A
   // replaced by their probabilities over the noise.
   params.Validate();
   internal::CheckTrust(theta_true, "trust theta_true");
-  for (const auto& [x, name] :
-       {std::pair{scheme.a, "scheme a (P(nudge | Go))"}, std::pair{scheme.b, "scheme b (P(nudge | Stop))"}}) {
+  for (const auto& [x, name] : {std::pair{scheme.a, "scheme a (P(nudge | Go))"},
+                                std::pair{scheme.b, "scheme b (P(nudge | Stop))"}}) {
     if (!(x >= 0.0 && x <= 1.0)) {
       throw InvalidArgument(std::string(name) + " = " + Num(x) + " is outside [0, 1]");
     }

@@ -228,7 +228,8 @@ ExpectedUpdate ExpectedStep(const BetaTrust& state, const DesignRule& rule,
     mean_after += pk * next.Mean();
   }
   const double rho = update.forgetting;
-  result.alpha = rho * (state.InitialAlpha() - state.Alpha()) + update.success_weight * result.quality;
+  result.alpha =
+      rho * (state.InitialAlpha() - state.Alpha()) + update.success_weight * result.quality;
   result.beta =
       rho * (state.InitialBeta() - state.Beta()) + update.failure_weight * (1.0 - result.quality);
   result.mean = mean_after - theta;
@@ -457,8 +458,8 @@ LongRunTrust FindLongRunTrust(const DesignRule& rule, const AvHvParams& params,
         const bool interior = xs[k] > 0.0 && xs[k] < 1.0;
         const int left = k > 0 ? Sign(gs[k - 1]) : 0;
         const int right = k + 1 < xs.size() ? Sign(gs[k + 1]) : 0;
-        const bool stable = (k == 0 || left > 0) && (k + 1 == xs.size() || right < 0) &&
-                            (left != 0 || right != 0);
+        const bool stable =
+            (k == 0 || left > 0) && (k + 1 == xs.size() || right < 0) && (left != 0 || right != 0);
         add(xs[k], interior ? TrustEquilibrium::Kind::kRoot : TrustEquilibrium::Kind::kBoundary,
             stable);
         continue;

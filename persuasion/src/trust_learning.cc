@@ -21,8 +21,7 @@ namespace {
 
 // Boost.Math in double precision (its default promotes to long double, ~5x
 // slower here, for digits the posterior does not need).
-using DoublePrecision =
-    boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+using DoublePrecision = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
 
 // Below this width a Beta density is taken as constant across [lo, hi): the
 // CDF difference would lose its digits, the constant density loses none that
@@ -59,8 +58,8 @@ TrustPrior TrustPrior::Histogram(std::vector<double> weights) {
   double total = 0.0;
   for (std::size_t k = 0; k < weights.size(); ++k) {
     if (!(weights[k] >= 0.0 && std::isfinite(weights[k]))) {
-      throw InvalidArgument("trust prior histogram weight[" + std::to_string(k) + "] = " +
-                            Num(weights[k]) + " must be finite and >= 0");
+      throw InvalidArgument("trust prior histogram weight[" + std::to_string(k) +
+                            "] = " + Num(weights[k]) + " must be finite and >= 0");
     }
     total += weights[k];
   }
@@ -122,9 +121,11 @@ double TrustPrior::Mass(double lo, double hi) const {
       }
       // Differences of the tail nearer to the interval keep their digits.
       if (lo >= a_ / (a_ + b_)) {
-        return boost::math::ibetac(a_, b_, lo, DoublePrecision()) - (hi >= 1.0 ? 0.0 : boost::math::ibetac(a_, b_, hi, DoublePrecision()));
+        return boost::math::ibetac(a_, b_, lo, DoublePrecision()) -
+               (hi >= 1.0 ? 0.0 : boost::math::ibetac(a_, b_, hi, DoublePrecision()));
       }
-      return (hi >= 1.0 ? 1.0 : boost::math::ibeta(a_, b_, hi, DoublePrecision())) - boost::math::ibeta(a_, b_, lo, DoublePrecision());
+      return (hi >= 1.0 ? 1.0 : boost::math::ibeta(a_, b_, hi, DoublePrecision())) -
+             boost::math::ibeta(a_, b_, lo, DoublePrecision());
     }
     case Kind::kHistogram: {
       const auto k_count = static_cast<double>(cells_.size());
@@ -159,8 +160,9 @@ double TrustPrior::FirstMoment(double lo, double hi) const {
       // theta f(theta; a, b) = a / (a + b) f(theta; a + 1, b).
       const double scale = a_ / (a_ + b_);
       if (lo >= scale) {
-        return scale * (boost::math::ibetac(a_ + 1.0, b_, lo, DoublePrecision()) -
-                        (hi >= 1.0 ? 0.0 : boost::math::ibetac(a_ + 1.0, b_, hi, DoublePrecision())));
+        return scale *
+               (boost::math::ibetac(a_ + 1.0, b_, lo, DoublePrecision()) -
+                (hi >= 1.0 ? 0.0 : boost::math::ibetac(a_ + 1.0, b_, hi, DoublePrecision())));
       }
       return scale * ((hi >= 1.0 ? 1.0 : boost::math::ibeta(a_ + 1.0, b_, hi, DoublePrecision())) -
                       boost::math::ibeta(a_ + 1.0, b_, lo, DoublePrecision()));
@@ -399,8 +401,8 @@ double FailureProbability(const TrustBelief& belief, const AvHvParams& params,
 }  // namespace
 
 LearnedDesign ChooseLearnedDesign(const TrustBelief& belief, const AvHvParams& params,
-                                  const LikelihoodModel& model,
-                                  const ExplorationSchedule& schedule, double u01) {
+                                  const LikelihoodModel& model, const ExplorationSchedule& schedule,
+                                  double u01) {
   params.Validate();
   schedule.Validate();
   if (!(u01 >= 0.0 && u01 < 1.0)) {

@@ -25,7 +25,7 @@ using ::testing::HasSubstr;
 using testing::InvalidArgumentMessage;
 
 const AvHvParams kPaper{0.2, 3.0};
-const double kSStar06 = 64.0 / 39.0;  // Theorem 2 at theta = 0.6
+const double kSStar06 = 64.0 / 39.0;     // Theorem 2 at theta = 0.6
 const double kZ99 = 2.3263478740408408;  // Phi^-1(0.99)
 
 PerceptionNoise Gaussian(double sigma, double bias = 0.0) {
@@ -77,12 +77,12 @@ TEST(PerceptionNoise, NamesAndErrors) {
   EXPECT_THAT(InvalidArgumentMessage([] { NoisyReading(Gaussian(0.1), 1.0, 2.0, 1.0); }),
               HasSubstr("uniform draw u = 1 is outside [0, 1)"));
   const LinearLikelihood linear(2.0);
-  EXPECT_THAT(InvalidArgumentMessage([&] {
-                PersuasionProbability(Gaussian(0.1), kPaper, 0.6, linear, 2.5);
-              }),
+  EXPECT_THAT(InvalidArgumentMessage(
+                  [&] { PersuasionProbability(Gaussian(0.1), kPaper, 0.6, linear, 2.5); }),
               HasSubstr("displacement s = 2.5 is outside [0, 2]"));
-  EXPECT_THAT(InvalidArgumentMessage([&] { DesignUnderNoise(kPaper, 0.6, linear, Gaussian(0.1), 0.0); }),
-              HasSubstr("delta = 0 is outside (0, 1)"));
+  EXPECT_THAT(
+      InvalidArgumentMessage([&] { DesignUnderNoise(kPaper, 0.6, linear, Gaussian(0.1), 0.0); }),
+      HasSubstr("delta = 0 is outside (0, 1)"));
 }
 
 TEST(NoisyReading, ClampsAndFollowsTheNoise) {
@@ -126,8 +126,8 @@ double QuantileMidpoint(const PerceptionNoise& noise, double theta, const Likeli
 TEST(PersuasionProbability, AgainstTheQuantileMidpointRuleAndGaussKronrod) {
   const LinearLikelihood linear(2.0);
   const int n = 20000;
-  for (const PerceptionNoise& noise : {Gaussian(0.1), Gaussian(0.3, -0.05), Uniform(0.2),
-                                       Uniform(0.4, 0.1)}) {
+  for (const PerceptionNoise& noise :
+       {Gaussian(0.1), Gaussian(0.3, -0.05), Uniform(0.2), Uniform(0.4, 0.1)}) {
     for (double theta : {0.3, 0.6, 0.9}) {
       for (double s : {0.0, 0.8, 1.2, kSStar06, 1.8, 2.0}) {
         const double p = PersuasionProbability(noise, kPaper, theta, linear, s);
@@ -221,7 +221,8 @@ TEST(PredictOutcomeUnderNoise, AgreesWithMonteCarlo) {
     for (const CommittedScheme& scheme :
          {aware.scheme, CommitScheme(Policy::kTaEbp, kPaper, 0.6, linear),
           CommitScheme(Policy::kFullReveal, kPaper, 0.6, linear)}) {
-      const PredictedOutcome predicted = PredictOutcomeUnderNoise(scheme, kPaper, 0.6, linear, noise);
+      const PredictedOutcome predicted =
+          PredictOutcomeUnderNoise(scheme, kPaper, 0.6, linear, noise);
       const Rates simulated = SimulateNoisy(scheme, 0.6, noise, n, seed++);
       for (const auto& [sim, p] : {std::pair{simulated.dc, predicted.dc_rate},
                                    std::pair{simulated.collision, predicted.collision_rate}}) {
@@ -255,7 +256,8 @@ TEST(DesignUnderNoise, WithoutNoiseItIsThePapersDesign) {
   const NoiseAwareDesign d = DesignUnderNoise(kPaper, 0.6, linear, PerceptionNoise{}, 0.01);
   EXPECT_NEAR(d.nudge, kSStar06, 1e-13);
   EXPECT_NEAR(d.b, 7.0 / 32.0, 1e-15);
-  const PredictedOutcome o = PredictOutcomeUnderNoise(d.scheme, kPaper, 0.6, linear, PerceptionNoise{});
+  const PredictedOutcome o =
+      PredictOutcomeUnderNoise(d.scheme, kPaper, 0.6, linear, PerceptionNoise{});
   EXPECT_NEAR(o.dc_rate, 0.375, 1e-15);
   EXPECT_EQ(o.collision_rate, 0.0);
 }
@@ -266,7 +268,8 @@ TEST(DesignUnderNoise, GaussianNudgeRateAndTheSigmaToZeroLimit) {
   for (double sigma : {0.15, 0.1, 0.01, 1e-3, 1e-6}) {
     for (double bias : {0.0, -0.05, 0.05}) {
       if (sigma == 0.15 && bias < 0.0) continue;  // s* + 0.05 + 2.33 * 0.15 > s_max
-      const NoiseAwareDesign d = DesignUnderNoise(kPaper, 0.6, linear, Gaussian(sigma, bias), delta);
+      const NoiseAwareDesign d =
+          DesignUnderNoise(kPaper, 0.6, linear, Gaussian(sigma, bias), delta);
       ASSERT_EQ(d.status, NoiseAwareDesign::Status::kOk);
       EXPECT_NEAR(d.nudge, kSStar06 - bias + kZ99 * sigma, 1e-12);
       // The tie tolerance only helps the HV: P(DC) >= 1 - delta, within round-off of it.

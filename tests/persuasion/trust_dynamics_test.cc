@@ -126,7 +126,8 @@ TEST(BetaTrust, StaticRuleLeavesTrustUnchangedExactly) {
   std::mt19937_64 rng(7);
   const TrustUpdateRule rule = Weights(0.0, 0.0, 0.0);
   for (int i = 0; i < 1000; ++i) {
-    t.Update(kAllEncounterOutcomes[static_cast<int>(Uniform01(rng) * kEncounterOutcomeCount)], rule);
+    t.Update(kAllEncounterOutcomes[static_cast<int>(Uniform01(rng) * kEncounterOutcomeCount)],
+             rule);
   }
   EXPECT_EQ(t.Alpha(), alpha);
   EXPECT_EQ(t.Beta(), beta);
@@ -136,8 +137,8 @@ TEST(BetaTrust, StaticRuleLeavesTrustUnchangedExactly) {
   for (double theta = 0.0; theta <= 1.0; theta += 0.05) {
     EXPECT_EQ(MeanDrift(theta, {Policy::kTaEbp, {}}, kPaper, linear, rule, 6.0, 4.0), 0.0);
   }
-  EXPECT_TRUE(FindLongRunTrust({Policy::kTaEbp, {}}, kPaper, linear, rule, 6.0, 4.0)
-                  .equilibria.empty());
+  EXPECT_TRUE(
+      FindLongRunTrust({Policy::kTaEbp, {}}, kPaper, linear, rule, 6.0, 4.0).equilibria.empty());
 }
 
 TEST(BetaTrust, Validation) {
@@ -173,12 +174,11 @@ TEST(SchemeFor, DefinedAtEveryTrustDownToTheToleranceBelowThetaStar) {
   }
 }
 
-
 TEST(OutcomeProbabilities, PaperTaebpByHand) {
   // theta = 0.6, the AV designs for it: s* = 64/39, a = 1, b = 7/32.
   const LinearLikelihood linear(2.0);
-  const auto p = OutcomeProbabilities(CommitScheme(Policy::kTaEbp, kPaper, 0.6, linear), kPaper,
-                                      0.6, linear);
+  const auto p =
+      OutcomeProbabilities(CommitScheme(Policy::kTaEbp, kPaper, 0.6, linear), kPaper, 0.6, linear);
   EXPECT_NEAR(p[static_cast<int>(EncounterOutcome::kNudgeGo)], 0.2, 1e-15);
   EXPECT_NEAR(p[static_cast<int>(EncounterOutcome::kNudgeStop)], 0.8 * 7.0 / 32.0, 1e-15);
   EXPECT_NEAR(p[static_cast<int>(EncounterOutcome::kStillStop)], 0.8 * 25.0 / 32.0, 1e-15);
@@ -214,7 +214,8 @@ TEST(OutcomeProbabilities, AgreeWithPredictOutcomeOverAGrid) {
                 total += x;
               }
               EXPECT_NEAR(total, 1.0, 1e-14);
-              EXPECT_NEAR(p[static_cast<int>(EncounterOutcome::kCollision)], o.collision_rate, 1e-14);
+              EXPECT_NEAR(p[static_cast<int>(EncounterOutcome::kCollision)], o.collision_rate,
+                          1e-14);
               EXPECT_NEAR(p[static_cast<int>(EncounterOutcome::kNudgeGo)] +
                               p[static_cast<int>(EncounterOutcome::kStillGo)],
                           o.av_first_rate, 1e-14);
@@ -287,7 +288,8 @@ TEST(LongRunTrust, PaperSettingByHand) {
   EXPECT_EQ(ConstantQualityEquilibrium(0.5, equal, 6.0, 4.0), 0.5);
 
   // Full revelation (b = 0) never raises a false alarm: trust grows to 1.
-  const LongRunTrust fr = FindLongRunTrust({Policy::kFullReveal, {}}, kPaper, linear, equal, 6.0, 4.0);
+  const LongRunTrust fr =
+      FindLongRunTrust({Policy::kFullReveal, {}}, kPaper, linear, equal, 6.0, 4.0);
   ASSERT_EQ(fr.equilibria.size(), 1u);
   EXPECT_EQ(fr.equilibria[0].theta, 1.0);
   EXPECT_EQ(fr.equilibria[0].kind, TrustEquilibrium::Kind::kBoundary);
@@ -383,8 +385,9 @@ TEST(LongRunTrust, FalseAlarmsErodeTrust) {
   // counting them it settles below 1, the lower the harsher a failure weighs.
   TrustUpdateRule forgiving = Weights(1.0, 1.0);
   forgiving.quality.nudge_stop = 1.0;
-  EXPECT_EQ(FindLongRunTrust({Policy::kTaEbp, {}}, kPaper, linear, forgiving, 6.0, 4.0).Attractors(),
-            std::vector<double>{1.0});
+  EXPECT_EQ(
+      FindLongRunTrust({Policy::kTaEbp, {}}, kPaper, linear, forgiving, 6.0, 4.0).Attractors(),
+      std::vector<double>{1.0});
   double previous = 1.0;
   for (double w_f : {0.5, 1.0, 2.0, 4.0, 8.0, 20.0, 100.0}) {
     const auto attractors =
@@ -418,16 +421,16 @@ TEST(LongRunTrust, AFixedHonestDesignCanPushTrustBelowThetaStar) {
   // settles at 0.625 / (0.625 + 6 * 0.375) = 0.217 < theta* = 0.25.
   const LinearLikelihood linear(2.0);
   const TrustUpdateRule rule = Weights(1.0, 6.0);
-  const LongRunTrust run =
-      FindLongRunTrust({Policy::kTaEbp, 0.6}, kPaper, linear, rule, 6.0, 4.0);
+  const LongRunTrust run = FindLongRunTrust({Policy::kTaEbp, 0.6}, kPaper, linear, rule, 6.0, 4.0);
   ASSERT_EQ(run.Attractors().size(), 1u);
   EXPECT_NEAR(run.Attractors()[0], 0.625 / (0.625 + 6.0 * 0.375), 1e-12);
   EXPECT_LT(run.Attractors()[0], AvHvThetaStar(kPaper));
   ASSERT_EQ(run.breakpoints.size(), 1u);
   EXPECT_NEAR(run.breakpoints[0], 0.6, 1e-8);
   // Without false alarms (b = 0: full revelation) the same weights keep trust at 1.
-  EXPECT_EQ(FindLongRunTrust({Policy::kFullReveal, {}}, kPaper, linear, rule, 6.0, 4.0).Attractors(),
-            std::vector<double>{1.0});
+  EXPECT_EQ(
+      FindLongRunTrust({Policy::kFullReveal, {}}, kPaper, linear, rule, 6.0, 4.0).Attractors(),
+      std::vector<double>{1.0});
 }
 
 TEST(LongRunTrust, BistableFullRevealAndDecayToZero) {
@@ -471,14 +474,16 @@ TEST(LongRunTrust, StableJump) {
 
 TEST(LongRunTrust, ErrorsNameTheInput) {
   const LinearLikelihood linear(2.0);
-  EXPECT_THAT(InvalidArgumentMessage([&] {
-                FindLongRunTrust({Policy::kTaEbp, {}}, kPaper, linear, Weights(1.0, 1.0), 6.0, 4.0, 1);
-              }),
-              HasSubstr("grid = 1 must be >= 2"));
-  EXPECT_THAT(InvalidArgumentMessage([&] {
-                FindLongRunTrust({Policy::kTaEbp, 1.5}, kPaper, linear, Weights(1.0, 1.0), 6.0, 4.0);
-              }),
-              HasSubstr("assumed trust theta_hat = 1.5 is outside [0, 1]"));
+  EXPECT_THAT(
+      InvalidArgumentMessage([&] {
+        FindLongRunTrust({Policy::kTaEbp, {}}, kPaper, linear, Weights(1.0, 1.0), 6.0, 4.0, 1);
+      }),
+      HasSubstr("grid = 1 must be >= 2"));
+  EXPECT_THAT(
+      InvalidArgumentMessage([&] {
+        FindLongRunTrust({Policy::kTaEbp, 1.5}, kPaper, linear, Weights(1.0, 1.0), 6.0, 4.0);
+      }),
+      HasSubstr("assumed trust theta_hat = 1.5 is outside [0, 1]"));
   EXPECT_THAT(InvalidArgumentMessage([&] {
                 TaebpEquilibria(AvHvParams{0.5, 3.0}, Weights(1.0, 1.0), 6.0, 4.0, 0.0, 1.0);
               }),
@@ -543,8 +548,7 @@ TEST(LongRunTrustSimulation, TaebpAndNoTrustConvergeToTheDerivedFixedPoint) {
   const LinearLikelihood linear(2.0);
   for (const Case& c : {Case{{Policy::kTaEbp, {}}, (-0.8 + std::sqrt(5.44)) / 2.0},
                         Case{{Policy::kNoTrust, {}}, 0.5}}) {
-    const auto attractors =
-        FindLongRunTrust(c.rule, kPaper, linear, equal, 6.0, 4.0).Attractors();
+    const auto attractors = FindLongRunTrust(c.rule, kPaper, linear, equal, 6.0, 4.0).Attractors();
     ASSERT_EQ(attractors.size(), 1u);
     EXPECT_NEAR(attractors[0], c.expected, 1e-12);
     std::vector<double> means;
@@ -564,7 +568,8 @@ TEST(LongRunTrustSimulation, FixedDesignFallsBelowThetaStarAndAStableJumpAttract
     // AFixedHonestDesignCanPushTrustBelowThetaStar, simulated from theta = 0.6.
     std::vector<double> means;
     for (int r = 0; r < replicas; ++r) {
-      means.push_back(SimulateMean({Policy::kTaEbp, 0.6}, Weights(1.0, 6.0), 6.0, 4.0, steps, 2000 + r));
+      means.push_back(
+          SimulateMean({Policy::kTaEbp, 0.6}, Weights(1.0, 6.0), 6.0, 4.0, steps, 2000 + r));
     }
     const Sample s = Summarise(means);
     EXPECT_NEAR(s.mean, 0.625 / (0.625 + 6.0 * 0.375), 4.0 * s.StandardError(replicas));
@@ -588,8 +593,8 @@ TEST(LongRunTrustSimulation, FullRevealGrowsToOneDeterministically) {
   // From theta >= theta* full revelation always persuades: every encounter is
   // nudge_go or still_stop (q = 1), so alpha grows by w_s each time and beta stays.
   double alpha = 0.0, beta = 0.0;
-  const double mean = SimulateMean({Policy::kFullReveal, {}}, Weights(1.0, 20.0), 6.0, 4.0, 1000,
-                                   5, &alpha, &beta);
+  const double mean =
+      SimulateMean({Policy::kFullReveal, {}}, Weights(1.0, 20.0), 6.0, 4.0, 1000, 5, &alpha, &beta);
   EXPECT_EQ(alpha, 1006.0);
   EXPECT_EQ(beta, 4.0);
   EXPECT_EQ(mean, 1006.0 / 1010.0);

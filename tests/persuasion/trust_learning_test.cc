@@ -89,11 +89,12 @@ TEST(TrustPrior, HistogramByHand) {
 TEST(TrustPrior, DiscreteAtoms) {
   // theta in {0.3, 0.6, 0.9} with weights 1 : 2 : 1 (0.6 given twice is merged).
   const TrustPrior p = TrustPrior::Discrete({0.9, 0.6, 0.3, 0.6}, {1.0, 1.0, 1.0, 1.0});
-  EXPECT_NEAR(p.Mass(0.0, 0.6), 0.25, 1e-15);               // theta < 0.6
+  EXPECT_NEAR(p.Mass(0.0, 0.6), 0.25, 1e-15);  // theta < 0.6
   EXPECT_NEAR(p.Mass(0.6, TrustPrior::kAboveOne), 0.75, 1e-15);
   EXPECT_NEAR(p.Mean(), 0.25 * 0.3 + 0.5 * 0.6 + 0.25 * 0.9, 1e-15);
   EXPECT_EQ(p.QuantileWithin(0.0, TrustPrior::kAboveOne, 0.25, false), 0.3);
-  EXPECT_EQ(p.QuantileWithin(0.0, TrustPrior::kAboveOne, 0.25, true), 0.6);  // P(theta < 0.6) = 0.25
+  EXPECT_EQ(p.QuantileWithin(0.0, TrustPrior::kAboveOne, 0.25, true),
+            0.6);  // P(theta < 0.6) = 0.25
   EXPECT_EQ(p.QuantileWithin(0.0, TrustPrior::kAboveOne, 0.2, true), 0.3);
   EXPECT_EQ(p.QuantileWithin(0.0, TrustPrior::kAboveOne, 0.8, false), 0.9);
   EXPECT_EQ(p.Draw(0.0), 0.3);
@@ -108,13 +109,21 @@ TEST(TrustPrior, ErrorsNameTheInput) {
               HasSubstr("trust prior Beta b = inf must be > 0 and finite"));
   EXPECT_THAT(InvalidArgumentMessage([] { TrustPrior::Histogram({}); }),
               HasSubstr("trust prior histogram has no cells"));
-  EXPECT_THAT(InvalidArgumentMessage([] { TrustPrior::Histogram({1.0, -2.0}); }),
+  EXPECT_THAT(InvalidArgumentMessage([] {
+                TrustPrior::Histogram({1.0, -2.0});
+              }),
               HasSubstr("trust prior histogram weight[1] = -2 must be finite and >= 0"));
-  EXPECT_THAT(InvalidArgumentMessage([] { TrustPrior::Histogram({0.0, 0.0}); }),
+  EXPECT_THAT(InvalidArgumentMessage([] {
+                TrustPrior::Histogram({0.0, 0.0});
+              }),
               HasSubstr("trust prior histogram weights sum to 0"));
-  EXPECT_THAT(InvalidArgumentMessage([] { TrustPrior::Discrete({0.5, 1.2}, {1.0, 1.0}); }),
+  EXPECT_THAT(InvalidArgumentMessage([] {
+                TrustPrior::Discrete({0.5, 1.2}, {1.0, 1.0});
+              }),
               HasSubstr("trust prior value[1] = 1.2 is outside [0, 1]"));
-  EXPECT_THAT(InvalidArgumentMessage([] { TrustPrior::Discrete({0.5}, {1.0, 1.0}); }),
+  EXPECT_THAT(InvalidArgumentMessage([] {
+                TrustPrior::Discrete({0.5}, {1.0, 1.0});
+              }),
               HasSubstr("trust prior has 1 values but 2 weights"));
   const TrustPrior p = TrustPrior::Histogram({1.0, 0.0});
   EXPECT_THAT(InvalidArgumentMessage([&] { p.QuantileWithin(0.6, 0.9, 0.5, false); }),
@@ -172,7 +181,8 @@ TEST(TrustBelief, CensoredResponsesAgainstAGridPosterior) {
   EXPECT_EQ(belief.Observations(), 4);
   EXPECT_NEAR(belief.Lower(), 0.5, 1e-8);
   EXPECT_NEAR(belief.Upper(), 0.8, 1e-8);
-  const GridPosterior grid(3.0, 2.0, [&](double x) { return x >= belief.Lower() && x < belief.Upper(); });
+  const GridPosterior grid(3.0, 2.0,
+                           [&](double x) { return x >= belief.Lower() && x < belief.Upper(); });
   // The midpoint rule is off by at most the posterior mass of the two cells cut
   // by L and U: 2 cells of 1e-6 at the posterior's largest density, the prior's
   // 16/9 (at 2/3) over the evidence.
@@ -263,7 +273,8 @@ TEST(ExplorationSchedule, LevelsAndValidation) {
   s.decay = INFINITY;
   EXPECT_EQ(s.Level(100000), 0.01);
   s.delta = 1.0;
-  EXPECT_THAT(InvalidArgumentMessage([&] { s.Validate(); }), HasSubstr("delta = 1 is outside (0, 1)"));
+  EXPECT_THAT(InvalidArgumentMessage([&] { s.Validate(); }),
+              HasSubstr("delta = 1 is outside (0, 1)"));
   s = ExplorationSchedule{};
   s.decay = 0.0;
   EXPECT_THAT(InvalidArgumentMessage([&] { s.Validate(); }),
@@ -331,13 +342,13 @@ TEST(ChooseLearnedDesign, ProbesBelowThetaStarWithinTheRiskBudget) {
 TEST(ChooseLearnedDesign, ErrorsNameTheInput) {
   const LinearLikelihood linear(2.0);
   const TrustBelief belief(Share(TrustPrior::Beta(2.0, 2.0)));
-  EXPECT_THAT(InvalidArgumentMessage([&] {
-                ChooseLearnedDesign(belief, AvHvParams{0.5, 3.0}, linear, ExplorationSchedule{}, 0.0);
-              }),
-              HasSubstr("learned trust needs prior_go (lambda) = 0.5 below p* = 0.4"));
-  EXPECT_THAT(InvalidArgumentMessage([&] {
-                ChooseLearnedDesign(belief, kPaper, linear, ExplorationSchedule{}, 1.0);
-              }),
+  EXPECT_THAT(
+      InvalidArgumentMessage([&] {
+        ChooseLearnedDesign(belief, AvHvParams{0.5, 3.0}, linear, ExplorationSchedule{}, 0.0);
+      }),
+      HasSubstr("learned trust needs prior_go (lambda) = 0.5 below p* = 0.4"));
+  EXPECT_THAT(InvalidArgumentMessage(
+                  [&] { ChooseLearnedDesign(belief, kPaper, linear, ExplorationSchedule{}, 1.0); }),
               HasSubstr("uniform draw u = 1 is outside [0, 1)"));
 }
 
@@ -447,8 +458,8 @@ void ExpectCalibrated(const LearningRun& run) {
   mean /= run.calibration.size();
   for (double c : run.calibration) var += (c - mean) * (c - mean);
   const double se = std::sqrt(var / (run.calibration.size() - 1) / run.calibration.size());
-  EXPECT_NEAR(mean, 0.0, 4.0 * se) << "failures " << run.failures << " predicted "
-                                   << run.predicted_failures;
+  EXPECT_NEAR(mean, 0.0, 4.0 * se)
+      << "failures " << run.failures << " predicted " << run.predicted_failures;
 }
 
 TEST(LearnedTrustRun, DecayingRiskRegretGrowsLikeLogT) {

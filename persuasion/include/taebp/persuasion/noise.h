@@ -23,8 +23,9 @@ namespace taebp::persuasion {
 struct PerceptionNoise {
   enum class Kind { kNone, kGaussian, kUniform };
   Kind kind = Kind::kNone;
-  double scale = 0.0;  // Gaussian sigma or uniform half-width w (m); > 0 unless kNone (ignored then)
-  double bias = 0.0;   // added to every reading (m); finite
+  double scale =
+      0.0;            // Gaussian sigma or uniform half-width w (m); > 0 unless kNone (ignored then)
+  double bias = 0.0;  // added to every reading (m); finite
   bool IsValid(std::string* why) const;
   void Validate() const;  // throws InvalidArgument naming the field and value
   // The distribution of eps (without the bias). kNone: a point mass at 0
@@ -72,11 +73,11 @@ struct NoiseAwareDesign {
     kUnachievable,    // s_delta > s_max: no nudge reaches 1 - delta; always yield
   };
   Status status = Status::kNotPersuadable;
-  TaebpDesign nominal;                      // the paper's design for theta_hat
-  double nudge = 0.0;                       // s_delta (0 unless kOk)
+  TaebpDesign nominal;  // the paper's design for theta_hat
+  double nudge = 0.0;   // s_delta (0 unless kOk)
   double b = 0.0;
-  double b_nominal = 0.0;                   // eq:b
-  double density_ratio = 0.0;               // rho
+  double b_nominal = 0.0;      // eq:b
+  double density_ratio = 0.0;  // rho
   bool credible = true;
   double persuasion_probability = 0.0;      // P(DC | nudge) (kOk: >= 1 - delta)
   double max_persuasion_probability = 0.0;  // P(DC | s_max)

@@ -43,8 +43,8 @@ enum class EncounterOutcome {
 };
 inline constexpr int kEncounterOutcomeCount = 6;
 inline constexpr std::array<EncounterOutcome, kEncounterOutcomeCount> kAllEncounterOutcomes = {
-    EncounterOutcome::kNudgeGo,  EncounterOutcome::kNudgeStop, EncounterOutcome::kStillStop,
-    EncounterOutcome::kStillGo,  EncounterOutcome::kCollision, EncounterOutcome::kNearMiss};
+    EncounterOutcome::kNudgeGo, EncounterOutcome::kNudgeStop, EncounterOutcome::kStillStop,
+    EncounterOutcome::kStillGo, EncounterOutcome::kCollision, EncounterOutcome::kNearMiss};
 // "nudge_go", "nudge_stop", "still_stop", "still_go", "collision", "near_miss".
 const char* ToString(EncounterOutcome outcome);
 // Throws InvalidArgument naming the text and the accepted names.
@@ -66,7 +66,8 @@ struct OutcomeQuality {
   double collision = 0.0;
   double near_miss = 0.0;
   double Of(EncounterOutcome outcome) const;
-  // Each in [0, 1]; the message names the outcome, e.g. "quality nudge_stop = 1.5 is outside [0, 1]".
+  // Each in [0, 1]; the message names the outcome, e.g. "quality nudge_stop = 1.5 is outside [0,
+  // 1]".
   bool IsValid(std::string* why) const;
   void Validate() const;
 };
@@ -77,7 +78,9 @@ struct TrustUpdateRule {
   double forgetting = 0.0;      // rho in [0, 1]
   OutcomeQuality quality;
   // Static trust: nothing ever changes the state.
-  bool IsStatic() const { return success_weight == 0.0 && failure_weight == 0.0 && forgetting == 0.0; }
+  bool IsStatic() const {
+    return success_weight == 0.0 && failure_weight == 0.0 && forgetting == 0.0;
+  }
   bool IsValid(std::string* why) const;
   void Validate() const;  // throws InvalidArgument naming the field and value
 };

@@ -58,11 +58,11 @@ class TrustPrior {
  private:
   TrustPrior() = default;
   Kind kind_ = Kind::kBeta;
-  double a_ = 1.0, b_ = 1.0;               // Beta
-  std::vector<double> cells_;              // Histogram: normalised cell masses
-  std::vector<double> cell_cumulative_;    // size K + 1
-  std::vector<double> values_, weights_;   // Discrete: ascending values, normalised weights
-  std::vector<double> atom_cumulative_;    // size n + 1
+  double a_ = 1.0, b_ = 1.0;              // Beta
+  std::vector<double> cells_;             // Histogram: normalised cell masses
+  std::vector<double> cell_cumulative_;   // size K + 1
+  std::vector<double> values_, weights_;  // Discrete: ascending values, normalised weights
+  std::vector<double> atom_cumulative_;   // size n + 1
 };
 
 // What an observation did to a belief.
@@ -80,17 +80,19 @@ class TrustBelief {
   explicit TrustBelief(std::shared_ptr<const TrustPrior> prior);
 
   // The HV read `reading` (in [0, s_max]) and drove if clear or not.
-  ObservationEffect Observe(const AvHvParams& params, const LikelihoodModel& model,
-                            double reading, bool drove_if_clear);
+  ObservationEffect Observe(const AvHvParams& params, const LikelihoodModel& model, double reading,
+                            bool drove_if_clear);
   // The same with the DC set of the reading already computed.
   ObservationEffect Observe(const TrustInterval& dc_set, bool drove_if_clear);
 
-  double Lower() const { return lower_; }                       // L
-  double Upper() const { return upper_ > 1.0 ? 1.0 : upper_; }  // U (1 also when theta = 1 is possible)
-  double Evidence() const;                                      // prior mass of [L, U)
+  double Lower() const { return lower_; }  // L
+  double Upper() const {
+    return upper_ > 1.0 ? 1.0 : upper_;
+  }                         // U (1 also when theta = 1 is possible)
+  double Evidence() const;  // prior mass of [L, U)
   double Mean() const;
-  double Quantile(double p) const;            // inf{x : P(theta <= x) >= p}
-  double ProbabilityBelow(double x) const;    // P(theta < x)
+  double Quantile(double p) const;          // inf{x : P(theta <= x) >= p}
+  double ProbabilityBelow(double x) const;  // P(theta < x)
   // The lower credible bound theta_L(delta) = sup{x : P(theta < x) <= delta}.
   double LowerBound(double delta) const;
   // Responses that split [0, 1] (kNarrowed or kConsistent): the learner's clock.
@@ -165,8 +167,8 @@ const char* ToString(LearnedDesign::Mode mode);
 // streams do not depend on the mode). Needs lambda < p* (with lambda >= p* the
 // HV drives if clear without persuasion).
 LearnedDesign ChooseLearnedDesign(const TrustBelief& belief, const AvHvParams& params,
-                                  const LikelihoodModel& model,
-                                  const ExplorationSchedule& schedule, double u01);
+                                  const LikelihoodModel& model, const ExplorationSchedule& schedule,
+                                  double u01);
 
 // ------------------------------------------------------------------ regret
 
