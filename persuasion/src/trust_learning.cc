@@ -283,6 +283,10 @@ ObservationEffect TrustBelief::Observe(const AvHvParams& params, const Likelihoo
 
 ObservationEffect TrustBelief::Observe(const TrustInterval& dc_set, bool drove_if_clear) {
   // The DC set touches 0 or 1; what is left of [0, 1] is the other half-line.
+  if (!dc_set.Empty() && dc_set.lo > 0.0 && dc_set.hi < 1.0) {
+    throw InvalidArgument("DC trust set [" + Num(dc_set.lo) + ", " + Num(dc_set.hi) +
+                          "] touches neither 0 nor 1 (eq:pp is affine in theta)");
+  }
   if (dc_set.Empty() || (dc_set.lo <= 0.0 && dc_set.hi >= 1.0)) {
     // Every trust (or none) responds alike: only the other response would be news.
     const bool expected = !dc_set.Empty();

@@ -212,6 +212,8 @@ TEST(TrustBelief, ContradictionsAreCountedAndIgnored) {
   // A DC after standing still (no trust drives if clear then) is impossible too.
   EXPECT_EQ(belief.Observe(kPaper, linear, 0.0, true), ObservationEffect::kContradiction);
   EXPECT_EQ(belief.Contradictions(), 2);
+  EXPECT_THAT(InvalidArgumentMessage([&] { belief.Observe(TrustInterval{0.3, 0.7}, true); }),
+              HasSubstr("DC trust set [0.3, 0.7] touches neither 0 nor 1"));
   EXPECT_EQ(belief.Lower(), lower);
   EXPECT_EQ(belief.Upper(), upper);
 }
