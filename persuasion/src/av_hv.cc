@@ -181,7 +181,10 @@ double StopNudgeProbability(const AvHvParams& params, double theta) {
   const double p_star = AvHvPStar(params.collision_penalty);
   if (lambda >= p_star) return 1.0;
   const double theta_star = AvHvThetaStar(params);
-  if (theta < theta_star - kTieTolerance) {
+  // DesignTaebp calls this for every theta that AvHvPersuadable accepts, i.e. down
+  // to p = (1 - theta) lambda + theta = p* - kTieTolerance, theta* - kTieTolerance
+  // / (1 - lambda); the factor 2 keeps round-off in the two tests from disagreeing.
+  if (theta < theta_star - 2.0 * kTieTolerance / (1.0 - lambda)) {
     throw InvalidArgument("trust theta = " + Num(theta) +
                           " is below the minimum persuadable trust theta* = " + Num(theta_star));
   }
