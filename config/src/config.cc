@@ -226,6 +226,8 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     c.Fail("scenario.warmup = " + Num(s.warmup) + " leaves nothing of scenario.duration = " +
            Num(s.duration));
   c.Positive("scenario.critical_gap", s.critical_gap);
+  if (s.stall_action != "error" && s.stall_action != "record")
+    c.Fail("scenario.stall_action = '" + s.stall_action + "' is not one of: error, record");
   if (s.nudge_check != "error" && s.nudge_check != "count")
     c.Fail("scenario.nudge_check = '" + s.nudge_check + "' is not one of: error, count");
 

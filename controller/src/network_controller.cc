@@ -119,8 +119,11 @@ struct JunctionRt {
   std::vector<MovementRt> movements;
   std::vector<int> approaches;  // global approach indices
   JunctionRun run;
-  double waiting_since = -1;    // first time a head waited with nothing moving
-  double last_gap_refusal = -1;
+  double last_progress = 0;     // a vehicle last passed it (route progress)
+  double last_gap_refusal = -1; // a minor head last refused a gap (two-way)
+  bool waiting = false;         // vehicles halted at its stop lines (last sample)
+  bool stall_recorded = false;  // this stall episode is in the outputs
+  double stall_since = -1;
 };
 
 }  // namespace
@@ -300,8 +303,8 @@ struct NetworkController::Impl : junction::EncounterModel {
   struct Env : junction::Environment {
     Impl* self = nullptr;
     JunctionRt* j = nullptr;
-    bool ExitHasRoom(int movement, int vehicle) override {
-      return self->ExitHasRoom(*j, movement, vehicle);
+    bool ExitHasRoom(int movement, int vehicle, int also) override {
+      return self->ExitHasRoom(*j, movement, vehicle, also);
     }
     bool MajorClear(int movement) override {
       const bool clear = self->MajorClear(*j, movement);
@@ -312,10 +315,10 @@ struct NetworkController::Impl : junction::EncounterModel {
 
   // Keep clear: the exit takes the vehicle with its rear off the junction
   // even if everything already headed there ends up queued.
-  bool ExitHasRoom(const JunctionRt& j, int movement, int vehicle) {
+  bool ExitHasRoom(const JunctionRt& j, int movement, int vehicle, int also = 0) {
     const Chain& c = chains[j.movements[movement].chain];
     const Veh& v = vehs[vehicle];
-    long ahead = 0;
+    long ahead = also;
     for (const std::string& lane : c.lanes) ahead += sumo::LaneVehicleNumber(lane);
     for (int h : crossing) {  // released into this exit, not yet on it
       const Veh& w = vehs[h];
@@ -419,7 +422,9 @@ struct NetworkController::Impl : junction::EncounterModel {
     new_pos = std::min(new_pos, last);
     for (int k = v.route_pos; k < new_pos; ++k) {
       const int j = edge_junction[v.route[k]];
-      if (j < 0 || now < sc.warmup) continue;
+      if (j < 0) continue;
+      junctions[j].last_progress = now;
+      if (now < sc.warmup) continue;
       (v.kind == VehicleKind::kAV ? junctions[j].run.crossings_av : junctions[j].run.crossings_hv)++;
     }
     v.route_pos = std::max(v.route_pos, new_pos);
@@ -689,45 +694,73 @@ struct NetworkController::Impl : junction::EncounterModel {
     out.encounters.push_back(r);
   }
 
+  // Why the heads of a stalled junction cannot go: exit room, major road.
+  std::string StallDetail(JunctionRt& j) {
+    std::string out;
+    for (int a : j.approaches) {
+      const int h = approaches[a].head;
+      if (h < 0 || vehs[h].state != State::kHeld) continue;
+      const Veh& v = vehs[h];
+      out += "; " + v.id + ": exit " +
+             (ExitHasRoom(j, v.movement, h) ? "has room" : "full (keep clear)");
+      if (j.logic->spec().rule == junction::Rule::kTwoWay)
+        out += MajorClear(j, v.movement) ? ", major road clear" : ", major road busy";
+    }
+    return out;
+  }
+
+  // The safety net (every policy, sumo_native included): a junction with
+  // vehicles waiting at its stop lines through which nothing has moved for
+  // stall_limit seconds. Progress is a vehicle passing it (route progress,
+  // read each second), a release or a clear, or a gap refused because the
+  // major road is busy (traffic is flowing there). Checked each second.
   void CheckStalls() {
     for (JunctionRt& j : junctions) {
       const JunctionLogic& l = *j.logic;
-      if (l.Waiting() == 0) {
-        j.waiting_since = -1;
+      const double progress = std::max({j.last_progress, l.LastActivity(), j.last_gap_refusal});
+      if (!j.waiting || now - progress <= stall_limit) {
+        if (j.waiting) continue;
+        j.stall_recorded = false;
         continue;
       }
-      if (j.waiting_since < 0) j.waiting_since = now;
-      const double since = std::max({j.waiting_since, l.LastActivity(), j.last_gap_refusal});
-      if (now - since > stall_limit)
-        throw ConfigError(
-            "junction '" + j.info.id + "' (" + j.run.rule + "): traffic stalled, " +
-            std::to_string(l.Waiting()) + " vehicles waiting at its stop lines and none " +
-            "entered or left it between t = " + Fmt(since) + " s and t = " + Fmt(now) + " s" +
-            (scenario.loop_length > 0
-                 ? " (scenario.loop_length = " + Fmt(scenario.loop_length) +
-                       " m; try a longer track or fewer vehicles)"
-                 : " (gridlock? lower the demand or check the network around it)"));
+      if (progress > j.stall_since) j.stall_recorded = false;
+      if (j.stall_recorded) continue;
+      const std::string what =
+          "junction '" + j.info.id + "' (" + j.run.rule + "): traffic stalled, vehicles waiting " +
+          "at its stop lines and none passed it between t = " + Fmt(progress) + " s and t = " +
+          Fmt(now) + " s" +
+          (scenario.loop_length > 0
+               ? " (scenario.loop_length = " + Fmt(scenario.loop_length) +
+                     " m; try a longer track or fewer vehicles)"
+               : " (gridlock: lower the demand, or set scenario.stall_action: record to measure "
+                 "it)");
+      if (sc.stall_action == "error")
+        throw ConfigError(what + "; " + l.Describe([&](int h) { return vehs[h].id; }) +
+                          StallDetail(j));
+      j.stall_recorded = true;
+      j.stall_since = progress;
+      out.stalls.push_back({j.info.id, progress, now});
     }
   }
 
+  // Once a simulated second: route progress (junction crossings, the
+  // figure-8's circulation), queues, the demand waiting to depart, stalls.
   void Sample() {
-    if (now < sc.warmup) {
-      for (const auto& [id, h] : index) {
-        CountProgress(h, sumo::RouteIndex(id));
-        KeepCirculating(h);
-      }
-      return;
-    }
-    for (ApproachRt& ap : approaches) {
-      const double q = sumo::LaneHaltingNumber(ap.lane);
-      ap.stats.queue_max = std::max(ap.stats.queue_max, q);
-      ap.stats.queue_sum += q;
-      ++ap.stats.samples;
-    }
     for (const auto& [id, h] : index) {
       CountProgress(h, sumo::RouteIndex(id));
       KeepCirculating(h);
     }
+    for (JunctionRt& j : junctions) j.waiting = j.logic->Waiting() > 0;
+    for (ApproachRt& ap : approaches) {
+      const double q = sumo::LaneHaltingNumber(ap.lane);
+      if (q > 0) junctions[ap.junction].waiting = true;
+      if (now < sc.warmup) continue;
+      ap.stats.queue_max = std::max(ap.stats.queue_max, q);
+      ap.stats.queue_sum += q;
+      ++ap.stats.samples;
+    }
+    CheckStalls();
+    if (now < sc.warmup) return;
     if (scenario.kind == "network") {
       const long pending = static_cast<long>(sumo::PendingVehicles().size());
       out.network.pending_max = std::max(out.network.pending_max, pending);
@@ -803,6 +836,7 @@ void NetworkController::Start() {
   }
   s.now = sumo::Time();
   s.last_crossing = s.now;
+  for (JunctionRt& j : s.junctions) j.last_progress = s.now;
 }
 
 void NetworkController::Step() {
@@ -820,7 +854,6 @@ void NetworkController::Step() {
     s.UpdateCrossing();
     s.UpdateNudges();
     for (JunctionRt& j : s.junctions) s.Decide(j);
-    s.CheckStalls();
     s.out.longest_gap_without_crossing =
         std::max(s.out.longest_gap_without_crossing, s.now - s.last_crossing);
   }

@@ -39,9 +39,12 @@ EncounterSequence::EncounterSequence(bool av_goes, bool hv_drives_if_clear, doub
       confirm_delay_(confirm_delay) {}
 
 std::vector<EncounterSequence::Release> EncounterSequence::Update(double now, bool av_cleared,
-                                                                  bool hv_cleared) {
+                                                                  bool hv_cleared,
+                                                                  bool av_may_enter,
+                                                                  bool hv_may_enter) {
   std::vector<Release> out;
   auto release = [&](bool av, bool reckless) {
+    if (!reckless && !(av ? av_may_enter : hv_may_enter)) return;  // keep clear: later
     out.push_back({av, reckless});
     (av ? av_released_ : hv_released_) = true;
   };

@@ -110,10 +110,13 @@ void JunctionLogic::Release(std::vector<Command>* out, int vehicle, int movement
 
 std::vector<Command> JunctionLogic::Decide(double now, Environment& env, EncounterModel& model) {
   std::vector<Command> out;
-  // Encounters in progress: the releases their sequences make due.
+  // Encounters in progress: the releases their sequences make due (a careful
+  // release waits for room at its exit: drive if clear).
   for (Active& e : encounters_) {
     if (!e.sequence) continue;
-    for (const auto& rel : e.sequence->Update(now, e.av_cleared, e.hv_cleared)) {
+    const bool av_room = e.av_released || env.ExitHasRoom(e.out.av_movement, e.out.av);
+    const bool hv_room = e.hv_released || env.ExitHasRoom(e.out.hv_movement, e.out.hv);
+    for (const auto& rel : e.sequence->Update(now, e.av_cleared, e.hv_cleared, av_room, hv_room)) {
       (rel.av ? e.av_released : e.hv_released) = true;
       Release(&out, rel.av ? e.out.av : e.out.hv, -1, rel.reckless, now);
     }
@@ -178,6 +181,10 @@ std::vector<Command> JunctionLogic::Decide(double now, Environment& env, Encount
       if (ph.ready > h.ready + timing_.arrival_window + eps) continue;  // came too late
       if (Blocked(ph.movement) || earlier_conflict(q, p, i)) continue;
       if (!has_room(p) || !major_clear(p)) continue;
+      // Both bound for the same exit: it must take the two of them.
+      if (spec_.movements[ph.movement].to_lane == spec_.movements[h.movement].to_lane &&
+          !env.ExitHasRoom(ph.movement, ph.vehicle, 1))
+        continue;
       partner = p;
       break;
     }
@@ -211,6 +218,25 @@ std::vector<Command> JunctionLogic::Decide(double now, Environment& env, Encount
   for (std::size_t i = 0; i < n; ++i)
     if (!done[i]) rest.push_back(heads_[i]);
   heads_.swap(rest);
+  return out;
+}
+
+std::string JunctionLogic::Describe(const std::function<std::string(int)>& name) const {
+  auto mv = [&](int m) {
+    const Movement& x = spec_.movements[m];
+    return x.from_lane + ">" + x.to_lane;
+  };
+  std::string out = "waiting:";
+  for (const HeadState& h : heads_)
+    out += " " + name(h.vehicle) + " (" + mv(h.movement) + ", arrived " +
+           std::to_string(h.arrival) + ")";
+  out += "; inside:";
+  for (const Inside& in : inside_) out += " " + name(in.vehicle) + " (" + mv(in.movement) + ")";
+  for (const Active& e : encounters_) {
+    out += "; encounter " + name(e.out.av) + "/" + name(e.out.hv) +
+           (e.nudged ? " decided" : " nudging") + (e.av_cleared ? ", AV cleared" : "") +
+           (e.hv_cleared ? ", HV cleared" : "");
+  }
   return out;
 }
 

@@ -251,6 +251,10 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
     j["simulated_seconds"] = r.simulated_seconds;
     j["measured_seconds"] = r.measured_seconds;
     j["nudges_unrealised"] = r.nudges_unrealised;
+    json stalls = json::array();
+    for (const StallRecord& st : r.stalls)
+      stalls.push_back({{"junction", st.junction}, {"since", st.since}, {"detected", st.detected}});
+    j["stalls"] = stalls;
     json junctions = json::array();
     for (const JunctionRun& jr : r.junctions) junctions.push_back(JunctionJson(r, jr));
     j["junctions"] = junctions;

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 
 namespace taebp {
@@ -42,6 +43,13 @@ ExperimentResult RunExperiment(const std::string& config_path,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     result.wall_seconds += wall;
     if (observer.policy_done) observer.policy_done(result.runs.back(), wall);
+    for (const StallRecord& st : result.runs.back().stalls) {
+      char buf[256];
+      std::snprintf(buf, sizeof buf, "%s: traffic stalled at junction '%s' from t = %.1f s",
+                    name.c_str(), st.junction.c_str(), st.since);
+      result.warnings.push_back(buf);
+      if (observer.warning) observer.warning(buf);
+    }
   }
   Provenance& prov = result.provenance;
   prov.config_path = config_path;

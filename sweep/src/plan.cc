@@ -290,7 +290,10 @@ const std::vector<std::string>& MetricColumns() {
       "theory_given_hvs_collision_rate", "theory_given_hvs_dc_rate",
       "throughput_av", "throughput_hv", "throughput_all",
       "wait_mean", "wait_max", "nudges", "other_collisions", "teleports",
-      "longest_gap_without_crossing"};
+      "longest_gap_without_crossing",
+      // kind: network (empty for the figure-8)
+      "served_flow", "time_loss_mean", "waiting_time_mean", "waiting_to_depart_end",
+      "nudges_unrealised"};
   return cols;
 }
 
@@ -348,6 +351,20 @@ Json MetricsFromSummary(const Json& s, const std::vector<std::string>& policies)
     m["other_collisions"] = get({"other_collisions"});
     m["teleports"] = get({"teleports"});
     m["longest_gap_without_crossing"] = get({"longest_gap_without_crossing"});
+    // Optional: absent for the figure-8 (no network section) or older files.
+    auto opt = [&](std::initializer_list<const char*> path) -> Json {
+      const Json* cur = &j;
+      for (const char* part : path) {
+        if (!cur->is_object() || !cur->contains(part)) return nullptr;
+        cur = &(*cur)[part];
+      }
+      return *cur;
+    };
+    m["served_flow"] = opt({"network", "served_flow_per_hour"});
+    m["time_loss_mean"] = opt({"network", "time_loss_mean"});
+    m["waiting_time_mean"] = opt({"network", "waiting_time_mean"});
+    m["waiting_to_depart_end"] = opt({"network", "waiting_to_depart", "end"});
+    m["nudges_unrealised"] = opt({"nudges_unrealised"});
     out[p] = m;
   }
   return out;
@@ -482,6 +499,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
     double ref_c = 0, ref_d = 0, ref_gc = 0, ref_gd = 0;
     double th_c_w = 0, th_d_w = 0, th_c = 0, th_d = 0, thg_c_w = 0, thg_d_w = 0;
     std::vector<double> tp_av, tp_hv, tp_all, wait;
+    std::vector<double> served, loss, waiting, pending;  // kind: network
   };
   // (point, policy) in point order, then the point's policy order.
   std::map<int, std::map<std::string, Acc>> acc;
@@ -519,6 +537,12 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
     a.tp_hv.push_back(Number(m["throughput_hv"]));
     a.tp_all.push_back(Number(m["throughput_all"]));
     a.wait.push_back(Number(m["wait_mean"]));
+    if (m["served_flow"].is_number()) {
+      a.served.push_back(Number(m["served_flow"]));
+      a.loss.push_back(Number(m["time_loss_mean"]));
+      a.waiting.push_back(Number(m["waiting_time_mean"]));
+      a.pending.push_back(Number(m["waiting_to_depart_end"]));
+    }
   });
   auto mean = [](const std::vector<double>& v) {
     if (v.empty()) return std::nan("");
@@ -541,7 +565,8 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
   out << ",policy,runs_ok,runs_failed,encounters,collision_rate,collision_rate_lo,"
          "collision_rate_hi,dc_rate,dc_rate_lo,dc_rate_hi,theory_collision_rate,theory_dc_rate,"
          "theory_given_hvs_collision_rate,theory_given_hvs_dc_rate,throughput_av,throughput_hv,"
-         "throughput_all,wait_mean,throughput_all_sd\n";
+         "throughput_all,wait_mean,throughput_all_sd,served_flow,served_flow_sd,time_loss_mean,"
+         "time_loss_mean_sd,waiting_time_mean,waiting_to_depart_end\n";
   for (const auto& [point_index, by_policy] : acc) {
     const Point& p = plan.points[static_cast<std::size_t>(point_index)];
     for (const std::string& policy : p.policies) {
@@ -552,7 +577,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       for (const auto& v : p.values) out << ',' << CsvQuote(v);
       out << ',' << CsvQuote(policy) << ',' << a.ok << ',' << a.failed;
       if (a.ok == 0) {
-        out << std::string(16, ',') << '\n';
+        out << std::string(22, ',') << '\n';
         continue;
       }
       out << ',' << a.enc;
@@ -571,7 +596,10 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
         out << ",,,,,,," << num(a.th_c / k) << ',' << num(a.th_d / k) << ",,";
       }
       out << ',' << num(mean(a.tp_av)) << ',' << num(mean(a.tp_hv)) << ','
-          << num(mean(a.tp_all)) << ',' << num(mean(a.wait)) << ',' << num(sd(a.tp_all)) << '\n';
+          << num(mean(a.tp_all)) << ',' << num(mean(a.wait)) << ',' << num(sd(a.tp_all)) << ','
+          << num(mean(a.served)) << ',' << num(sd(a.served)) << ',' << num(mean(a.loss)) << ','
+          << num(sd(a.loss)) << ',' << num(mean(a.waiting)) << ',' << num(mean(a.pending))
+          << '\n';
     }
   }
   return out.str();

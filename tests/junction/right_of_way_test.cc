@@ -25,7 +25,7 @@ JunctionSpec Figure8() {
 }
 
 struct OpenWorld : Environment {
-  bool ExitHasRoom(int, int) override { return true; }
+  bool ExitHasRoom(int, int, int) override { return true; }
   bool MajorClear(int) override { return true; }
 };
 

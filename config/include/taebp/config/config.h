@@ -122,6 +122,11 @@ struct ScenarioConfig {
   // A nudge SUMO did not realise (observed outside [s, s + 1 mm]): error
   // (stop the run) or count (record it and go on).
   std::string nudge_check = "error";
+  // Traffic stalled at a junction (vehicles wait, none passes it for the
+  // stall limit; see RunOptions): error (stop the run, say where and why) or
+  // record (note it in the outputs and go on: a gridlocked network measured
+  // as it is, e.g. beyond saturation).
+  std::string stall_action = "error";
 
   template <typename Archive>
   void Serialize(Archive* a) {
@@ -157,6 +162,7 @@ struct ScenarioConfig {
     a->Visit("tripinfo_output", &tripinfo_output);
     a->Visit("summary_output", &summary_output);
     a->Visit("nudge_check", &nudge_check);
+    a->Visit("stall_action", &stall_action);
   }
   bool IsNetwork() const { return kind == "network"; }
 };

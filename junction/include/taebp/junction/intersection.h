@@ -53,7 +53,10 @@ class EncounterSequence {
   EncounterSequence(bool av_goes, bool hv_drives_if_clear, double decided_at,
                     double confirm_delay);
   // Releases due at `now`, given which vehicles have cleared the junction.
-  std::vector<Release> Update(double now, bool av_cleared, bool hv_cleared);
+  // A careful release (not a reckless HV) also needs its exit to have room
+  // (`av_may_enter`, `hv_may_enter`: keep clear); until then it stays due.
+  std::vector<Release> Update(double now, bool av_cleared, bool hv_cleared,
+                              bool av_may_enter = true, bool hv_may_enter = true);
   bool Done(bool av_cleared, bool hv_cleared) const { return av_cleared && hv_cleared; }
 
  private:

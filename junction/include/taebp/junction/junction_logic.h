@@ -26,6 +26,7 @@
 
 #include "taebp/junction/intersection.h"
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -64,8 +65,9 @@ class Environment {
  public:
   virtual ~Environment() = default;
   // Keep clear: can `vehicle`'s exit on `movement` take it with its rear off
-  // the junction, counting every vehicle already headed there?
-  virtual bool ExitHasRoom(int movement, int vehicle) = 0;
+  // the junction, counting every vehicle already headed there and `also`
+  // more that are about to be (an encounter partner bound for the same exit)?
+  virtual bool ExitHasRoom(int movement, int vehicle, int also = 0) = 0;
   // Two-way stops: no major-road vehicle inside or within the critical gap
   // on a movement conflicting with `movement`. Always true at all-way stops.
   virtual bool MajorClear(int movement) = 0;
@@ -130,6 +132,9 @@ class JunctionLogic {
   int InJunction() const { return static_cast<int>(inside_.size()); }
   int Encounters() const { return static_cast<int>(encounters_.size()); }
   double LastActivity() const { return last_activity_; }
+  // The waiting heads, the vehicles inside and the encounters, for messages;
+  // `name` turns a vehicle handle into its id.
+  std::string Describe(const std::function<std::string(int)>& name) const;
 
  private:
   struct HeadState {

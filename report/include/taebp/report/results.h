@@ -60,6 +60,13 @@ struct NetworkRun {
   double time_loss_max = 0;
 };
 
+// A junction where traffic stalled (scenario.stall_action: record).
+struct StallRecord {
+  std::string junction;
+  double since = 0;     // last time a vehicle passed it
+  double detected = 0;  // when the safety net noticed
+};
+
 struct PolicyRun {
   std::string policy;
   persuasion::CommittedScheme scheme;     // the design for the population's theta_hat
@@ -79,6 +86,7 @@ struct PolicyRun {
   double measured_seconds = 0;            // simulated time after the warm-up
   long nudges_unrealised = 0;             // nudges SUMO did not realise (nudge_check: count)
   std::vector<JunctionRun> junctions;     // every controlled junction
+  std::vector<StallRecord> stalls;        // scenario.stall_action: record
   NetworkRun network;
   std::string scenario_kind = "figure8";
 };
