@@ -1,6 +1,7 @@
 #include "taebp/controller/network_controller.h"
 
 #include "taebp/controller/sumo_adapter.h"
+#include "taebp/junction/conflict_geometry.h"
 #include "taebp/junction/design.h"
 #include "taebp/junction/intersection.h"
 #include "taebp/junction/junction_logic.h"
@@ -81,6 +82,7 @@ struct Veh {
   State state = State::kFree;
   int junction = -1, movement = -1, approach = -1;
   double arrival = 0, hold_odometer = 0;
+  double line_gap = 0;     // m from its front to the stop line when held
   double target = 0, creep_speed = 0, commanded = 0;
   std::string lane;        // while crossing: the lane it was last seen on
   Paint paint = Paint::kType;
@@ -243,6 +245,27 @@ struct NetworkController::Impl : junction::EncounterModel {
       for (std::size_t a = 0; a < n; ++a)
         for (std::size_t b = 0; b < n; ++b)
           spec.conflict[a][b] = nj->foes[link_of[a]][link_of[b]];
+      // Where each pair conflicts: a vehicle unblocks a crossing movement
+      // once its rear is past the crossing point, not only when it has left
+      // the junction.
+      std::vector<std::vector<junction::Point2>> paths(n);
+      std::vector<double> widths(n, 3.2);
+      for (std::size_t a = 0; a < n; ++a) {
+        for (const std::string& in : rt.movements[a].internal) {
+          const net::Lane* il = net.FindLane(in);
+          if (!il) continue;
+          widths[a] = il->width;
+          for (const net::Point& p : il->shape) {
+            if (!paths[a].empty() && paths[a].back().x == p.x && paths[a].back().y == p.y) continue;
+            paths[a].push_back({p.x, p.y});
+          }
+        }
+      }
+      spec.clear_at.assign(n, std::vector<double>(n, 0.0));
+      for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t b = 0; b < n; ++b)
+          if (spec.Conflict(static_cast<int>(a), static_cast<int>(b)))
+            spec.clear_at[a][b] = junction::ClearDistance(paths[a], widths[a], paths[b], widths[b]);
       const int jx = static_cast<int>(junctions.size());
       for (std::size_t a = 0; a < n; ++a) {
         MovementRt& m = rt.movements[a];
@@ -313,21 +336,37 @@ struct NetworkController::Impl : junction::EncounterModel {
     }
   };
 
-  // Keep clear: the exit takes the vehicle with its rear off the junction
-  // even if everything already headed there ends up queued.
+  // Keep clear: a head enters only if its exit can take it with its rear off
+  // the junction. Two forms of one rule, by what the exit can be relied on
+  // to do:
+  // - closed loops (the figure-8): vehicles leave a loop only through this
+  //   junction, so every vehicle already headed into the loop is counted as
+  //   if queued at its end (a full loop is a gridlock of its own);
+  // - open networks: vehicles on the exit move on through the next junction,
+  //   so the exit needs room behind its last vehicle now, less the vehicles
+  //   already released towards it (SUMO's own keepClear does the same).
   bool ExitHasRoom(const JunctionRt& j, int movement, int vehicle, int also = 0) {
-    const Chain& c = chains[j.movements[movement].chain];
+    const MovementRt& m = j.movements[movement];
+    const Chain& c = chains[m.chain];
     const Veh& v = vehs[vehicle];
-    long ahead = also;
-    for (const std::string& lane : c.lanes) ahead += sumo::LaneVehicleNumber(lane);
-    for (int h : crossing) {  // released into this exit, not yet on it
+    const double unit = v.length + v.min_gap;
+    long inflight = also;  // released into this exit, not yet on it
+    for (int h : crossing) {
       const Veh& w = vehs[h];
-      if (w.junction < 0 || junctions[w.junction].movements[w.movement].chain !=
-                                j.movements[movement].chain)
-        continue;
-      if (std::find(c.lanes.begin(), c.lanes.end(), w.lane) == c.lanes.end()) ++ahead;
+      if (w.junction < 0 || junctions[w.junction].movements[w.movement].chain != m.chain) continue;
+      if (std::find(c.lanes.begin(), c.lanes.end(), w.lane) == c.lanes.end()) ++inflight;
     }
-    return ahead * (v.length + v.min_gap) + v.length <= c.capacity;
+    if (scenario.lap.empty()) {
+      const std::vector<std::string> ids = sumo::LaneVehicleIDs(m.to_lane);
+      const net::Lane* exit = net.FindLane(m.to_lane);
+      double free = exit ? exit->length : 0;
+      if (ids.empty() && inflight == 0) return true;  // an empty exit, however short
+      if (!ids.empty()) free = sumo::LanePosition(ids.front()) - sumo::Length(ids.front());
+      return free - inflight * unit >= unit;
+    }
+    long ahead = inflight;
+    for (const std::string& lane : c.lanes) ahead += sumo::LaneVehicleNumber(lane);
+    return ahead * unit + v.length <= c.capacity;
   }
 
   // Two-way stops: no major vehicle inside or about to reach a conflicting
@@ -487,6 +526,7 @@ struct NetworkController::Impl : junction::EncounterModel {
       v.approach = static_cast<int>(a);
       v.arrival = now;
       v.hold_odometer = sumo::Distance(v.id);
+      v.line_gap = ap.length - sumo::LanePosition(v.id);
       ap.head = h;
       j.logic->Arrive(h, v.kind, m, now);
     }
@@ -569,7 +609,12 @@ struct NetworkController::Impl : junction::EncounterModel {
     for (int h : now_crossing) {
       Veh& v = vehs[h];
       v.lane = sumo::LaneID(v.id);
-      if (ClearedJunction(v, v.lane)) Clear(h);
+      if (ClearedJunction(v, v.lane)) {
+        Clear(h);
+        continue;
+      }
+      const double rear = sumo::Distance(v.id) - v.hold_odometer - v.line_gap - v.length;
+      junctions[v.junction].logic->Progress(h, rear, now);
     }
   }
 

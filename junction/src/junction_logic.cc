@@ -17,6 +17,12 @@ void JunctionSpec::Validate() const {
   for (const auto& row : conflict)
     if (row.size() != n)
       throw std::invalid_argument("junction " + id + ": conflict matrix is not square");
+  if (!clear_at.empty()) {
+    if (clear_at.size() != n)
+      throw std::invalid_argument("junction " + id + ": clear_at has the wrong size");
+    for (const auto& row : clear_at)
+      if (row.size() != n) throw std::invalid_argument("junction " + id + ": clear_at is not square");
+  }
   for (const Movement& m : movements)
     if (m.approach < 0 || m.approach >= approaches)
       throw std::invalid_argument("junction " + id + ": movement approach out of range");
@@ -31,31 +37,44 @@ void JunctionLogic::Arrive(int vehicle, VehicleKind kind, int movement, double n
   heads_.push_back({vehicle, kind, movement, now, now});
 }
 
+bool JunctionLogic::Blocks(const Inside& in, int movement) const {
+  if (!spec_.Conflict(in.movement, movement)) return false;
+  return spec_.clear_at.empty() || in.rear < spec_.clear_at[in.movement][movement];
+}
+
+void JunctionLogic::Progress(int vehicle, double rear, double now) {
+  for (Inside& in : inside_) {
+    if (in.vehicle != vehicle) continue;
+    const double before = in.rear;
+    in.rear = rear;
+    if (spec_.clear_at.empty()) return;
+    // Heads whose conflict with this vehicle just ended.
+    for (HeadState& h : heads_) {
+      if (!spec_.Conflict(in.movement, h.movement)) continue;
+      const double at = spec_.clear_at[in.movement][h.movement];
+      if (before < at && rear >= at) h.ready = std::max(h.ready, now);
+    }
+    return;
+  }
+}
+
 void JunctionLogic::Cleared(int vehicle, double now) {
   last_activity_ = now;
-  // The heads this vehicle blocked are ready (start looking) from now on.
-  auto unblock = [&](int movement) {
-    for (HeadState& h : heads_)
-      if (spec_.Conflict(h.movement, movement)) h.ready = std::max(h.ready, now);
-  };
   for (auto it = inside_.begin(); it != inside_.end();) {
     if (it->vehicle == vehicle) {
-      unblock(it->movement);
+      const Inside gone = *it;
       it = inside_.erase(it);
+      // The heads it still blocked are ready from now on.
+      for (HeadState& h : heads_)
+        if (Blocks(gone, h.movement)) h.ready = std::max(h.ready, now);
     } else {
       ++it;
     }
   }
   for (auto it = encounters_.begin(); it != encounters_.end(); ++it) {
     Active& e = *it;
-    if (e.out.av == vehicle) {
-      e.av_cleared = true;
-      unblock(e.out.av_movement);
-    }
-    if (e.out.hv == vehicle) {
-      e.hv_cleared = true;
-      unblock(e.out.hv_movement);
-    }
+    if (e.out.av == vehicle) e.av_cleared = true;
+    if (e.out.hv == vehicle) e.hv_cleared = true;
     if (e.av_cleared && e.hv_cleared) {
       finished_.push_back(e.out);
       encounters_.erase(it);
@@ -89,10 +108,12 @@ bool JunctionLogic::Collided(int a, int b) {
 
 bool JunctionLogic::Blocked(int movement) const {
   for (const Inside& in : inside_)
-    if (spec_.Conflict(in.movement, movement)) return true;
+    if (Blocks(in, movement)) return true;
+  // An encounter reserves the movements of its vehicles until they are
+  // released (then they are inside, above).
   for (const Active& e : encounters_) {
-    if (!e.av_cleared && spec_.Conflict(e.out.av_movement, movement)) return true;
-    if (!e.hv_cleared && spec_.Conflict(e.out.hv_movement, movement)) return true;
+    if (!e.av_released && spec_.Conflict(e.out.av_movement, movement)) return true;
+    if (!e.hv_released && spec_.Conflict(e.out.hv_movement, movement)) return true;
   }
   return false;
 }
@@ -118,7 +139,8 @@ std::vector<Command> JunctionLogic::Decide(double now, Environment& env, Encount
     const bool hv_room = e.hv_released || env.ExitHasRoom(e.out.hv_movement, e.out.hv);
     for (const auto& rel : e.sequence->Update(now, e.av_cleared, e.hv_cleared, av_room, hv_room)) {
       (rel.av ? e.av_released : e.hv_released) = true;
-      Release(&out, rel.av ? e.out.av : e.out.hv, -1, rel.reckless, now);
+      Release(&out, rel.av ? e.out.av : e.out.hv, rel.av ? e.out.av_movement : e.out.hv_movement,
+              rel.reckless, now);
     }
   }
   if (heads_.empty()) return out;

@@ -14,12 +14,15 @@
 //   road clear (Environment::MajorClear: no major vehicle within the
 //   critical gap on a conflicting movement).
 // - A head "looks both ways" for `arrival_window` seconds after it became
-//   ready (arrived, or the last conflicting vehicle in the junction cleared).
-//   A conflicting head that was ready by the end of that window meets it: an
-//   AV and an HV form an AV-HV encounter (the paper's two-player game); two
-//   of a kind go by arrival time. Meetings are pairwise: a third conflicting
-//   head waits for the encounter to finish, so every decision stays the
-//   two-player game.
+//   ready: it arrived, or the last conflicting vehicle cleared its path
+//   (spec.clear_at). A conflicting head that was ready by the end of that
+//   window meets it: an AV and an HV form an AV-HV encounter (the paper's
+//   two-player game); two of a kind go by arrival time. Meetings are
+//   pairwise: a third conflicting head waits for the encounter to finish, so
+//   every decision stays the two-player game. (Looking again after the
+//   junction frees is what lets the figure-8's two queues meet; it costs
+//   `arrival_window` per conflicting release, the protocol's price in
+//   capacity.)
 // - Keep clear: a head whose exit cannot take it with its rear off the
 //   junction (Environment::ExitHasRoom) is not considered; it blocks nobody.
 #pragma once
@@ -50,6 +53,10 @@ struct JunctionSpec {
   std::vector<Movement> movements;
   // conflict[i][j]: movements i and j cross or merge (symmetric; from SUMO).
   std::vector<std::vector<bool>> conflict;
+  // clear_at[i][j] (optional): how far (m, from the stop line) the rear of a
+  // vehicle on movement i must have driven before movement j may go (past
+  // the crossing point; ConflictGeometry). Empty: until it left the junction.
+  std::vector<std::vector<double>> clear_at;
   bool Conflict(int a, int b) const { return conflict[a][b] || conflict[b][a]; }
   // Throws std::invalid_argument when sizes disagree.
   void Validate() const;
@@ -112,6 +119,10 @@ class JunctionLogic {
 
   // A vehicle came to a stop at the line of its approach (the head).
   void Arrive(int vehicle, VehicleKind kind, int movement, double now);
+  // Where a released vehicle's rear is: metres driven past its stop line
+  // (negative while it is still before it). Unblocks the movements it has
+  // passed (spec().clear_at).
+  void Progress(int vehicle, double rear, double now);
   // A released vehicle's rear left the junction.
   void Cleared(int vehicle, double now);
   // A nudging AV finished its creep; `observed` is the displacement SUMO
@@ -147,6 +158,7 @@ class JunctionLogic {
   struct Inside {  // released, not yet cleared
     int vehicle;
     int movement;
+    double rear = -1e300;  // m past the stop line
   };
   struct Active {
     EncounterOutcome out;
@@ -157,6 +169,7 @@ class JunctionLogic {
   };
 
   bool Blocked(int movement) const;  // conflicts with a vehicle inside or in an encounter
+  bool Blocks(const Inside& in, int movement) const;
   void Release(std::vector<Command>* out, int vehicle, int movement, bool reckless, double now);
 
   JunctionSpec spec_;
