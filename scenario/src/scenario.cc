@@ -72,7 +72,21 @@ fs::path Cached(const std::string& name, const std::string& file,
   return dir / file;
 }
 
-fs::path Resolve(const std::string& path, const std::string& base_dir) {
+// A leading $SUMO_HOME or ${SUMO_HOME} is SUMO's data directory (the
+// environment's, else /usr/share/sumo), so configs can name SUMO's examples.
+std::string ExpandSumoHome(const std::string& path) {
+  for (const char* var : {"${SUMO_HOME}", "$SUMO_HOME"}) {
+    const std::string v = var;
+    if (path.rfind(v, 0) == 0) {
+      const char* home = std::getenv("SUMO_HOME");
+      return std::string(home && *home ? home : "/usr/share/sumo") + path.substr(v.size());
+    }
+  }
+  return path;
+}
+
+fs::path Resolve(const std::string& raw, const std::string& base_dir) {
+  const std::string path = ExpandSumoHome(raw);
   fs::path p = path;
   if (p.is_relative() && !base_dir.empty()) p = fs::path(base_dir) / p;
   return p;
