@@ -113,13 +113,17 @@ std::vector<Command> JunctionLogic::Decide(double now, Environment& env, Encount
     blocked[i] = Blocked(h.movement);
     if (blocked[i]) h.ready = std::max(h.ready, now);
   }
+  // First come, first served: by arrival. (`ready` only times the look both
+  // ways and the meeting window: ordering by it let every later vehicle of a
+  // stream that is not blocked overtake a head blocked by the vehicle in
+  // front of them, for as long as the stream lasted.)
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     const HeadState& x = heads_[a];
     const HeadState& y = heads_[b];
-    if (x.ready != y.ready) return x.ready < y.ready;
     if (x.arrival != y.arrival) return x.arrival < y.arrival;
+    if (x.ready != y.ready) return x.ready < y.ready;
     const int ax = spec_.movements[x.movement].approach, ay = spec_.movements[y.movement].approach;
     if (ax != ay) return ax < ay;
     return x.vehicle < y.vehicle;
@@ -165,7 +169,7 @@ std::vector<Command> JunctionLogic::Decide(double now, Environment& env, Encount
       const std::size_t p = order[q];
       if (done[p] || !conflict(i, p)) continue;
       const HeadState& ph = heads_[p];
-      if (ph.ready > h.ready + timing_.arrival_window + eps) break;  // sorted by ready
+      if (ph.ready > h.ready + timing_.arrival_window + eps) continue;
       if (Blocked(ph.movement) || earlier_conflict(q, p, i)) continue;
       if (!has_room(p) || !major_clear(p)) continue;
       partner = p;

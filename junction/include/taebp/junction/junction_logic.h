@@ -5,7 +5,8 @@
 //
 // Rules (README "Junctions and right of way"):
 // - all-way stop: every approach stops; heads go first come, first served
-//   (by the time they became ready, then arrival, then approach order); a
+//   (by arrival time, then approach order; a head blocked by a vehicle
+//   inside keeps its turn against later arrivals); a
 //   head whose movement does not conflict with anything in or entering the
 //   junction, nor with an earlier waiting head, may go at the same time as
 //   others.
