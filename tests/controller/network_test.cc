@@ -12,6 +12,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "../scenario/net_support.h"
 #include "test_support.h"
 
 #include <cmath>
@@ -21,9 +22,6 @@
 #include <set>
 #include <string>
 #include <vector>
-
-#include <stdlib.h>
-#include <sys/wait.h>
 
 namespace taebp {
 namespace {
@@ -222,35 +220,9 @@ MovementCheck CheckEncounterMovements(const PolicyRun& r, const net::NetFile& ne
   return out;
 }
 
-// netconvert of one 4-way all-way stop with 100 m arms.
-std::string FourWayAllWay(const TempDir& dir) {
-  const std::string nod = dir.Write(
-      "x.nod.xml",
-      "<nodes>\n"
-      "  <node id=\"C\" x=\"0\" y=\"0\" type=\"allway_stop\"/>\n"
-      "  <node id=\"N\" x=\"0\" y=\"100\" type=\"dead_end\"/>\n"
-      "  <node id=\"S\" x=\"0\" y=\"-100\" type=\"dead_end\"/>\n"
-      "  <node id=\"E\" x=\"100\" y=\"0\" type=\"dead_end\"/>\n"
-      "  <node id=\"W\" x=\"-100\" y=\"0\" type=\"dead_end\"/>\n"
-      "</nodes>\n");
-  std::string edges = "<edges>\n";
-  for (const char* arm : {"N", "S", "E", "W"}) {
-    edges += std::string("  <edge id=\"") + arm + "C\" from=\"" + arm + "\" to=\"C\" numLanes=\"1\"/>\n";
-    edges += std::string("  <edge id=\"C") + arm + "\" from=\"C\" to=\"" + arm + "\" numLanes=\"1\"/>\n";
-  }
-  const std::string edg = dir.Write("x.edg.xml", edges + "</edges>\n");
-  const std::string net = (dir.path() / "x.net.xml").string();
-  const int rc = std::system(("netconvert --node-files " + nod + " --edge-files " + edg +
-                              " --no-turnarounds true --xml-validation never --output-file " +
-                              net + " >/dev/null 2>&1")
-                                 .c_str());
-  EXPECT_EQ(WEXITSTATUS(rc), 0);
-  return net;
-}
-
 TEST(NetworkConflicts, FourWayAllWayStopWithTurnsEncountersConflictInSumosMatrix) {
   TempDir dir("taebp_network");
-  const std::string net = FourWayAllWay(dir);
+  const std::string net = test::FourWay(dir, "x", "allway_stop");
   const std::string yaml = std::string(
                                "scenario:\n"
                                "  kind: network\n"
