@@ -86,6 +86,7 @@ struct Veh {
   double target = 0, creep_speed = 0, commanded = 0;
   std::string lane;        // while crossing: the lane it was last seen on
   Paint paint = Paint::kType;
+  int open_encounters = 0;  // formed, not yet recorded: the slot is not reused before
 };
 
 struct Chain {  // the lanes a movement's exit fills before the next stop line
@@ -391,7 +392,9 @@ struct NetworkController::Impl : junction::EncounterModel {
   }
 
   // ------------------------------------------------------------ encounter model
-  AvDraw Draw(int /*av*/, int hv) override {
+  AvDraw Draw(int av, int hv) override {
+    ++vehs[av].open_encounters;
+    ++vehs[hv].open_encounters;
     return DrawAv(vehs[hv].scheme, params.prior_go, rng);
   }
   HvReading Read(int /*av*/, int hv, double observed) override {
@@ -481,7 +484,7 @@ struct NetworkController::Impl : junction::EncounterModel {
     if (now >= sc.warmup) ++out.network.arrived;
     v.route.clear();
     index.erase(it);
-    free_slots.push_back(h);
+    if (v.open_encounters == 0) free_slots.push_back(h);  // else once recorded
   }
 
   // ------------------------------------------------------------ holding
@@ -709,7 +712,11 @@ struct NetworkController::Impl : junction::EncounterModel {
         StartNudge(c.vehicle, c.distance);
       }
     }
-    for (const junction::EncounterOutcome& e : j.logic->TakeFinished()) Record(j, e);
+    for (const junction::EncounterOutcome& e : j.logic->TakeFinished()) {
+      Record(j, e);
+      for (int h : {e.av, e.hv})
+        if (--vehs[h].open_encounters == 0 && !vehs[h].alive) free_slots.push_back(h);
+    }
   }
 
   void Record(const JunctionRt& j, const junction::EncounterOutcome& e) {

@@ -155,6 +155,7 @@ std::vector<Command> JunctionLogic::Decide(double now, Environment& env, Encount
     const HeadState& x = heads_[a];
     const HeadState& y = heads_[b];
     if (x.arrival != y.arrival) return x.arrival < y.arrival;
+    if (x.ready != y.ready) return x.ready < y.ready;
     const int ax = spec_.movements[x.movement].approach, ay = spec_.movements[y.movement].approach;
     if (ax != ay) return ax < ay;
     return x.vehicle < y.vehicle;

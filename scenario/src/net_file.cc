@@ -141,11 +141,16 @@ NetFile NetFile::Load(const std::string& path) {
       if (it == internal_next.end()) break;
       lane = it->second.first;  // the next internal lane, or "" when the next is the to-lane
     }
+    // The request index is the position of the link's internal lane in the
+    // junction's intLanes. A turn that waits at an internal junction (a left
+    // turn yielding to the opposite straight) is listed there by its second
+    // internal lane, not by `via`: look along the whole way.
     auto jt = net.junctions_.find(link.junction);
-    if (jt != net.junctions_.end() && !raw.via.empty()) {
+    if (jt != net.junctions_.end()) {
       const auto& il = jt->second.int_lanes;
-      for (std::size_t k = 0; k < il.size(); ++k)
-        if (il[k] == raw.via) link.index = static_cast<int>(k);
+      for (std::size_t k = 0; k < il.size() && link.index < 0; ++k)
+        for (const std::string& lane : link.internal)
+          if (il[k] == lane) link.index = static_cast<int>(k);
     }
     const int id = static_cast<int>(net.links_.size());
     net.links_.push_back(link);

@@ -1,0 +1,288 @@
+// Short SUMO runs of kind: network through taebp::RunPolicy: the AV share of
+// the departing vehicles against scenario.av_share (99.9% intervals), the
+// extremes, the same AV/HV assignment and trust draws per vehicle id across
+// policies; and every AV-HV encounter on movements that conflict in SUMO's
+// own foes matrix (read back with net::NetFile), at all-way stops with
+// turning demand and at two-way stops.
+#include "taebp/config/config.h"
+#include "taebp/controller/experiment.h"
+#include "taebp/scenario/net_file.h"
+#include "taebp/scenario/scenario.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "../scenario/net_support.h"
+#include "test_support.h"
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace taebp {
+namespace {
+
+namespace fs = std::filesystem;
+using test::TempDir;
+
+constexpr double kZ999 = 3.2905267314919255;
+
+// Wilson interval of k/n at z.
+std::pair<double, double> Wilson(long k, long n, double z) {
+  const double p = static_cast<double>(k) / n;
+  const double z2 = z * z;
+  const double denom = 1 + z2 / n;
+  const double centre = (p + z2 / (2.0 * n)) / denom;
+  const double half = z * std::sqrt(p * (1 - p) / n + z2 / (4.0 * n * n)) / denom;
+  return {centre - half, centre + half};
+}
+
+const char* const kModel =
+    "model:\n"
+    "  prior_go: 0.2\n"
+    "  collision_penalty: 3.0\n"
+    "  trust: {dist: beta, alpha: 4, beta: 2}\n"
+    "  likelihood: {type: linear, s_max: 2.0}\n";
+
+// A 3x3 grid with 50 m fringe edges and fringe demand.
+ExperimentConfig GridConfig(const std::vector<std::string>& overrides) {
+  const std::string yaml = std::string(
+                               "scenario:\n"
+                               "  kind: network\n"
+                               "  grid: {columns: 3, rows: 3, length: 100, attach_length: 50}\n"
+                               "  demand: {flow: 600}\n"
+                               "  av_share: 0.5\n"
+                               "  cruise_speed: 10\n"
+                               "  duration: 600\n"
+                               "  seed: 11\n") +
+                           kModel + "policies: [sumo_native]\n";
+  return ParseExperimentConfig(yaml, "network_test grid", overrides);
+}
+
+long AvDeparted(const PolicyRun& r) {
+  return r.network.departed - static_cast<long>(r.hv_trust.size());
+}
+
+// ------------------------------------------------------------------ AV share
+
+TEST(NetworkAvShare, AvFractionOfDepartedVehiclesAgreesWithTheShare) {
+  for (double p : {0.3, 0.75}) {
+    SCOPED_TRACE("av_share " + std::to_string(p));
+    const ExperimentConfig cfg =
+        GridConfig({"scenario.av_share=" + std::to_string(p), "scenario.duration=900"});
+    const Scenario sc = BuildScenario(cfg, "");
+    const PolicyRun r = RunPolicy(cfg, "sumo_native", sc);
+    const long n = r.network.departed;
+    const long av = AvDeparted(r);
+    ASSERT_GT(n, 500);  // the grid saturates: not every trip departs
+    ASSERT_GE(av, 0);
+    const auto [lo, hi] = Wilson(av, n, kZ999);
+    EXPECT_GE(p, lo) << av << " AVs of " << n;
+    EXPECT_LE(p, hi) << av << " AVs of " << n;
+    long cav = 0, chv = 0;
+    for (const JunctionRun& j : r.junctions) {
+      cav += j.crossings_av;
+      chv += j.crossings_hv;
+    }
+    EXPECT_GT(cav, 0);
+    EXPECT_GT(chv, 0);
+    std::cout << "av_share " << p << ": " << av << " AVs of " << n << " departed ("
+              << static_cast<double>(av) / n << "); junction crossings AV " << cav << ", HV "
+              << chv << "\n";
+  }
+}
+
+TEST(NetworkAvShare, ZeroAndOneGiveOnlyHvsOrOnlyAvs) {
+  for (const std::string& policy : {std::string("sumo_native"), std::string("ta_ebp")}) {
+    for (double p : {0.0, 1.0}) {
+      SCOPED_TRACE(policy + ", av_share " + std::to_string(p));
+      const ExperimentConfig cfg = GridConfig({"scenario.av_share=" + std::to_string(p),
+                                               "scenario.duration=300",
+                                               "policies=[" + policy + "]"});
+      const PolicyRun r = RunPolicy(cfg, policy, BuildScenario(cfg, ""));
+      ASSERT_GT(r.network.departed, 100);
+      EXPECT_EQ(AvDeparted(r), p == 0.0 ? 0 : r.network.departed);
+      EXPECT_TRUE(r.encounters.empty()) << "an AV-HV encounter with one kind of vehicle";
+      long cav = 0, chv = 0;
+      for (const JunctionRun& j : r.junctions) {
+        cav += j.crossings_av;
+        chv += j.crossings_hv;
+      }
+      EXPECT_GT(cav + chv, 100);
+      EXPECT_EQ(p == 0.0 ? cav : chv, 0);
+    }
+  }
+}
+
+TEST(NetworkAvShare, SameSeedSameAssignmentAndTrustPerVehicleAcrossPolicies) {
+  // Each vehicle's kind and trust depend on (seed, id) only: across policies
+  // (whose traffic differs) an id is always the same kind, an HV always has
+  // the same trust.
+  struct Seen {
+    bool av;
+    double trust;
+  };
+  auto collect = [](const ExperimentConfig& cfg, const std::vector<std::string>& policies) {
+    std::map<std::string, std::vector<Seen>> seen;
+    const Scenario sc = BuildScenario(cfg, "");
+    for (const std::string& policy : policies) {
+      const PolicyRun r = RunPolicy(cfg, policy, sc);
+      EXPECT_GT(r.encounters.size(), 50u) << policy;
+      for (const EncounterRecord& e : r.encounters) {
+        seen[e.av].push_back({true, 0});
+        seen[e.hv].push_back({false, e.hv_trust});
+      }
+    }
+    return seen;
+  };
+  const ExperimentConfig cfg = GridConfig({"scenario.duration=600"});
+  const auto a = collect(cfg, {"no_ebp", "no_trust", "ta_ebp"});
+  long ids = 0, repeated = 0;
+  for (const auto& [id, list] : a) {
+    ++ids;
+    repeated += list.size() > 1;
+    for (const Seen& s : list) {
+      EXPECT_EQ(s.av, list.front().av) << id << " is an AV in one policy and an HV in another";
+      if (!s.av) {
+        EXPECT_EQ(s.trust, list.front().trust) << id;
+      }
+    }
+  }
+  EXPECT_GT(repeated, ids / 4) << "too few vehicles met in several policies to compare";
+  // Another seed draws afresh (and generates other demand under the same ids).
+  const auto b = collect(GridConfig({"scenario.duration=600", "scenario.seed=12"}),
+                         {"ta_ebp"});
+  long common = 0, differ = 0;
+  for (const auto& [id, list] : b) {
+    const auto it = a.find(id);
+    if (it == a.end()) continue;
+    ++common;
+    const Seen& x = it->second.front();
+    const Seen& y = list.front();
+    differ += x.av != y.av || (!x.av && x.trust != y.trust);
+  }
+  EXPECT_GT(common, 50);
+  EXPECT_GT(differ, common / 4);
+}
+
+// ------------------------------------------------------------------ conflicts from SUMO
+// Every encounter's two movements, looked up as links of the net SUMO ran,
+// conflict in SUMO's foes matrix; with the link directions recorded.
+struct MovementCheck {
+  long encounters = 0, turning = 0;
+  std::map<std::string, long> dirs;  // "s/l" etc.
+};
+
+const net::Link* FindLink(const net::NetFile& net, const std::string& movement) {
+  const auto gt = movement.find('>');
+  if (gt == std::string::npos) return nullptr;
+  const std::string from = movement.substr(0, gt), to = movement.substr(gt + 1);
+  for (int id : net.LinksFrom(from))
+    if (net.links()[id].to_lane == to) return &net.links()[id];
+  return nullptr;
+}
+
+MovementCheck CheckEncounterMovements(const PolicyRun& r, const net::NetFile& net,
+                                      char stop_state) {
+  MovementCheck out;
+  for (const EncounterRecord& e : r.encounters) {
+    const net::Link* a = FindLink(net, e.av_movement);
+    const net::Link* h = FindLink(net, e.hv_movement);
+    if (!a || !h) {
+      ADD_FAILURE() << "no link for " << e.av_movement << " or " << e.hv_movement;
+      continue;
+    }
+    EXPECT_EQ(a->junction, e.junction);
+    EXPECT_EQ(h->junction, e.junction);
+    EXPECT_NE(a->from_lane, h->from_lane) << "an encounter on one approach";
+    const net::Junction* j = net.FindJunction(e.junction);
+    if (!j || a->index < 0 || h->index < 0) {
+      ADD_FAILURE() << e.junction << ": unindexed links " << e.av_movement << " / "
+                    << e.hv_movement;
+      continue;
+    }
+    EXPECT_TRUE(j->foes[a->index][h->index] || j->foes[h->index][a->index])
+        << e.junction << ": " << e.av_movement << " / " << e.hv_movement
+        << " met but do not conflict";
+    EXPECT_EQ(e.av_dir, a->dir);
+    EXPECT_EQ(e.hv_dir, h->dir);
+    // Only vehicles on stop links are ever held (the major road never).
+    EXPECT_EQ(a->state, stop_state) << e.av_movement;
+    EXPECT_EQ(h->state, stop_state) << e.hv_movement;
+    ++out.encounters;
+    out.turning += a->dir != 's' || h->dir != 's';
+    ++out.dirs[std::string(1, a->dir) + "/" + h->dir];
+  }
+  return out;
+}
+
+TEST(NetworkConflicts, FourWayAllWayStopWithTurnsEncountersConflictInSumosMatrix) {
+  TempDir dir("taebp_network");
+  const std::string net = test::FourWay(dir, "x", "allway_stop");
+  const std::string yaml = std::string(
+                               "scenario:\n"
+                               "  kind: network\n"
+                               "  network: ") +
+                           net +
+                           "\n"
+                           "  demand: {flow: 450}\n"
+                           "  av_share: 0.5\n"
+                           "  cruise_speed: 8\n"
+                           "  duration: 1200\n"
+                           "  seed: 5\n" +
+                           "model:\n  prior_go: 0.2\n  collision_penalty: 3.0\n  trust: 0.6\n" +
+                           "policies: [no_trust, ta_ebp]\n";
+  const ExperimentConfig cfg = ParseExperimentConfig(yaml, "network_test 4-way");
+  const Scenario sc = BuildScenario(cfg, "");
+  ASSERT_EQ(sc.junctions.size(), 1u);
+  EXPECT_EQ(sc.junctions[0].id, "C");
+  for (const std::string& policy : cfg.policies) {
+    SCOPED_TRACE(policy);
+    const PolicyRun r = RunPolicy(cfg, policy, sc);
+    MovementCheck c = CheckEncounterMovements(r, *sc.topology, 'w');
+    EXPECT_GT(c.encounters, 50);
+    EXPECT_GT(c.turning, c.encounters / 4) << "the demand turns";
+    EXPECT_GT(c.dirs["l/s"] + c.dirs["s/l"] + c.dirs["l/l"], 0) << "no left-turn encounter";
+    EXPECT_GT(c.dirs["r/s"] + c.dirs["s/r"] + c.dirs["r/l"] + c.dirs["l/r"], 0)
+        << "no merge encounter";
+    EXPECT_EQ(r.teleports, 0);
+    std::cout << policy << ": " << c.encounters << " encounters, " << c.turning
+              << " with a turn;";
+    for (const auto& [d, k] : c.dirs) std::cout << " " << d << " " << k;
+    std::cout << "; other collisions " << r.other_collisions << "\n";
+  }
+}
+
+TEST(NetworkConflicts, TwoWayStopGridEncountersAreBetweenStopLinksThatConflict) {
+  const ExperimentConfig cfg =
+      GridConfig({"scenario.grid.junction_type=priority_stop", "scenario.duration=900",
+                  "scenario.demand.flow=300", "policies=[ta_ebp]"});
+  const Scenario sc = BuildScenario(cfg, "");
+  ASSERT_EQ(sc.junctions.size(), 9u);
+  const PolicyRun r = RunPolicy(cfg, "ta_ebp", sc);
+  for (const JunctionRun& j : r.junctions) EXPECT_EQ(j.rule, "two_way_stop") << j.id;
+  const MovementCheck c = CheckEncounterMovements(r, *sc.topology, 's');
+  EXPECT_GT(c.encounters, 20);
+  std::cout << "two-way grid: " << c.encounters << " encounters, " << c.turning
+            << " with a turn;";
+  for (const auto& [d, k] : c.dirs) std::cout << " " << d << " " << k;
+  std::cout << "\n";
+}
+
+TEST(NetworkConflicts, AllWayGridEncountersConflictInSumosMatrix) {
+  const ExperimentConfig cfg = GridConfig({"scenario.duration=600", "policies=[ta_ebp]"});
+  const Scenario sc = BuildScenario(cfg, "");
+  const PolicyRun r = RunPolicy(cfg, "ta_ebp", sc);
+  const MovementCheck c = CheckEncounterMovements(r, *sc.topology, 'w');
+  EXPECT_GT(c.encounters, 50);
+  std::set<std::string> junctions;
+  for (const EncounterRecord& e : r.encounters) junctions.insert(e.junction);
+  EXPECT_GE(junctions.size(), 5u);
+}
+
+}  // namespace
+}  // namespace taebp

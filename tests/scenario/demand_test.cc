@@ -1,0 +1,254 @@
+// Generated fringe demand (scenario/demand.h) on netgenerate grids: the
+// fringe, determinism, the Poisson arrivals and uniform exits against their
+// distributions (99.9% intervals), begin/end, and a routes file SUMO runs.
+#include "taebp/scenario/demand.h"
+
+#include "taebp/config/config.h"
+#include "taebp/controller/sumo_adapter.h"
+#include "taebp/scenario/scenario.h"
+
+#include <boost/math/distributions/chi_squared.hpp>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "net_support.h"
+#include "test_support.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace taebp {
+namespace {
+
+using ::testing::HasSubstr;
+using test::ErrorOf;
+using test::TempDir;
+
+constexpr double kZ999 = 3.2905267314919255;  // two-sided 99.9% normal quantile
+
+double Chi2Quantile(double df, double p) {
+  return boost::math::quantile(boost::math::chi_squared(df), p);
+}
+
+// A 4x4 all-way stop grid with 100 m fringe edges (16 entries, 16 exits).
+class DemandOnGrid : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempDir("taebp_demand");
+    net_ = new net::NetFile(
+        net::NetFile::Load(test::Netgenerate(*dir_, "grid", 4, "allway_stop", 100)));
+  }
+  static void TearDownTestSuite() {
+    delete net_;
+    delete dir_;
+  }
+  static TempDir* dir_;
+  static net::NetFile* net_;
+};
+TempDir* DemandOnGrid::dir_ = nullptr;
+net::NetFile* DemandOnGrid::net_ = nullptr;
+
+TEST_F(DemandOnGrid, FringeIsTheEdgesFromAndToDeadEnds) {
+  const FringeEdges f = FindFringe(*net_);
+  EXPECT_EQ(f.entries.size(), 16u);
+  EXPECT_EQ(f.exits.size(), 16u);
+  std::set<std::string> from_dead, to_dead;
+  for (const std::string& e : f.entries) {
+    const net::Edge* edge = net_->FindEdge(e);
+    ASSERT_NE(edge, nullptr);
+    EXPECT_EQ(net_->FindJunction(edge->from)->type, "dead_end") << e;
+    EXPECT_EQ(net_->FindJunction(edge->to)->type, "allway_stop") << e;
+    from_dead.insert(edge->from);
+  }
+  for (const std::string& e : f.exits) {
+    const net::Edge* edge = net_->FindEdge(e);
+    EXPECT_EQ(net_->FindJunction(edge->to)->type, "dead_end") << e;
+    to_dead.insert(edge->to);
+  }
+  EXPECT_EQ(from_dead.size(), 16u);  // one entry and one exit per dead end
+  EXPECT_EQ(from_dead, to_dead);
+  // No fringe without dead ends: a grid without fringe edges, the figure-8.
+  TempDir dir("taebp_demand");
+  const net::NetFile bare = net::NetFile::Load(test::Netgenerate(dir, "bare", 3, "allway_stop"));
+  EXPECT_TRUE(FindFringe(bare).entries.empty());
+  const std::string msg =
+      ErrorOf<std::invalid_argument>([&] { FringeTrips(bare, DemandSpec{}); });
+  EXPECT_THAT(msg, HasSubstr(bare.path()));
+  EXPECT_THAT(msg, HasSubstr("fringe"));
+  const net::NetFile fig8 = net::NetFile::Load(DefaultNetworkPath());
+  EXPECT_THROW(FringeTrips(fig8, DemandSpec{}), std::invalid_argument);
+  // Through the writer: a ConfigError naming the key.
+  const std::string out = (dir.path() / "x.rou.xml").string();
+  EXPECT_THAT(ErrorOf<ConfigError>([&] { WriteFringeDemand(bare, DemandSpec{}, out); }),
+              HasSubstr("scenario.demand"));
+}
+
+bool SameTrips(const std::vector<Trip>& a, const std::vector<Trip>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].id != b[i].id || a[i].depart != b[i].depart || a[i].from != b[i].from ||
+        a[i].to != b[i].to)
+      return false;
+  return true;
+}
+
+TEST_F(DemandOnGrid, TripsAreDeterministicSortedNamedAndNeverUTurns) {
+  DemandSpec spec;
+  spec.flow = 600;
+  spec.end = 3600;
+  spec.seed = 1;
+  const std::vector<Trip> a = FringeTrips(*net_, spec);
+  EXPECT_TRUE(SameTrips(a, FringeTrips(*net_, spec)));
+  spec.seed = 2;
+  const std::vector<Trip> b = FringeTrips(*net_, spec);
+  EXPECT_FALSE(SameTrips(a, b));
+  ASSERT_GT(a.size(), 1000u);
+
+  const FringeEdges f = FindFringe(*net_);
+  const std::set<std::string> entries(f.entries.begin(), f.entries.end());
+  const std::set<std::string> exits(f.exits.begin(), f.exits.end());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const Trip& t = a[i];
+    EXPECT_EQ(t.id, "d" + std::to_string(i));
+    if (i > 0) {
+      EXPECT_LE(a[i - 1].depart, t.depart);
+    }
+    EXPECT_GE(t.depart, 0.0);
+    EXPECT_LT(t.depart, 3600.0);
+    EXPECT_TRUE(entries.count(t.from)) << t.from;
+    EXPECT_TRUE(exits.count(t.to)) << t.to;
+    EXPECT_NE(net_->FindEdge(t.to)->to, net_->FindEdge(t.from)->from)
+        << t.id << ": back to where it came from";
+  }
+  // A longer horizon continues each entry's stream: the first hour is unchanged.
+  spec.seed = 1;
+  spec.end = 7200;
+  std::vector<Trip> longer = FringeTrips(*net_, spec);
+  longer.erase(std::remove_if(longer.begin(), longer.end(),
+                              [](const Trip& t) { return t.depart >= 3600; }),
+               longer.end());
+  EXPECT_TRUE(SameTrips(a, longer));
+}
+
+TEST_F(DemandOnGrid, ArrivalsArePoissonAtTheFlowAndExitsUniform) {
+  DemandSpec spec;
+  spec.flow = 300;            // veh/h per entry
+  spec.end = 100 * 3600.0;    // 100 h: 30000 expected per entry
+  spec.seed = 7;
+  const std::vector<Trip> trips = FringeTrips(*net_, spec);
+  const FringeEdges f = FindFringe(*net_);
+  const double expected = spec.flow * spec.end / 3600.0;
+  const double bin = 60.0;  // s
+  const int bins = static_cast<int>(spec.end / bin);
+  std::map<std::string, std::vector<long>> per_bin;
+  std::map<std::string, std::map<std::string, long>> exits_of;
+  std::map<std::string, long> count;
+  for (const Trip& t : trips) {
+    ++count[t.from];
+    auto& v = per_bin[t.from];
+    v.resize(bins);
+    ++v[static_cast<int>(t.depart / bin)];
+    ++exits_of[t.from][t.to];
+  }
+  for (const std::string& entry : f.entries) {
+    SCOPED_TRACE(entry);
+    // The count over the horizon: Poisson(expected), 99.9% interval.
+    const double n = static_cast<double>(count[entry]);
+    EXPECT_LE(std::abs(n - expected), kZ999 * std::sqrt(expected)) << n << " vs " << expected;
+    // Poisson, not merely the right mean: counts per minute have variance =
+    // mean (index of dispersion ~ chi-square with bins-1 degrees of freedom).
+    const std::vector<long>& v = per_bin[entry];
+    double mean = 0;
+    for (long c : v) mean += c;
+    mean /= bins;
+    double d = 0;
+    for (long c : v) d += (c - mean) * (c - mean) / mean;
+    EXPECT_GE(d, Chi2Quantile(bins - 1, 0.0005));
+    EXPECT_LE(d, Chi2Quantile(bins - 1, 0.9995));
+    // Exits: uniform over the fringe exits other than the way back.
+    const std::map<std::string, long>& ex = exits_of[entry];
+    EXPECT_EQ(ex.size(), f.exits.size() - 1);
+    double chi2 = 0;
+    const double e = n / (f.exits.size() - 1);
+    for (const auto& [exit, k] : ex) chi2 += (k - e) * (k - e) / e;
+    EXPECT_LE(chi2, Chi2Quantile(static_cast<double>(ex.size() - 1), 0.999));
+  }
+}
+
+TEST_F(DemandOnGrid, BeginAndEndAreHonoured) {
+  DemandSpec spec;
+  spec.flow = 400;
+  spec.begin = 1800;
+  spec.end = 2700;
+  const std::vector<Trip> trips = FringeTrips(*net_, spec);
+  ASSERT_FALSE(trips.empty());
+  for (const Trip& t : trips) {
+    EXPECT_GT(t.depart, 1800.0);
+    EXPECT_LT(t.depart, 2700.0);
+  }
+  // 16 entries x 400 veh/h x 0.25 h = 1600 expected.
+  const double expected = 16 * 400 * 0.25;
+  EXPECT_LE(std::abs(static_cast<double>(trips.size()) - expected), kZ999 * std::sqrt(expected));
+  // An empty window gives no trips.
+  spec.end = spec.begin;
+  EXPECT_TRUE(FringeTrips(*net_, spec).empty());
+}
+
+TEST_F(DemandOnGrid, TheRoutesFileRunsInSumo) {
+  DemandSpec spec;
+  spec.flow = 300;
+  spec.end = 600;
+  spec.seed = 3;
+  spec.length = 4.5;
+  spec.max_speed = 10;
+  const std::string routes = (dir_->path() / "demand.rou.xml").string();
+  const long written = WriteFringeDemand(*net_, spec, routes);
+  const std::vector<Trip> trips = FringeTrips(*net_, spec);
+  ASSERT_EQ(written, static_cast<long>(trips.size()));
+  const std::string text = test::ReadText(routes);
+  long lines = 0;
+  for (std::size_t p = text.find("<trip "); p != std::string::npos; p = text.find("<trip ", p + 1))
+    ++lines;
+  EXPECT_EQ(lines, written);
+
+  sumo::Start({"sumo", "-n", net_->path(), "-r", routes, "--no-step-log", "true",
+               "--xml-validation", "never", "--step-length", "0.5"});
+  std::map<std::string, double> departed;  // id -> time
+  std::map<std::string, const Trip*> by_id;
+  for (const Trip& t : trips) by_id[t.id] = &t;
+  while (sumo::Time() < 300) {
+    sumo::Step();
+    for (const std::string& id : sumo::DepartedIDs()) {
+      departed[id] = sumo::Time();
+      ASSERT_TRUE(by_id.count(id)) << id;
+      const std::vector<std::string> route = sumo::Route(id);
+      ASSERT_FALSE(route.empty());
+      EXPECT_EQ(route.front(), by_id[id]->from) << id;
+      EXPECT_EQ(route.back(), by_id[id]->to) << id;
+      EXPECT_EQ(sumo::TypeID(id), "car");
+      EXPECT_DOUBLE_EQ(sumo::Length(id), 4.5);
+    }
+  }
+  sumo::Close();
+  // Every trip due by 240 s departed by 300 s, none before its time.
+  long due = 0;
+  for (const Trip& t : trips) {
+    if (t.depart > 240) continue;
+    ++due;
+    ASSERT_TRUE(departed.count(t.id)) << t.id << " (depart " << t.depart << ") never departed";
+    EXPECT_GE(departed[t.id] + 1e-9, std::floor(t.depart * 100) / 100) << t.id;
+  }
+  EXPECT_GT(due, 100);
+  // Unwritable output: a ConfigError naming the key and the path.
+  const std::string bad = (dir_->path() / "no" / "such" / "dir.rou.xml").string();
+  const std::string msg = ErrorOf<ConfigError>([&] { WriteFringeDemand(*net_, spec, bad); });
+  EXPECT_THAT(msg, HasSubstr("scenario.demand"));
+  EXPECT_THAT(msg, HasSubstr(bad));
+}
+
+}  // namespace
+}  // namespace taebp
