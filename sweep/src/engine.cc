@@ -57,6 +57,7 @@ int g_journal_fd = -1;  // closed in forked workers
 
 // SIGINT/SIGTERM set g_signal; SIGCHLD is blocked and waited for (WaitForChild).
 void InstallSignalHandlers() {
+  g_signal = 0;  // a process may run several sweeps (the Python module)
   struct sigaction sa {};
   sa.sa_handler = OnSignal;
   sigemptyset(&sa.sa_mask);
