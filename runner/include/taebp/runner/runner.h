@@ -64,7 +64,7 @@ ExperimentResult RunExperiment(const std::string& config_path,
 // Writes the result files into `out_dir` atomically (all or nothing).
 void WriteExperiment(const ExperimentResult& result, const std::string& out_dir);
 
-// The default output directory of a config: results/<config file stem>.
+// The default output directory of a config: results/STEM, STEM the config file name without its extension.
 std::string DefaultOutDir(const std::string& config_path);
 
 }  // namespace taebp

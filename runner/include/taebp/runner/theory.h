@@ -29,7 +29,7 @@ struct TheoryRequest {
 
 // `taebp theory --json`: prior_go, collision_penalty, trust, assumed_trust,
 // likelihood, s_max, p_star, theta_star, persuadable, s_star, a, b, p_nudge,
-// dc_rate, collision_rate (the TA-EBP design's) and policies.<name>.{dc_rate,
+// dc_rate, collision_rate (the TA-EBP design's) and policies.NAME.{dc_rate,
 // collision_rate, nudge_rate}. Throws persuasion::InvalidArgument.
 nlohmann::ordered_json TheoryJson(const TheoryRequest& request);
 
