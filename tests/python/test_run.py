@@ -122,3 +122,38 @@ def test_python_signal_handling_is_untouched_by_a_run():
     with pytest.raises(KeyboardInterrupt):
         os.kill(os.getpid(), signal.SIGINT)
         time.sleep(1)
+
+
+def test_table_flags_rates_outside_their_interval_and_repeats_the_geometry_warning():
+    # The paper's 1.7 m stop: nudged AVs intrude, SUMO reports collisions the
+    # theory does not predict (README, Geometry).
+    r = taebp.run(PAPER, overrides=["scenario.stop_distance=1.7", "scenario.duration=1200"])
+    lines = r.table.splitlines()
+    collision = [l for l in lines if l.startswith("Collision Rate")][0]
+    s = r.summary["policies"]
+    for policy in ("no_trust", "ta_ebp"):
+        lo, hi = s[policy]["collision_rate_ci95"]
+        assert not lo <= s[policy]["theory"]["collision_rate"] <= hi
+    assert collision.count(" !") == 2  # no_trust and ta_ebp, not no_ebp
+    assert "! the theory lies outside the measured rate's 95% interval" in lines
+    warning = [l for l in lines if l.startswith("warning: ")]
+    assert warning == ["warning: " + w for w in r.warnings] and len(warning) == 1
+    assert "scenario.stop_distance = 1.7 m" in warning[0]
+    # The shipped geometry: no flag, no warning.
+    ok = taebp.run(PAPER, overrides=SHORT)
+    assert " !" not in ok.table and "warning" not in ok.table and ok.warnings == []
+
+
+def test_a_sumo_failure_is_sumo_error_with_the_cli_message_and_the_process_runs_again(tmp_path):
+    bad = tmp_path / "bad.net.xml"
+    bad.write_text("<net>garbage")
+    over = ["scenario.network=%s" % bad, "scenario.duration=10"]
+    message, code = cli_error("run", PAPER, *sum([["--set", o] for o in over], []),
+                              "--out", tmp_path / "cli")
+    assert code == 3
+    with pytest.raises(taebp.SumoError) as e:
+        taebp.run(PAPER, overrides=over)
+    assert str(e.value) == message and "SUMO start" in message
+    assert isinstance(e.value, RuntimeError)
+    # libsumo was closed: the next simulation in this process runs normally.
+    assert len(taebp.run(PAPER, overrides=SHORT + ["policies=[ta_ebp]"]).encounters) > 20
