@@ -482,9 +482,17 @@ std::string ToYaml(const ExperimentConfig& config) {
 }
 
 ProblemConfig LoadProblemConfig(const std::string& path) {
-  YAML::Node root = ParseYaml(ReadFile(path), path);
-  Origins origins(path);
-  return ReadRoot<ProblemConfig>(root, origins, path, true);
+  return ParseProblemConfig(ReadFile(path), path);
+}
+
+ProblemConfig ParseProblemConfig(const std::string& yaml_text, const std::string& origin) {
+  YAML::Node root = ParseYaml(yaml_text, origin);
+  Origins origins(origin);
+  return ReadRoot<ProblemConfig>(root, origins, origin, true);
+}
+
+std::string YamlValueAsJson(const std::string& yaml_text) {
+  return YamlToJson(ParseYaml(yaml_text, "value " + yaml_text)).dump();
 }
 
 }  // namespace taebp

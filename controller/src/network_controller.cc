@@ -215,6 +215,17 @@ struct NetworkController::Impl : junction::EncounterModel {
       spec.rule = cj.type == "priority_stop" ? junction::Rule::kTwoWay : junction::Rule::kAllWay;
       std::map<std::string, int> approach_of;  // lane -> approach within junction
       std::vector<int> link_of;                // movement -> request index
+      // A lane is a stop approach when all its links are stop links: at a
+      // priority_stop junction SUMO also marks the major road's yielding
+      // left turns 's', but that road does not stop (SUMO drives it).
+      std::map<std::string, bool> stop_approach;
+      for (int id : nj->links) {
+        if (id < 0) continue;
+        const net::Link& link = net.links()[id];
+        const bool stop = link.state == 's' || link.state == 'w';
+        auto [it, fresh] = stop_approach.emplace(link.from_lane, stop);
+        if (!fresh) it->second = it->second && stop;
+      }
       for (std::size_t li = 0; li < nj->links.size(); ++li) {
         const int id = nj->links[li];
         if (id < 0) continue;
@@ -224,7 +235,7 @@ struct NetworkController::Impl : junction::EncounterModel {
         m.to_lane = link.to_lane;
         m.internal = link.internal;
         m.dir = link.dir;
-        m.controlled = link.state == 's' || link.state == 'w';
+        m.controlled = stop_approach[link.from_lane];
         if (const net::Lane* tl = net.FindLane(link.to_lane)) m.to_edge = tl->edge;
         if (!approach_of.count(link.from_lane)) {
           const int a = static_cast<int>(approach_of.size());
@@ -384,8 +395,12 @@ struct NetworkController::Impl : junction::EncounterModel {
         const net::Lane* l = net.FindLane(lane);
         const double dist = offset + (l ? l->length : 0) - sumo::LanePosition(front);
         if (dist < kMajorNear) return false;
+        // Time to reach the line accelerating from its speed now (a stopped
+        // major vehicle may start at any moment): within the critical gap,
+        // no gap.
         const double speed = sumo::Speed(front);
-        if (speed > kHaltSpeed && dist / speed < sc.critical_gap) return false;
+        const double reach = (-speed + std::sqrt(speed * speed + 2.0 * sc.accel * dist)) / sc.accel;
+        if (reach < sc.critical_gap) return false;
       }
     }
     return true;
@@ -786,7 +801,9 @@ struct NetworkController::Impl : junction::EncounterModel {
                      " m; try a longer track or fewer vehicles)"
                : " (gridlock: lower the demand, or set scenario.stall_action: record to measure "
                  "it)");
-      if (sc.stall_action == "error")
+      // SUMO's own logic (sumo_native) is the baseline, not the controller:
+      // its stalls are recorded, never an error.
+      if (sc.stall_action == "error" && policy)
         throw ConfigError(what + "; " + l.Describe([&](int h) { return vehs[h].id; }) +
                           StallDetail(j));
       j.stall_recorded = true;

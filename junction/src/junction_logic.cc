@@ -135,8 +135,15 @@ std::vector<Command> JunctionLogic::Decide(double now, Environment& env, Encount
   // release waits for room at its exit: drive if clear).
   for (Active& e : encounters_) {
     if (!e.sequence) continue;
-    const bool av_room = e.av_released || env.ExitHasRoom(e.out.av_movement, e.out.av);
-    const bool hv_room = e.hv_released || env.ExitHasRoom(e.out.hv_movement, e.out.hv);
+    // (At a two-way stop a careful release also waits for a gap in the major
+    // road; a reckless HV does not.)
+    auto may_enter = [&](bool released, int movement, int vehicle) {
+      if (released) return true;
+      if (!env.ExitHasRoom(movement, vehicle)) return false;
+      return spec_.rule == Rule::kAllWay || env.MajorClear(movement);
+    };
+    const bool av_room = may_enter(e.av_released, e.out.av_movement, e.out.av);
+    const bool hv_room = may_enter(e.hv_released, e.out.hv_movement, e.out.hv);
     for (const auto& rel : e.sequence->Update(now, e.av_cleared, e.hv_cleared, av_room, hv_room)) {
       (rel.av ? e.av_released : e.hv_released) = true;
       Release(&out, rel.av ? e.out.av : e.out.hv, rel.av ? e.out.av_movement : e.out.hv_movement,

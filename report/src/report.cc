@@ -133,13 +133,6 @@ json NetworkJson(const PolicyRun& r) {
 
 }  // namespace
 
-std::string CsvCell(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
 std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
   std::ostringstream out;
   out << "policy,junction,type,original_type,rule,crossings_av,crossings_hv,"
@@ -264,33 +257,83 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
   return root.dump(2) + "\n";
 }
 
-std::string EncountersCsv(const std::vector<PolicyRun>& runs, const Provenance& prov) {
-  std::ostringstream out;
-  out << "# taebp " << prov.taebp_version << " git " << prov.git_revision << " | "
-      << prov.sumo_version << " | seed " << prov.seed << " | config " << prov.config_path
-      << "\n# config " << prov.config_json << "\n";
-  out << "policy,time,junction,av,hv,av_movement,hv_movement,av_dir,hv_dir,intent,"
-         "commanded_nudge,observed_displacement,hv_trust,hv_posterior,hv_action,av_action,"
-         "collision\n";
-  for (const PolicyRun& r : runs) {
-    for (const EncounterRecord& e : r.encounters) {
-      out << r.policy << ',' << FormatDouble(e.time) << ',' << CsvCell(e.junction) << ','
-          << CsvCell(e.av) << ',' << CsvCell(e.hv) << ',' << CsvCell(e.av_movement) << ','
-          << CsvCell(e.hv_movement) << ',' << e.av_dir << ',' << e.hv_dir << ','
-          << (e.intent_go ? "go" : "stop") << ',' << FormatDouble(e.commanded) << ','
-          << FormatDouble(e.observed) << ',' << FormatDouble(e.hv_trust) << ',' << FormatDouble(e.posterior) << ','
-          << (e.hv_dc ? "DC" : "DR") << ',' << (e.av_first ? "go" : "wait") << ','
-          << (e.collision ? 1 : 0) << '\n';
-    }
-  }
-  return out.str();
+namespace {
+
+// The encounters.csv columns: name and how a record prints. A new column is
+// one line here (and one in the README's Outputs).
+struct EncounterColumn {
+  const char* name;
+  std::string (*cell)(const PolicyRun& run, const EncounterRecord& e);
+};
+const std::vector<EncounterColumn>& EncounterColumns() {
+  static const std::vector<EncounterColumn> cols = {
+      {"policy", [](const PolicyRun& r, const EncounterRecord&) { return r.policy; }},
+      {"time", [](const PolicyRun&, const EncounterRecord& e) { return FormatDouble(e.time); }},
+      {"junction", [](const PolicyRun&, const EncounterRecord& e) { return e.junction; }},
+      {"av", [](const PolicyRun&, const EncounterRecord& e) { return e.av; }},
+      {"hv", [](const PolicyRun&, const EncounterRecord& e) { return e.hv; }},
+      {"av_movement", [](const PolicyRun&, const EncounterRecord& e) { return e.av_movement; }},
+      {"hv_movement", [](const PolicyRun&, const EncounterRecord& e) { return e.hv_movement; }},
+      {"av_dir", [](const PolicyRun&, const EncounterRecord& e) { return std::string(1, e.av_dir); }},
+      {"hv_dir", [](const PolicyRun&, const EncounterRecord& e) { return std::string(1, e.hv_dir); }},
+      {"intent", [](const PolicyRun&, const EncounterRecord& e) {
+         return std::string(e.intent_go ? "go" : "stop"); }},
+      {"commanded_nudge", [](const PolicyRun&, const EncounterRecord& e) {
+         return FormatDouble(e.commanded); }},
+      {"observed_displacement", [](const PolicyRun&, const EncounterRecord& e) {
+         return FormatDouble(e.observed); }},
+      {"hv_trust", [](const PolicyRun&, const EncounterRecord& e) { return FormatDouble(e.hv_trust); }},
+      {"hv_posterior", [](const PolicyRun&, const EncounterRecord& e) {
+         return FormatDouble(e.posterior); }},
+      {"hv_action", [](const PolicyRun&, const EncounterRecord& e) {
+         return std::string(e.hv_dc ? "DC" : "DR"); }},
+      {"av_action", [](const PolicyRun&, const EncounterRecord& e) {
+         return std::string(e.av_first ? "go" : "wait"); }},
+      {"collision", [](const PolicyRun&, const EncounterRecord& e) {
+         return std::string(e.collision ? "1" : "0"); }},
+  };
+  return cols;
 }
 
-void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs) {
+}  // namespace
+
+std::string CsvCell(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::vector<std::string> EncounterCsvColumns() {
+  std::vector<std::string> names;
+  for (const EncounterColumn& c : EncounterColumns()) names.emplace_back(c.name);
+  return names;
+}
+
+std::string EncountersCsv(const std::vector<PolicyRun>& runs) {
+  const auto& cols = EncounterColumns();
+  std::string out;
+  for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + std::string(cols[i].name);
+  out += '\n';
+  for (const PolicyRun& r : runs) {
+    for (const EncounterRecord& e : r.encounters) {
+      for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + CsvCell(cols[i].cell(r, e));
+      out += '\n';
+    }
+  }
+  return out;
+}
+
+void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
+                const std::vector<std::string>& warnings) {
   const int w0 = 22, w = 34;
   out << std::left << std::setw(w0) << "Metric";
   for (const PolicyRun& r : runs) out << std::setw(w) << PolicyLabel(r.policy);
   out << "\n";
+  bool flagged = false;
   auto cell = [&](long k, long n, double theory) {
     const Interval ci = Wilson95(k, n);
     char buf[96];
@@ -299,8 +342,11 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs) {
       std::snprintf(buf, sizeof buf, "n/a (no AV-HV encounter) th %.3f", theory);
       return std::string(buf);
     }
-    std::snprintf(buf, sizeof buf, "%.3f [%.3f,%.3f] th %.3f", Rate(k, n), ci.low, ci.high,
-                  theory);
+    // The theory outside the measured rate's 95% interval: worth a look.
+    const bool outside = theory < ci.low || theory > ci.high;
+    flagged = flagged || outside;
+    std::snprintf(buf, sizeof buf, "%.3f [%.3f,%.3f] th %.3f%s", Rate(k, n), ci.low, ci.high,
+                  theory, outside ? " !" : "");
     return std::string(buf);
   };
   std::vector<Stats> stats;
@@ -365,6 +411,8 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs) {
     });
   }
   out << "(rate [95% Wilson interval] th = library theory for the same parameters)\n";
+  if (flagged) out << "! the theory lies outside the measured rate's 95% interval\n";
+  for (const std::string& warning : warnings) out << "warning: " << warning << "\n";
 }
 
 void WriteFilesAtomically(const std::string& dir,

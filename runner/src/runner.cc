@@ -5,9 +5,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
+
+#include <unistd.h>
 
 namespace taebp {
 
@@ -17,17 +21,45 @@ std::vector<std::pair<std::string, std::string>> ExperimentResult::Files() const
   nlohmann::ordered_json timing;
   timing["wall_seconds_total"] = wall_seconds;
   return {{"summary.json", SummaryJson(runs, provenance)},
-          {"encounters.csv", EncountersCsv(runs, provenance)},
+          {"encounters.csv", EncountersCsv(runs)},
           {"junctions.csv", JunctionsCsv(runs)},
           {"config.yaml", ToYaml(config)},
           {"timing.json", timing.dump(2) + "\n"}};
 }
+
+std::string ExperimentResult::Table() const {
+  std::ostringstream out;
+  PrintTable(out, runs, warnings);
+  return out.str();
+}
+
+namespace {
+// The process holding the simulation slot (0: free). A pid rather than a flag:
+// a child forked while its parent held the slot (a sweep's worker) starts free.
+std::atomic<pid_t> g_slot_owner{0};
+}  // namespace
+
+SimulationSlot::SimulationSlot(const std::string& what) {
+  const pid_t self = ::getpid();
+  pid_t current = g_slot_owner.load();
+  for (;;) {
+    if (current == self)
+      throw SimulationBusy(
+          what + ": another simulation is already running in this process (libsumo runs one "
+                 "simulation per process); run experiments in parallel in separate processes: "
+                 "taebp sweep --jobs N, or from Python taebp.sweep(..., jobs=N) or multiprocessing");
+    if (g_slot_owner.compare_exchange_weak(current, self)) return;
+  }
+}
+
+SimulationSlot::~SimulationSlot() { g_slot_owner.store(0); }
 
 ExperimentResult RunExperiment(const std::string& config_path,
                                const std::vector<std::string>& overrides,
                                const RunOptions& options, const ExperimentObserver& observer) {
   ExperimentResult result;
   result.config = LoadExperimentConfig(config_path, overrides);
+  const SimulationSlot slot("run " + config_path);
   const ExperimentConfig& config = result.config;
   const std::string config_dir = fs::path(config_path).parent_path().string();
   const Scenario scenario = BuildScenario(config, config_dir);

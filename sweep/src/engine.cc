@@ -57,6 +57,7 @@ int g_journal_fd = -1;  // closed in forked workers
 
 // SIGINT/SIGTERM set g_signal; SIGCHLD is blocked and waited for (WaitForChild).
 void InstallSignalHandlers() {
+  g_signal = 0;  // a process may run several sweeps (the Python module)
   struct sigaction sa {};
   sa.sa_handler = OnSignal;
   sigemptyset(&sa.sa_mask);
@@ -518,7 +519,49 @@ std::string SumoVersionOf(const Journal& journal) {
   return "";
 }
 
+// encounters.csv of the sweep: every ok task's encounters.csv rows, with the
+// task's point, replicate, seed and swept values in front. Streamed (a large
+// grid's rows need not fit in memory) into a temporary file renamed into place.
+void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal& journal) {
+  std::string task_header;
+  for (const std::string& c : EncounterCsvColumns()) task_header += (task_header.empty() ? "" : ",") + c;
+  const fs::path tmp = out / ("encounters.csv.tmp." + std::to_string(::getpid()));
+  std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+  if (!f) throw std::runtime_error("cannot write " + tmp.string());
+  f << "point,replicate,seed";
+  for (const std::string& c : plan.columns) f << ',' << CsvQuote(c);
+  f << ',' << task_header << '\n';
+  for (const Task& t : plan.tasks) {
+    const auto it = journal.entries.find(t.index);
+    if (it == journal.entries.end() || !IsOk(it->second)) continue;
+    const fs::path file = TaskDir(out, t) / "encounters.csv";
+    std::ifstream in(file, std::ios::binary);
+    std::string line;
+    if (!in || !std::getline(in, line) || line != task_header) {
+      std::fprintf(stderr, "taebp sweep: warning: %s %s; its encounters are not in %s\n",
+                   file.c_str(), in ? "has other columns (another taebp version?)" : "is missing",
+                   (out / "encounters.csv").c_str());
+      continue;
+    }
+    std::string prefix = std::to_string(t.point) + ',' + std::to_string(t.replicate) + ',' +
+                         std::to_string(t.seed);
+    for (const std::string& v : plan.points[static_cast<std::size_t>(t.point)].values)
+      prefix += ',' + CsvQuote(v);
+    while (std::getline(in, line))
+      if (!line.empty()) f << prefix << ',' << line << '\n';
+  }
+  f.flush();
+  if (!f) {
+    f.close();
+    fs::remove(tmp);
+    throw std::runtime_error("cannot write " + tmp.string() + " (disk full?)");
+  }
+  f.close();
+  fs::rename(tmp, out / "encounters.csv");
+}
+
 void WriteOutputs(const fs::path& out, const Plan& plan, const Journal& journal, Json header) {
+  WritePooledEncounters(out, plan, journal);
   header["sumo_version"] = SumoVersionOf(journal);
   WriteFilesAtomically(out.string(), {{"results.csv", ResultsCsv(plan, journal)},
                                       {"results.jsonl", ResultsJsonl(plan, journal)},

@@ -36,11 +36,11 @@ const std::set<std::string>& RateColumns() {
   return cols;
 }
 
-// A grid value as JSON for results.jsonl: numbers, booleans and flow lists
-// that are valid JSON keep their type, anything else is its YAML text.
+// A grid value as JSON with its YAML type (results.jsonl, sweep.json):
+// 0.5 -> 0.5, ta_ebp -> "ta_ebp", [8, 8] -> [8, 8]; unparsable text stays text.
 Json ValueJson(const std::string& text) {
   try {
-    return Json::parse(text);
+    return Json::parse(YamlValueAsJson(text));
   } catch (const std::exception&) {
     return text;
   }
@@ -565,8 +565,8 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
   out << ",policy,runs_ok,runs_failed,encounters,collision_rate,collision_rate_lo,"
          "collision_rate_hi,dc_rate,dc_rate_lo,dc_rate_hi,theory_collision_rate,theory_dc_rate,"
          "theory_given_hvs_collision_rate,theory_given_hvs_dc_rate,throughput_av,throughput_hv,"
-         "throughput_all,wait_mean,throughput_all_sd,served_flow,served_flow_sd,time_loss_mean,"
-         "time_loss_mean_sd,waiting_time_mean,waiting_to_depart_end\n";
+         "throughput_all,wait_mean,throughput_all_sd,wait_mean_sd,served_flow,served_flow_sd,"
+         "time_loss_mean,time_loss_mean_sd,waiting_time_mean,waiting_to_depart_end\n";
   for (const auto& [point_index, by_policy] : acc) {
     const Point& p = plan.points[static_cast<std::size_t>(point_index)];
     for (const std::string& policy : p.policies) {
@@ -577,7 +577,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       for (const auto& v : p.values) out << ',' << CsvQuote(v);
       out << ',' << CsvQuote(policy) << ',' << a.ok << ',' << a.failed;
       if (a.ok == 0) {
-        out << std::string(22, ',') << '\n';
+        out << std::string(23, ',') << '\n';  // one empty cell per metric column
         continue;
       }
       out << ',' << a.enc;
@@ -597,9 +597,9 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       }
       out << ',' << num(mean(a.tp_av)) << ',' << num(mean(a.tp_hv)) << ','
           << num(mean(a.tp_all)) << ',' << num(mean(a.wait)) << ',' << num(sd(a.tp_all)) << ','
-          << num(mean(a.served)) << ',' << num(sd(a.served)) << ',' << num(mean(a.loss)) << ','
-          << num(sd(a.loss)) << ',' << num(mean(a.waiting)) << ',' << num(mean(a.pending))
-          << '\n';
+          << num(sd(a.wait)) << ',' << num(mean(a.served)) << ',' << num(sd(a.served)) << ','
+          << num(mean(a.loss)) << ',' << num(sd(a.loss)) << ',' << num(mean(a.waiting)) << ','
+          << num(mean(a.pending)) << '\n';
     }
   }
   return out.str();
@@ -614,7 +614,15 @@ Json SweepHeader(const Plan& plan, const std::string& shard, const std::string& 
   h["config_text"] = plan.config_text;
   h["config"] = Json::parse(ToJson(plan.base));
   Json axes = Json::array();
-  for (const Axis& a : plan.axes) axes.push_back({{"keys", a.keys}, {"values", a.values}});
+  for (const Axis& a : plan.axes) {
+    Json values = Json::array();  // one list per grid value: one entry per key, typed
+    for (const auto& value : a.values) {
+      Json typed = Json::array();
+      for (const std::string& v : value) typed.push_back(ValueJson(v));
+      values.push_back(typed);
+    }
+    axes.push_back({{"keys", a.keys}, {"values", values}});
+  }
   h["axes"] = axes;
   h["columns"] = plan.columns;
   h["points"] = plan.points.size();

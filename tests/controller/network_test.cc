@@ -259,14 +259,21 @@ TEST(NetworkConflicts, FourWayAllWayStopWithTurnsEncountersConflictInSumosMatrix
 
 TEST(NetworkConflicts, TwoWayStopGridEncountersAreBetweenStopLinksThatConflict) {
   const ExperimentConfig cfg =
-      GridConfig({"scenario.grid.junction_type=priority_stop", "scenario.duration=900",
-                  "scenario.demand.flow=300", "policies=[ta_ebp]"});
+      GridConfig({"scenario.grid.junction_type=priority_stop", "scenario.duration=1500",
+                  "scenario.demand.flow=150", "policies=[ta_ebp]",
+                  // minor roads wait for 5 s gaps: the grid may saturate
+                  "scenario.stall_action=record"});
   const Scenario sc = BuildScenario(cfg, "");
   ASSERT_EQ(sc.junctions.size(), 9u);
   const PolicyRun r = RunPolicy(cfg, "ta_ebp", sc);
   for (const JunctionRun& j : r.junctions) EXPECT_EQ(j.rule, "two_way_stop") << j.id;
   const MovementCheck c = CheckEncounterMovements(r, *sc.topology, 's');
   EXPECT_GT(c.encounters, 20);
+  // Careful releases wait for a gap in the major road: no collision outside
+  // an encounter (the major road's yielding left turns are SUMO's, not held).
+  EXPECT_EQ(r.other_collisions, 0);
+  for (const EncounterRecord& e : r.encounters)
+    EXPECT_EQ(e.collision, e.av_first && !e.hv_dc) << e.av << "/" << e.hv << " at " << e.time;
   std::cout << "two-way grid: " << c.encounters << " encounters, " << c.turning
             << " with a turn;";
   for (const auto& [d, k] : c.dirs) std::cout << " " << d << " " << k;

@@ -249,13 +249,6 @@ std::vector<PolicyRun> RunAll(const ExperimentConfig& cfg) {
   return runs;
 }
 
-// The encounter rows without the provenance lines.
-std::string EncounterRows(const std::vector<PolicyRun>& runs, const Provenance& prov) {
-  const std::string csv = EncountersCsv(runs, prov);
-  const auto header = csv.find("policy,time");
-  return header == std::string::npos ? csv : csv.substr(header);
-}
-
 TEST(ScenarioDeterminism, SameSeedSameOutputsOtherSeedOtherEncounters) {
   const ExperimentConfig cfg = Config({"scenario.duration=600"});
   const Provenance prov = TestProvenance(cfg);
@@ -264,11 +257,11 @@ TEST(ScenarioDeterminism, SameSeedSameOutputsOtherSeedOtherEncounters) {
   ASSERT_EQ(a.size(), 3u);
   for (const PolicyRun& r : a) EXPECT_GT(r.encounters.size(), 20u) << r.policy;
   EXPECT_EQ(SummaryJson(a, prov), SummaryJson(b, prov));
-  EXPECT_EQ(EncountersCsv(a, prov), EncountersCsv(b, prov));
+  EXPECT_EQ(EncountersCsv(a), EncountersCsv(b));
 
   const ExperimentConfig other = Config({"scenario.duration=600", "scenario.seed=2"});
   const std::vector<PolicyRun> c = RunAll(other);
-  EXPECT_NE(EncounterRows(a, prov), EncounterRows(c, prov));
+  EXPECT_NE(EncountersCsv(a), EncountersCsv(c));
 }
 
 // ------------------------------------------------------------------ bad input

@@ -22,6 +22,7 @@
 #include <thread>
 #include <vector>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace taebp::gui {
@@ -79,6 +80,54 @@ std::pair<unsigned, unsigned> PngSize(const std::string& file) {
   return {be32(16), be32(20)};
 }
 
+// The legend of the vehicle colours of RunOptions::colour_states (the same RGB
+// as the controller's palette) for the strip below a snapshot.
+const char* const kLegend[] = {
+    "0,0,255=AV",
+    "255,0,0=HV",
+    "255,220,0=AV nudging, or holding after its nudge",
+    "0,200,0=HV chose DC (drive if clear)",
+    "255,140,0=HV chose DR (drive recklessly)",
+    "255,0,255=collision (both vehicles)",
+};
+
+std::string PolicyTitle(const std::string& p) {
+  if (p == "no_ebp") return "No EBP";
+  if (p == "no_trust") return "No Trust";
+  if (p == "ta_ebp") return "TA-EBP";
+  if (p == "full_reveal") return "Full reveal";
+  return p;
+}
+
+// Composes `shot` with a legend strip into `out` (tools/snapshot_legend.py,
+// Debian's python3 and python3-pil): sumo-gui cannot draw a legend itself.
+void AddLegend(const fs::path& shot, const fs::path& out, const std::string& title, double at) {
+  const std::string python = access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3"
+                                                                   : FindOnPath("python3");
+  if (python.empty())
+    throw GuiError("python3 is not installed: the snapshot's legend needs the Debian packages "
+                   "python3 and python3-pil (or use --no-legend)");
+  std::vector<std::string> args = {python, TAEBP_SNAPSHOT_LEGEND, shot.string(), out.string(),
+                                   "--title", title, "--time", Seconds(at)};
+  for (const char* e : kLegend) args.insert(args.end(), {"--entry", e});
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(nullptr);
+  const pid_t pid = fork();
+  if (pid < 0) throw GuiError(std::string("fork failed: ") + std::strerror(errno));
+  if (pid == 0) {
+    execv(python.c_str(), argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw GuiError("adding the legend to the snapshot failed (" + std::string(TAEBP_SNAPSHOT_LEGEND) +
+                   "; see its message above; --no-legend keeps sumo-gui's picture as it is)");
+}
+
 }  // namespace
 
 void FrameTrack() {
@@ -125,6 +174,7 @@ struct Snapshot::Impl {
   std::string config_path, out, policy;
   double at = 60.0;
   std::vector<std::string> overrides;
+  bool no_legend = false;
 };
 
 Snapshot::Snapshot(CLI::App& app) : impl_(std::make_unique<Impl>()) {
@@ -140,6 +190,9 @@ Snapshot::Snapshot(CLI::App& app) : impl_(std::make_unique<Impl>()) {
                     "override a config key, KEY=VALUE with VALUE read as YAML (repeatable)");
   o.cmd->add_option("--policy", o.policy,
                     "the policy to run (default: the config's first listed policy)");
+  o.cmd->add_flag("--no-legend", o.no_legend,
+                  "keep sumo-gui's picture as it is (default: a strip below it with the "
+                  "simulated time and the legend of the vehicle colours)");
 }
 Snapshot::~Snapshot() = default;
 
@@ -187,6 +240,9 @@ int Snapshot::Run(int argc, char** argv) {
   if (out.has_parent_path()) fs::create_directories(out.parent_path());
   std::error_code ec;
   fs::remove(out, ec);  // so that a file afterwards is this run's
+  // sumo-gui's picture; the legend is composed from it into `out`.
+  const fs::path shot =
+      o.no_legend ? out : out.parent_path() / (".sumo-gui." + std::to_string(getpid()) + ".png");
 
   sumo::SetBackend(sumo::Backend::kLibtraciGui,
                    {"--window-size", kSnapshotWindow, "--delay", "0"});
@@ -194,7 +250,7 @@ int Snapshot::Run(int argc, char** argv) {
   ro.colour_states = true;
   ro.after_start = FrameTrack;
   ro.before_close = [&] {
-    sumo::gui::Screenshot(out.string());
+    sumo::gui::Screenshot(shot.string());
     sumo::Step();  // sumo-gui writes the picture during this step
   };
   const PolicyRun run = RunPolicy(config, policy, scenario, ro);
@@ -202,10 +258,21 @@ int Snapshot::Run(int argc, char** argv) {
 
   // sumo-gui has written the file by the end of the step; allow a moment for
   // the file system all the same.
-  for (int i = 0; i < 50 && !(fs::exists(out) && fs::file_size(out) > 0); ++i)
+  for (int i = 0; i < 50 && !(fs::exists(shot) && fs::file_size(shot) > 0); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  if (!fs::exists(out) || fs::file_size(out) == 0)
-    throw GuiError("sumo-gui did not write " + out.string());
+  if (!fs::exists(shot) || fs::file_size(shot) == 0)
+    throw GuiError("sumo-gui did not write " + shot.string());
+  if (!o.no_legend) {
+    const std::string title = o.config_path + " · " + PolicyTitle(name) + " · seed " +
+                              std::to_string(config.scenario.seed);
+    try {
+      AddLegend(shot, out, title, o.at);
+    } catch (...) {
+      fs::remove(shot, ec);
+      throw;
+    }
+    fs::remove(shot, ec);
+  }
   const auto [w, h] = PngSize(out.string());
   std::fprintf(stderr, "taebp: snapshot of %s at t = %s s (%zu encounters so far): %s", name.c_str(),
                Seconds(o.at).c_str(), run.encounters.size(), out.string().c_str());

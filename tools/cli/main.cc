@@ -3,6 +3,7 @@
 #include "taebp/controller/experiment.h"
 #include "taebp/report/report.h"
 #include "taebp/runner/runner.h"
+#include "taebp/runner/theory.h"
 #include "taebp/junction/design.h"
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/av_hv.h"
@@ -39,71 +40,35 @@ ordered_json Num(double v) {
 }
 
 // ------------------------------------------------------------------ theory
-struct TheoryOptions {
-  double prior = 0.2, penalty = 3.0, trust = 0.6, s_max = 2.0;
-  std::optional<double> assumed_trust;
-  std::string likelihood = "linear";
-  double steepness = 4.0, midpoint = 1.0;
+struct TheoryOptions : taebp::TheoryRequest {
   bool json = false;
 };
 
 int Theory(const TheoryOptions& o) {
-  per::AvHvParams params{o.prior, o.penalty};
-  params.Validate();
-  if (!(o.trust >= 0 && o.trust <= 1))
-    throw per::InvalidArgument("--trust theta = " + std::to_string(o.trust) + " is outside [0, 1]");
-  taebp::LikelihoodConfig lc{o.likelihood, o.s_max, o.steepness, o.midpoint};
-  const auto model = taebp::MakeLikelihood(lc);
-  const double theta_hat = o.assumed_trust.value_or(o.trust);
-  const per::TaebpDesign d = per::DesignTaebp(params, theta_hat, *model);
-  per::PredictedOutcome predicted;  // the TA-EBP design's outcome (the loop's ta_ebp)
-  ordered_json policies;
-  for (per::Policy p : {per::Policy::kNoEbp, per::Policy::kNoTrust, per::Policy::kTaEbp,
-                        per::Policy::kFullReveal}) {
-    const per::PredictedOutcome out = per::PredictOutcome(p, params, o.trust, *model, theta_hat);
-    if (p == per::Policy::kTaEbp) predicted = out;
-    policies[per::ToString(p)] = {{"dc_rate", out.dc_rate},
-                                  {"collision_rate", out.collision_rate},
-                                  {"nudge_rate", out.nudge_rate}};
-  }
+  const ordered_json j = taebp::TheoryJson(o);  // the same object as Python's taebp.theory()
   if (o.json) {
-    ordered_json j;
-    j["prior_go"] = o.prior;
-    j["collision_penalty"] = o.penalty;
-    j["trust"] = o.trust;
-    j["assumed_trust"] = theta_hat;
-    j["likelihood"] = model->Name();
-    j["s_max"] = o.s_max;
-    j["p_star"] = d.p_star;
-    j["theta_star"] = d.theta_star;
-    j["persuadable"] = d.persuadable;
-    j["s_star"] = d.s_star;
-    j["a"] = d.a;
-    j["b"] = d.b;
-    j["p_nudge"] = d.p_nudge;
-    j["dc_rate"] = predicted.dc_rate;
-    j["collision_rate"] = predicted.collision_rate;
-    j["policies"] = policies;
     std::cout << j.dump(2) << "\n";
     return 0;
   }
+  auto num = [&](const char* key) { return j[key].get<double>(); };
   std::cout << std::setprecision(10);
-  std::cout << "TA-EBP theory (" << model->Name() << " likelihood, s in [0, " << o.s_max
-            << "] m)\n"
+  std::cout << "TA-EBP theory (" << j["likelihood"].get<std::string>()
+            << " likelihood, s in [0, " << o.s_max << "] m)\n"
             << "  prior lambda = p0(Go)            " << o.prior << "\n"
             << "  collision penalty r              " << o.penalty << "\n"
             << "  HV trust theta                   " << o.trust << "\n"
-            << "  AV's assumed trust theta_hat     " << theta_hat << "\n"
-            << "  indifference posterior p*        " << d.p_star << "   (eq:ppp)\n"
-            << "  minimum persuadable trust theta* " << d.theta_star << "   (eq:tt / eq:theta_star)\n"
-            << "  persuadable (theta_hat >= theta*) " << (d.persuadable ? "yes" : "no: always yield")
-            << "\n"
-            << "  minimal nudge s*                 " << d.s_star << " m   (eq:s^*)\n"
-            << "  pi(s*|Go) = a                    " << d.a << "\n"
-            << "  pi(s*|Stop) = b                  " << d.b << "   (eq:b)\n"
-            << "  P(nudge) = lambda + (1-lambda) b " << d.p_nudge << "\n\n"
+            << "  AV's assumed trust theta_hat     " << num("assumed_trust") << "\n"
+            << "  indifference posterior p*        " << num("p_star") << "   (eq:ppp)\n"
+            << "  minimum persuadable trust theta* " << num("theta_star") << "   (eq:tt / eq:theta_star)\n"
+            << "  persuadable (theta_hat >= theta*) "
+            << (j["persuadable"].get<bool>() ? "yes" : "no: always yield") << "\n"
+            << "  minimal nudge s*                 " << num("s_star") << " m   (eq:s^*)\n"
+            << "  pi(s*|Go) = a                    " << num("a") << "\n"
+            << "  pi(s*|Stop) = b                  " << num("b") << "   (eq:b)\n"
+            << "  P(nudge) = lambda + (1-lambda) b " << num("p_nudge") << "\n\n"
             << "Predicted per AV-HV encounter, HV of true trust " << o.trust << ":\n"
             << "  policy        DC rate       collision rate\n";
+  const ordered_json& policies = j["policies"];
   for (auto it = policies.begin(); it != policies.end(); ++it) {
     std::cout << "  " << std::left << std::setw(14) << it.key() << std::setw(14)
               << it.value()["dc_rate"].get<double>() << it.value()["collision_rate"].get<double>()
@@ -218,7 +183,7 @@ int RunExperimentCommand(const std::string& config_path, const std::vector<std::
   const taebp::ExperimentResult result =
       taebp::RunExperiment(config_path, overrides, run_options, observer);
   taebp::WriteExperiment(result, out_dir);
-  taebp::PrintTable(std::cout, result.runs);
+  std::cout << result.Table();
   if (!quiet) std::fprintf(stderr, "taebp: results in %s\n", out_dir.c_str());
   return 0;
 }

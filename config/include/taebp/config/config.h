@@ -316,5 +316,13 @@ struct ProblemConfig {
 };
 // Throws ConfigError (file, key, line) on unknown keys, missing keys, bad types.
 ProblemConfig LoadProblemConfig(const std::string& path);
+// Same, from YAML (or JSON) text; `origin` names it in messages.
+ProblemConfig ParseProblemConfig(const std::string& yaml_text, const std::string& origin);
+
+// A YAML value (e.g. a --set or sweep grid value) as JSON text with its YAML
+// type: 0.5 -> 0.5, true -> true, ta_ebp -> "ta_ebp", '1' -> "1",
+// [8, 8] -> [8,8], {dist: beta, alpha: 2} -> {"dist":"beta","alpha":2}.
+// Throws ConfigError for malformed YAML.
+std::string YamlValueAsJson(const std::string& yaml_text);
 
 }  // namespace taebp

@@ -31,18 +31,24 @@ std::string TaebpVersion();
 
 // summary.json text (pretty, stable key order).
 std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& provenance);
-// encounters.csv text: one row per AV-HV encounter, policy first.
-std::string EncountersCsv(const std::vector<PolicyRun>& runs, const Provenance& provenance);
+// encounters.csv text: the header (EncounterCsvColumns) on the first line, then
+// one row per AV-HV encounter, policy first. No comment lines: provenance is in
+// summary.json.
+std::string EncountersCsv(const std::vector<PolicyRun>& runs);
+std::vector<std::string> EncounterCsvColumns();
 // junctions.csv text: one row per (policy, controlled junction): crossings,
 // throughput, waits, queues, encounters and rates with the theory.
 std::string JunctionsCsv(const std::vector<PolicyRun>& runs);
-// A CSV cell, quoted when it holds a comma, quote or line break.
+// A CSV cell (RFC 4180): quoted when it holds a comma, quote or line break.
 std::string CsvCell(const std::string& s);
 // Shortest text that reads back as exactly the same double (std::to_chars).
 std::string FormatDouble(double v);
 
-// Paper-style table: one row per metric, one column per policy, theory beside simulation.
-void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs);
+// Paper-style table: one row per metric, one column per policy, theory beside
+// simulation. A rate whose theory value lies outside its 95% interval is
+// flagged with '!'; `warnings` (e.g. the geometry warning) are repeated below.
+void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
+                const std::vector<std::string>& warnings = {});
 
 // Writes `files` (name -> content) into `dir` atomically: each is written to a
 // temporary file in `dir` and renamed into place only after all were written,

@@ -8,6 +8,7 @@
 #include "taebp/report/report.h"
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,6 +23,25 @@ struct ExperimentResult {
   double wall_seconds = 0;             // total, for timing.json only
   // The result files (name -> content), as WriteExperiment writes them.
   std::vector<std::pair<std::string, std::string>> Files() const;
+  // The Table I printout of `taebp run` (PrintTable with the warnings).
+  std::string Table() const;
+};
+
+// libsumo runs one simulation per process. RunExperiment holds this process's
+// simulation slot while it runs; a second concurrent call (another thread)
+// throws SimulationBusy instead of corrupting the first. A forked child starts
+// with a free slot (parallel runs: `taebp sweep --jobs N`, multiprocessing).
+class SimulationBusy : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+class SimulationSlot {
+ public:
+  // Takes the slot; throws SimulationBusy naming `what` when it is taken.
+  explicit SimulationSlot(const std::string& what);
+  ~SimulationSlot();
+  SimulationSlot(const SimulationSlot&) = delete;
+  SimulationSlot& operator=(const SimulationSlot&) = delete;
 };
 
 // Optional callbacks while an experiment runs.
@@ -34,7 +54,8 @@ struct ExperimentObserver {
 
 // Loads the config (with --set style overrides), resolves its network and
 // runs every listed policy. Throws ConfigError (bad config, scenario does not
-// fit), persuasion::InvalidArgument, SumoError (SUMO failed).
+// fit), persuasion::InvalidArgument, SumoError (SUMO failed), SimulationBusy
+// (another simulation is running in this process).
 ExperimentResult RunExperiment(const std::string& config_path,
                                const std::vector<std::string>& overrides,
                                const RunOptions& options = {},
@@ -43,7 +64,7 @@ ExperimentResult RunExperiment(const std::string& config_path,
 // Writes the result files into `out_dir` atomically (all or nothing).
 void WriteExperiment(const ExperimentResult& result, const std::string& out_dir);
 
-// The default output directory of a config: results/<config file stem>.
+// The default output directory of a config: results/STEM, STEM the config file name without its extension.
 std::string DefaultOutDir(const std::string& config_path);
 
 }  // namespace taebp

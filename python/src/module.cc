@@ -1,0 +1,214 @@
+// taebp._taebp: the C++ side of `import taebp` (python/taebp/__init__.py is
+// the public API). Thin bindings over the same library calls as the taebp
+// program: the theory and the LP as JSON (runner/theory.h), one experiment
+// (runner/runner.h) and the sweep engine (sweep/engine.h), so Python and the
+// command line give the same numbers and files for the same inputs.
+#include "taebp/config/config.h"
+#include "taebp/controller/sumo_adapter.h"
+#include "taebp/persuasion/outcomes.h"
+#include "taebp/persuasion/persuasion.h"
+#include "taebp/report/report.h"
+#include "taebp/runner/runner.h"
+#include "taebp/runner/theory.h"
+#include "taebp/sweep/engine.h"
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <csignal>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+
+namespace {
+
+taebp::TheoryRequest Request(double prior, double penalty, double trust,
+                             std::optional<double> assumed_trust, double s_max,
+                             const std::string& likelihood, double steepness, double midpoint) {
+  taebp::TheoryRequest r;
+  r.prior = prior;
+  r.penalty = penalty;
+  r.trust = trust;
+  r.assumed_trust = assumed_trust;
+  r.s_max = s_max;
+  r.likelihood = likelihood;
+  r.steepness = steepness;
+  r.midpoint = midpoint;
+  return r;
+}
+
+// A sweep task in a forked worker: `taebp run CONFIG --set ... --out DIR
+// --quiet` as the program's sweep runs it, with the same messages on stderr
+// (the engine records a failed task's last stderr line) and exit codes.
+int RunTask(const std::string& config, const std::vector<std::string>& overrides,
+            const std::string& out) {
+  try {
+    const taebp::ExperimentResult result = taebp::RunExperiment(config, overrides);
+    taebp::WriteExperiment(result, out);
+    return 0;
+  } catch (const taebp::ConfigError& e) {
+    std::fprintf(stderr, "taebp: config error: %s\n", e.what());
+    return 2;
+  } catch (const taebp::persuasion::InvalidArgument& e) {
+    std::fprintf(stderr, "taebp: invalid argument: %s\n", e.what());
+    return 2;
+  } catch (const taebp::SumoError& e) {
+    std::fprintf(stderr, "taebp: %s\n", e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "taebp: error: %s\n", e.what());
+    return 1;
+  }
+}
+
+// The sweep engine installs its own SIGINT/SIGTERM handlers and blocks
+// SIGCHLD; Python's are put back afterwards (Ctrl-C raises KeyboardInterrupt
+// again).
+class SignalState {
+ public:
+  SignalState() {
+    sigaction(SIGINT, nullptr, &int_);
+    sigaction(SIGTERM, nullptr, &term_);
+    sigprocmask(SIG_SETMASK, nullptr, &mask_);
+  }
+  ~SignalState() {
+    sigaction(SIGINT, &int_, nullptr);
+    sigaction(SIGTERM, &term_, nullptr);
+    sigprocmask(SIG_SETMASK, &mask_, nullptr);
+  }
+
+ private:
+  struct sigaction int_ {}, term_ {};
+  sigset_t mask_{};
+};
+
+}  // namespace
+
+PYBIND11_MODULE(_taebp, m) {
+  m.doc() = "taebp's C++ library; use the `taebp` package, not this module";
+
+  // Python exceptions for the library's errors (same messages).
+  static py::exception<taebp::ConfigError> config_error(m, "ConfigError", PyExc_ValueError);
+  static py::exception<taebp::persuasion::InvalidArgument> invalid(m, "InvalidArgument",
+                                                                   PyExc_ValueError);
+  static py::exception<taebp::SumoError> sumo_error(m, "SumoError", PyExc_RuntimeError);
+  static py::exception<taebp::SimulationBusy> busy(m, "SimulationBusy", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const taebp::ConfigError& e) {
+      config_error(e.what());
+    } catch (const taebp::persuasion::InvalidArgument& e) {
+      invalid(e.what());
+    } catch (const taebp::SumoError& e) {
+      sumo_error(e.what());
+    } catch (const taebp::SimulationBusy& e) {
+      busy(e.what());
+    }
+  });
+
+  m.def("version", [] { return taebp::TaebpVersion(); });
+  m.def("git_revision", [] { return taebp::BuildGitRevision(); });
+
+  m.def("theory_json",
+        [](double prior, double penalty, double trust, std::optional<double> assumed_trust,
+           double s_max, const std::string& likelihood, double steepness, double midpoint) {
+          return taebp::TheoryJson(Request(prior, penalty, trust, assumed_trust, s_max,
+                                           likelihood, steepness, midpoint))
+              .dump();
+        });
+
+  m.def("design", [](double prior, double penalty, double trust, double s_max,
+                     const std::string& likelihood, double steepness, double midpoint) {
+    const taebp::persuasion::TaebpDesign d = taebp::Design(
+        Request(prior, penalty, trust, std::nullopt, s_max, likelihood, steepness, midpoint));
+    py::dict out;
+    out["persuadable"] = d.persuadable;
+    out["theta_star"] = d.theta_star;
+    out["p_star"] = d.p_star;
+    out["s_star"] = d.s_star;
+    out["a"] = d.a;
+    out["b"] = d.b;
+    out["p_nudge"] = d.p_nudge;
+    return out;
+  });
+
+  m.def("predict", [](const std::string& policy, double prior, double penalty, double trust,
+                      std::optional<double> assumed_trust, double s_max,
+                      const std::string& likelihood, double steepness, double midpoint) {
+    const taebp::persuasion::PredictedOutcome o =
+        taebp::Predict(taebp::persuasion::ParsePolicy(policy),
+                       Request(prior, penalty, trust, assumed_trust, s_max, likelihood,
+                               steepness, midpoint));
+    py::dict out;
+    out["dc_rate"] = o.dc_rate;
+    out["collision_rate"] = o.collision_rate;
+    out["nudge_rate"] = o.nudge_rate;
+    out["av_first_rate"] = o.av_first_rate;
+    return out;
+  });
+
+  m.def("solve_json", [](const std::string& problem_text, const std::string& origin) {
+    const taebp::SolveOutput out =
+        taebp::SolveJson(taebp::ParseProblemConfig(problem_text, origin), origin);
+    return py::make_tuple(out.json.dump(), out.optimal);
+  });
+
+  m.def("encounter_columns", [] { return taebp::EncounterCsvColumns(); });
+
+  // One experiment; the GIL is released while SUMO runs. Returns the result
+  // files (name -> text), the printed table and the warnings.
+  m.def(
+      "run",
+      [](const std::string& config, const std::vector<std::string>& overrides,
+         std::optional<std::string> out, bool progress) {
+        taebp::ExperimentResult result;
+        {
+          py::gil_scoped_release release;
+          taebp::ExperimentObserver observer;
+          if (progress) {
+            observer.policy_done = [](const taebp::PolicyRun& run, double wall) {
+              std::fprintf(stderr, "taebp: %-12s %.0f simulated s in %.2f s wall, %zu encounters\n",
+                           run.policy.c_str(), run.simulated_seconds, wall,
+                           run.encounters.size());
+            };
+          }
+          result = taebp::RunExperiment(config, overrides, {}, observer);
+          if (out) taebp::WriteExperiment(result, *out);
+        }
+        py::dict files;
+        for (const auto& [name, text] : result.Files()) files[py::str(name)] = py::str(text);
+        py::dict r;
+        r["files"] = files;
+        r["table"] = result.Table();
+        r["warnings"] = result.warnings;
+        return r;
+      },
+      py::arg("config"), py::arg("overrides"), py::arg("out"), py::arg("progress"));
+
+  // The sweep engine, tasks in forked workers; returns its exit code (0 ok,
+  // 1 a task failed, 130 interrupted). The GIL is released throughout and
+  // this process's simulation slot held, so no run() starts meanwhile.
+  m.def(
+      "sweep",
+      [](const std::string& config, const std::vector<std::string>& overrides,
+         const std::string& out, int jobs, bool quiet, const std::string& shard) {
+        taebp::sweep::SweepOptions o;
+        o.config = config;
+        o.overrides = overrides;
+        o.out = out;
+        o.jobs = jobs;
+        o.quiet = quiet;
+        o.shard = shard;
+        py::gil_scoped_release release;
+        const taebp::SimulationSlot slot("sweep " + config);
+        const SignalState signals;
+        std::fflush(nullptr);
+        return taebp::sweep::RunSweep(o, RunTask);
+      },
+      py::arg("config"), py::arg("overrides"), py::arg("out"), py::arg("jobs"),
+      py::arg("quiet"), py::arg("shard"));
+}

@@ -1,0 +1,51 @@
+// The theory and the LP as data: what `taebp theory --json` and
+// `taebp solve --json` print, shared by the CLI and the Python module so both
+// give the same fields and numbers for the same inputs. SUMO-free.
+#pragma once
+
+#include "taebp/config/config.h"
+#include "taebp/persuasion/av_hv.h"
+#include "taebp/persuasion/outcomes.h"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+
+namespace taebp {
+
+// The AV-HV game's parameters as `taebp theory` takes them.
+struct TheoryRequest {
+  double prior = 0.2, penalty = 3.0, trust = 0.6, s_max = 2.0;
+  std::optional<double> assumed_trust;  // theta_hat the AV designs for (default: trust)
+  std::string likelihood = "linear";    // linear | logistic
+  double steepness = 4.0, midpoint = 1.0;
+
+  // Throws persuasion::InvalidArgument naming the parameter and value.
+  void Validate() const;
+  persuasion::AvHvParams Params() const;
+  LikelihoodConfig Likelihood() const;
+};
+
+// `taebp theory --json`: prior_go, collision_penalty, trust, assumed_trust,
+// likelihood, s_max, p_star, theta_star, persuadable, s_star, a, b, p_nudge,
+// dc_rate, collision_rate (the TA-EBP design's) and policies.NAME.{dc_rate,
+// collision_rate, nudge_rate}. Throws persuasion::InvalidArgument.
+nlohmann::ordered_json TheoryJson(const TheoryRequest& request);
+
+// The TA-EBP design for theta_hat = request.assumed_trust (default trust).
+persuasion::TaebpDesign Design(const TheoryRequest& request);
+// One policy's predicted outcome for an HV of trust request.trust when the AV
+// designs for request.assumed_trust (default: trust; no_trust forces 1).
+persuasion::PredictedOutcome Predict(persuasion::Policy policy, const TheoryRequest& request);
+
+// `taebp solve --json` for a problem (rows = states). Throws ConfigError
+// naming `origin`, the key and the sizes for a malformed problem. `optimal`
+// is false when the LP was not solved to optimality (the CLI's exit code 1).
+struct SolveOutput {
+  nlohmann::ordered_json json;
+  bool optimal = false;
+};
+SolveOutput SolveJson(const ProblemConfig& problem, const std::string& origin);
+
+}  // namespace taebp

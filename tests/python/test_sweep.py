@@ -1,0 +1,125 @@
+"""taebp.sweep runs the sweep engine: the CLI's files, typed swept values, the
+pooled encounters.csv, failures as SweepError, Python's signals restored."""
+import csv
+import io
+import json
+import os
+import signal
+import time
+
+import pytest
+
+import taebp
+from conftest import ROOT, cli
+
+CONFIG = """\
+scenario: {duration: 90, seed: 3}
+model: {prior_go: 0.2, collision_penalty: 3.0, trust: 0.6}
+policies: [no_trust, ta_ebp]
+sweep:
+  replicates: 2
+  grid:
+    model.trust: [0.3, 0.9]
+    "scenario.avs,scenario.hvs": [[8, 8], [6, 10]]
+"""
+
+
+@pytest.fixture
+def config(tmp_path):
+    path = tmp_path / "study.yaml"
+    path.write_text(CONFIG)
+    return path
+
+
+def test_sweep_equals_the_cli_sweep(tmp_path, config):
+    cli("sweep", config, "--out", tmp_path / "cli", "--jobs", 2, "--quiet")
+    s = taebp.sweep(config, out=tmp_path / "py", jobs=2)
+    for name in ("results.csv", "results.jsonl", "aggregate.csv", "encounters.csv", "sweep.json"):
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    assert s.keys == ["model.trust", "scenario.avs", "scenario.hvs"]
+    assert len(s.results) == 4 * 2 * 2 and len(s.aggregate) == 4 * 2
+    assert s.aggregate["model.trust"] == [0.3] * 4 + [0.9] * 4
+    assert s.aggregate["scenario.avs"] == [8, 8, 6, 6, 8, 8, 6, 6]
+    assert set(s.results["status"]) == {"ok"}
+    # A task's own files.
+    one = s.run(1, 1)
+    assert one.summary["provenance"]["seed"] == 4
+    frames = s.to_pandas()
+    assert set(frames) == {"results", "aggregate", "encounters"}
+    assert len(frames["encounters"]) == len(s.encounters)
+
+
+def test_swept_values_keep_their_yaml_types_in_sweep_json(tmp_path):
+    path = tmp_path / "typed.yaml"
+    path.write_text("scenario: {duration: 30}\npolicies: [ta_ebp]\nsweep:\n  replicates: 1\n"
+                    "  grid:\n    model.trust: [0.5, 1]\n    policies: [[ta_ebp], [no_ebp, ta_ebp]]\n"
+                    "    scenario.auto_length: [true]\n"
+                    "    \"scenario.avs,scenario.hvs\": [[8, 8]]\n")
+    s = taebp.sweep(path, out=tmp_path / "out", jobs=2)
+    axes = s.info["axes"]
+    assert axes[0] == {"keys": ["model.trust"], "values": [[0.5], [1]]}
+    assert isinstance(axes[0]["values"][0][0], float) and isinstance(axes[0]["values"][1][0], int)
+    assert axes[1]["values"] == [[["ta_ebp"]], [["no_ebp", "ta_ebp"]]]
+    assert axes[2]["values"] == [[True]]
+    assert axes[3] == {"keys": ["scenario.avs", "scenario.hvs"], "values": [[8, 8]]}
+    with open(tmp_path / "out" / "results.jsonl") as f:
+        first = json.loads(f.readline())
+    assert first["model.trust"] == 0.5 and first["policies"] == ["ta_ebp"]
+    assert first["scenario.auto_length"] is True and first["scenario.avs"] == 8
+
+
+def test_pooled_encounters_are_the_tasks_rows_with_the_task_in_front(tmp_path, config):
+    s = taebp.sweep(config, out=tmp_path / "out", jobs=2)
+    with open(tmp_path / "out" / "encounters.csv", newline="") as f:
+        pooled = list(csv.DictReader(f))
+    front = ["point", "replicate", "seed", "model.trust", "scenario.avs", "scenario.hvs"]
+    assert s.encounters.columns == front + taebp.encounter_columns()
+    total = 0
+    for point in range(4):
+        for rep in range(2):
+            with open(tmp_path / "out" / "tasks" / ("%d-%d" % (point, rep)) / "encounters.csv",
+                      newline="") as f:
+                task_rows = list(csv.DictReader(f))
+            mine = [r for r in pooled if r["point"] == str(point) and r["replicate"] == str(rep)]
+            assert [{k: r[k] for k in taebp.encounter_columns()} for r in mine] == task_rows
+            assert {r["seed"] for r in mine} == {str(3 + rep)}
+            total += len(task_rows)
+            # Encounters per policy agree with results.csv.
+            for policy in ("no_trust", "ta_ebp"):
+                row = [r for r in s.results if r["point"] == point and r["replicate"] == rep
+                       and r["policy"] == policy][0]
+                assert row["encounters"] == sum(r["policy"] == policy for r in mine)
+    assert len(pooled) == total > 0
+
+
+def test_a_failed_task_is_a_sweep_error_with_the_cli_message(tmp_path):
+    path = tmp_path / "bad.yaml"
+    path.write_text("scenario: {duration: 30}\npolicies: [ta_ebp]\nsweep:\n  replicates: 1\n"
+                    "  grid:\n    model.trust: [0.5, 1.5]\n")
+    r = cli("sweep", path, "--out", tmp_path / "cli", "--jobs", 2, "--quiet", check=False)
+    assert r.returncode == 1
+    with open(tmp_path / "cli" / "journal.jsonl") as f:
+        cli_errors = {json.loads(l)["point"]: json.loads(l)["error"] for l in f}
+    with pytest.raises(taebp.SweepError) as e:
+        taebp.sweep(path, out=tmp_path / "py", jobs=2)
+    assert e.value.failed == [(1, 0, cli_errors[1])]
+    assert "model.trust" in cli_errors[1] and cli_errors[1] in str(e.value)
+    assert len(e.value.result.aggregate) == 2  # the ok point and the failed one
+    assert e.value.result.aggregate["runs_failed"] == [0, 1]
+
+
+def test_signals_are_python_s_again_and_a_second_sweep_resumes(tmp_path, config):
+    taebp.sweep(config, out=tmp_path / "out", jobs=2)
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    start = time.monotonic()
+    again = taebp.sweep(config, out=tmp_path / "out", jobs=2)  # all tasks already done
+    assert time.monotonic() - start < 5
+    assert len(again.results) == 16
+    with pytest.raises(KeyboardInterrupt):
+        os.kill(os.getpid(), signal.SIGINT)
+        time.sleep(1)
+
+
+def test_sweep_config_errors_raise_config_error(tmp_path):
+    with pytest.raises(taebp.ConfigError, match="no 'sweep:' section"):
+        taebp.sweep(os.path.join(ROOT, "configs", "paper.yaml"), out=tmp_path / "x")
