@@ -52,9 +52,6 @@ struct ProbDeleter {
 };
 using ProbPtr = std::unique_ptr<glp_prob, ProbDeleter>;
 
-// Posteriors with P(a) below this are reported as NaN (action never recommended).
-constexpr double kMinSignalProbability = 1e-12;
-
 }  // namespace
 
 LpResult SolveTrustAwarePersuasion(const Game& game, double theta) {

@@ -34,7 +34,10 @@ double AvHvThetaStar(const AvHvParams& params);
 double HvPosteriorGo(const AvHvParams& params, double theta,
                      const LikelihoodModel& model, double s);
 
-// True if the HV drives if clear at posterior p_go (p_go >= p* - kTieTolerance).
+// True if the HV drives if clear at posterior p_go: DC is a best response in
+// AvHvGame (p_go >= p*, ties toward the AV, under the tolerance policy of
+// persuasion.h). Every AV-HV decision (theta*, s*, b, the design, the outcomes,
+// the runner's HV) goes through this one function.
 bool HvDrivesIfClear(const AvHvParams& params, double p_go);
 
 // The likelihood ratio required by Theorem 2 (the argument of L^{-1} in
