@@ -437,7 +437,8 @@ class Run {
 
   void Decide(double now, double observed) {
     EncounterRecord& r = enc_->record;
-    const HvReading reading = ReadNudge(params_, r.hv_trust, *model_, observed);
+    const HvReading reading =
+        ReadNudge(vehs_[enc_->hv].scheme, params_, r.hv_trust, *model_, observed);
     r.observed = observed;
     r.posterior = reading.posterior;
     r.hv_dc = reading.drives_if_clear;

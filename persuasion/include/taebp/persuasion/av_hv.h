@@ -30,7 +30,9 @@ double AvHvPStar(double collision_penalty);
 // persuasion is needed and theta* = 0.
 double AvHvThetaStar(const AvHvParams& params);
 
-// eq:pp: p_theta(Go | s) under the HV's intuitive likelihood model.
+// eq:pp: p_theta(Go | s) under the HV's intuitive likelihood model, reading s
+// (0 included) as a signal. Whether a still AV is a signal at all depends on the
+// AV's scheme: see HvPosteriorGo(scheme, ...) in outcomes.h.
 double HvPosteriorGo(const AvHvParams& params, double theta,
                      const LikelihoodModel& model, double s);
 
