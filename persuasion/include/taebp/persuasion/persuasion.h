@@ -48,12 +48,19 @@ class InvalidArgument : public std::invalid_argument {
 // a threshold, and at theta* the HV is persuaded by s_max (the Remark after
 // Theorem 2).
 //
-// The LP (lp.h) states obedience as dU >= 0 exactly (ties toward the sender)
-// and leaves round-off to GLPK's feasibility tolerance; a recommendation whose
-// probability is below kMinSignalProbability counts as never sent. Probability
-// inputs (a prior, a posterior handed to HvDrivesIfClear) may miss [0, 1] or a
-// sum of 1 by kProbabilityTolerance.
+// The LP (lp.h) states obedience as dU >= 0 exactly (ties toward the sender),
+// multiplied by P(a), and GLPK satisfies it to its own feasibility tolerance.
+// Divided by a tiny P(a) that round-off can become a visible gap in the
+// posterior, so the LP's answer is checked the same way as everything else,
+// with the looser kObedienceTolerance for solver round-off: a recommendation
+// the receiver does not weakly prefer at its own posterior is merged into her
+// best response there (which keeps every other recommendation obedient and
+// moves the value by at most that recommendation's tiny probability). A
+// recommendation whose probability is below kMinSignalProbability counts as
+// never sent (NaN posterior). Probability inputs (a prior, a posterior handed
+// to HvDrivesIfClear) may miss [0, 1] or a sum of 1 by kProbabilityTolerance.
 inline constexpr double kTieTolerance = 1e-9;
+inline constexpr double kObedienceTolerance = 1e-6;
 inline constexpr double kProbabilityTolerance = 1e-9;
 inline constexpr double kMinSignalProbability = 1e-12;
 
