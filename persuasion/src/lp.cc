@@ -329,6 +329,15 @@ LpResult SolveTrustAwarePersuasion(const Game& game, double theta, const LpOptio
       if (top > 0.0) {
         for (int w = 0; w < n; ++w) c[w] /= top;
       }
+      // Finite by construction (|u| < 2, p0 <= 1); GLPK would take inf or NaN
+      // without complaint and answer nonsense, so never hand it one.
+      if (!std::isfinite(top)) {
+        LpResult result;
+        result.status = LpResult::Status::kSolverError;
+        result.message = "obedience row (" + game.actions[a] + ", " + game.actions[alt] +
+                         ") has a non-finite coefficient";
+        return result;
+      }
     }
   }
   std::vector<double> objective(static_cast<std::size_t>(n) * m);
