@@ -18,8 +18,8 @@
 // GLPK's fatal errors come back as kSolverError instead of aborting the
 // process, and obedience rows are generated lazily. Measured on this project's
 // shared 2-core machine (bench/lp_scaling: random games, theta = 0.7; n x m =
-// states x actions): 50 x 50 ~0.1 s, 100 x 100 ~1.5 s (the full LP: 1.3 s and
-// 103 s), and at the limits 200 x 200 ~12 s, 400 x 100 ~15 s, 100 x 400 ~9 s,
+// states x actions): 50 x 50 ~0.1 s, 100 x 100 ~1-1.5 s (the full LP,
+// LpOptions::lazy_obedience = false: ~1.5 s and 87-103 s), and at the limits 200 x 200 ~12 s, 400 x 100 ~15 s, 100 x 400 ~9 s,
 // 10000 x 4 ~9 s, 2 x 2000 ~2 s. Larger games are refused (kMaxLpVariables,
 // kMaxLpObedienceEntries) with an error naming their size.
 #pragma once
