@@ -413,7 +413,7 @@ struct NetworkController::Impl : junction::EncounterModel {
     return DrawAv(vehs[hv].scheme, params.prior_go, rng);
   }
   HvReading Read(int /*av*/, int hv, double observed) override {
-    const HvReading r = ReadNudge(params, vehs[hv].trust, *model, observed);
+    const HvReading r = ReadNudge(vehs[hv].scheme, params, vehs[hv].trust, *model, observed);
     SetPaint(hv, r.drives_if_clear ? Paint::kDc : Paint::kDr);
     return r;
   }

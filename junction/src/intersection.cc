@@ -21,12 +21,13 @@ AvDraw DrawAv(const persuasion::CommittedScheme& scheme, double prior_go, std::m
   return d;
 }
 
-HvReading ReadNudge(const persuasion::AvHvParams& params, double theta,
+HvReading ReadNudge(const persuasion::CommittedScheme& scheme,
+                    const persuasion::AvHvParams& params, double theta,
                     const persuasion::LikelihoodModel& model, double observed) {
   HvReading r;
   r.observed = observed;
   const double s = std::clamp(observed, 0.0, model.SMax());
-  r.posterior = persuasion::HvPosteriorGo(params, theta, model, s);
+  r.posterior = persuasion::HvPosteriorGo(scheme, params, theta, model, s);
   r.drives_if_clear = persuasion::HvDrivesIfClear(params, r.posterior);
   return r;
 }

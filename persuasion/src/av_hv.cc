@@ -65,13 +65,14 @@ double AvHvPStar(double collision_penalty) {
 }
 
 // eq:tt: theta* = (2(1 - lambda) - r lambda) / ((1 - lambda)(r + 2)), which equals
-// (p* - lambda) / (1 - lambda). For lambda >= p* the HV already drives if clear
-// at the prior, so no trust is needed (theta* = 0).
+// (p* - lambda) / (1 - lambda). When the HV already drives if clear at the prior
+// (lambda >= p*, decided by the tolerance policy like every other comparison) no
+// trust is needed (theta* = 0).
 double AvHvThetaStar(const AvHvParams& params) {
   params.Validate();
   const double lambda = params.prior_go;
   const double r = params.collision_penalty;
-  if (lambda >= AvHvPStar(r)) return 0.0;
+  if (HvDrivesIfClear(params, lambda)) return 0.0;
   const double theta = (2.0 * (1.0 - lambda) - r * lambda) / ((1.0 - lambda) * (r + 2.0));
   return std::clamp(theta, 0.0, 1.0);
 }
@@ -95,14 +96,24 @@ double HvPosteriorGo(const AvHvParams& params, double theta, const LikelihoodMod
   return (1.0 - theta) * lambda + theta * (go / evidence);
 }
 
+// eq:ppp as a decision: DC is a best response at p_go (ties toward the AV, who
+// prefers DC). The gain of DC over DR and the table's UtilityScale are those of
+// AvHvGame, spelled out so that no Game is built per encounter:
+//   U(DR|p) = -r p + (1 - p),  U(DC|p) = -(1 - p),  gain = (2 + r)(p - p*),
+//   scale = max u - min u = 1 - min(-r, -1) = 1 + max(r, 1).
+// The expected utilities are computed term for term as ExpectedUtilities does,
+// so this is BestResponse(AvHvGame(params), (p_go, 1 - p_go)) == DC exactly.
 bool HvDrivesIfClear(const AvHvParams& params, double p_go) {
-  const double p_star = AvHvPStar(params.collision_penalty);
   params.Validate();
   // Round-off may push a posterior a hair outside [0, 1]; only reject real errors.
-  if (!(p_go >= -kTieTolerance && p_go <= 1.0 + kTieTolerance)) {
+  if (!(p_go >= -kProbabilityTolerance && p_go <= 1.0 + kProbabilityTolerance)) {
     throw InvalidArgument("posterior p_go = " + Num(p_go) + " is outside [0, 1]");
   }
-  return p_go >= p_star - kTieTolerance;
+  const double r = params.collision_penalty;
+  const double p_stop = 1.0 - p_go;
+  const double u_dr = -r * p_go + 1.0 * p_stop;
+  const double u_dc = 0.0 * p_go + -1.0 * p_stop;
+  return WeaklyPrefers(u_dc - u_dr, 1.0 + std::max(r, 1.0));
 }
 
 // Argument of L^{-1} in eq:s^*: setting eq:pp equal to p* and solving for L,
@@ -134,8 +145,8 @@ bool AvHvPersuadable(const AvHvParams& params, double theta, const LikelihoodMod
 TrustThreshold AvHvModelTrustThreshold(const AvHvParams& params, const LikelihoodModel& model) {
   params.Validate();
   const double lambda = params.prior_go;
-  if (lambda >= AvHvPStar(params.collision_penalty)) {
-    // Already DC at the prior. (The general theorem would call DC the default
+  if (HvDrivesIfClear(params, lambda)) {
+    // Already DC at the prior (lambda >= p*, ties included). (The general theorem would call DC the default
     // action here and report the trust needed to persuade towards DR instead.)
     TrustThreshold result;
     result.theta_star = 0.0;
@@ -150,8 +161,9 @@ TrustThreshold AvHvModelTrustThreshold(const AvHvParams& params, const Likelihoo
   return MinPersuadableTrust(AvHvGame(params), signals);
 }
 
-// Theorem 2 (eq:s^*): s*(theta) = L^{-1}(R(theta)), checked against the model's
-// persuadability threshold (p_theta(Go|s_max) >= p* - kTieTolerance).
+// Theorem 2 (eq:s^*): s*(theta) = L^{-1}(R(theta)). Both decisions -- can any
+// nudge persuade (the strongest, s_max) and is none needed (s = 0) -- are the
+// HV's best response there (tolerance policy); L^{-1} is used only in between.
 double MinimalNudge(const AvHvParams& params, double theta, const LikelihoodModel& model) {
   params.Validate();
   internal::CheckTrust(theta);
@@ -163,8 +175,8 @@ double MinimalNudge(const AvHvParams& params, double theta, const LikelihoodMode
         " of the " + model.Name() + " likelihood model: no nudge in [0, " + Num(model.SMax()) +
         "] makes the HV drive if clear");
   }
+  if (HvDrivesIfClear(params, HvPosteriorGo(params, theta, model, 0.0))) return 0.0;
   const double ratio = RequiredRatio(params, theta);
-  if (ratio <= model.Ratio(0.0)) return 0.0;
   // theta is (within tolerance) at the model's threshold: only the strongest nudge works.
   if (ratio >= model.MaxRatio()) return model.SMax();
   return model.InverseRatio(ratio);
@@ -173,23 +185,24 @@ double MinimalNudge(const AvHvParams& params, double theta, const LikelihoodMode
 // eq:b: setting the scheme posterior (pi(s*|Go) = 1, pi(s*|Stop) = b) to p*,
 //   b = lambda (theta - p* + (1 - theta) lambda) / ((1 - lambda)(p* - (1 - theta) lambda)),
 // i.e. b = 1 / R(theta). For lambda >= p*, b >= 1 (or the denominator is <= 0):
-// the AV may always nudge, b = 1.
+// the AV may always nudge, b = 1. Both decisions follow the tolerance policy:
+// "lambda >= p*" is the HV's best response at the prior, "theta >= theta*" its
+// best response to the most informative signal (b = 0, p_FT(Go) = 1), the same
+// expression as HvPosteriorGo at s_max of the linear model.
 double StopNudgeProbability(const AvHvParams& params, double theta) {
   params.Validate();
   internal::CheckTrust(theta);
   const double lambda = params.prior_go;
   const double p_star = AvHvPStar(params.collision_penalty);
-  if (lambda >= p_star) return 1.0;
-  const double theta_star = AvHvThetaStar(params);
-  // DesignTaebp calls this for every theta that AvHvPersuadable accepts, i.e. down
-  // to p = (1 - theta) lambda + theta = p* - kTieTolerance, theta* - kTieTolerance
-  // / (1 - lambda); the factor 2 keeps round-off in the two tests from disagreeing.
-  if (theta < theta_star - 2.0 * kTieTolerance / (1.0 - lambda)) {
+  if (HvDrivesIfClear(params, lambda)) return 1.0;
+  if (!HvDrivesIfClear(params, (1.0 - theta) * lambda + theta * 1.0)) {
     throw InvalidArgument("trust theta = " + Num(theta) +
-                          " is below the minimum persuadable trust theta* = " + Num(theta_star));
+                          " is below the minimum persuadable trust theta* = " +
+                          Num(AvHvThetaStar(params)));
   }
   const double numerator = lambda * (theta - p_star + (1.0 - theta) * lambda);
-  const double denominator = (1.0 - lambda) * (p_star - (1.0 - theta) * lambda);  // > 0 here
+  // > 0 here: (1 - theta) lambda <= lambda < p* since the prior alone does not persuade.
+  const double denominator = (1.0 - lambda) * (p_star - (1.0 - theta) * lambda);
   return std::clamp(numerator / denominator, 0.0, 1.0);
 }
 
@@ -200,8 +213,9 @@ TaebpDesign DesignTaebp(const AvHvParams& params, double theta_hat, const Likeli
   TaebpDesign design;
   design.p_star = AvHvPStar(params.collision_penalty);
   design.theta_star = AvHvModelTrustThreshold(params, model).theta_star;
-  // Step 1: persuadable iff theta_hat >= theta*, tested as "the strongest nudge
-  // lifts the posterior to p*" so that the tie tolerance is the one of eq:ppp.
+  // Step 1: persuadable iff theta_hat >= theta*, decided as "the strongest nudge
+  // makes DC a best response" (the tolerance policy, persuasion.h); MinimalNudge
+  // and StopNudgeProbability decide the same way, so they cannot disagree here.
   if (!AvHvPersuadable(params, theta_hat, model)) return design;  // fallback: always yield
   // Step 2: s* from Theorem 2, a = 1, b from eq:b.
   design.persuadable = true;

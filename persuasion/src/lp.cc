@@ -18,6 +18,30 @@
 // sum_a x(w, a) = 1 for every w and x >= 0. The scheme "always recommend the
 // default action" is feasible, so the LP is feasible and (being bounded) has an
 // optimum; kInfeasible is reported only if GLPK says so.
+//
+// Numerics.
+// - Differences first: every coefficient is built from D(w; a, a') and dU0 is
+//   the p0-weighted sum of those differences, never U(a|p0) - U(a'|p0), which
+//   cancels catastrophically when a state's utilities are large (1e17 and 1e17
+//   next to 0 and 1 used to give a disobedient "optimum").
+// - Both tables are divided by a power of two near their largest |entry| (exact,
+//   decision-neutral: obedience is homogeneous in u, the optimum in v), so
+//   |u|, |v| < 2, |D| < 4, and entries like +-1e308 cannot overflow to inf;
+//   each obedience row is then divided by its largest |coefficient|.
+// - GLPK reports a fatal error by calling abort() unless an error hook is set;
+//   every GLPK call here runs under glp_error_hook (RunGlpkGuarded), which
+//   longjmps back, frees GLPK's environment and returns GLPK's message.
+//
+// Scaling. There are n m variables and m (m - 1) obedience rows of n entries
+// each: for n = m = 100 that is 9900 dense rows, which GLPK's simplex took 103 s
+// to solve. At an optimum only a few obedience rows bind, so they are generated
+// lazily (a cutting-plane loop): solve with the rows found so far, add every
+// row the solution violates by more than kRowViolation, re-solve with the dual
+// simplex from the previous basis, until none is violated. Each round adds at
+// least one of the finitely many rows, so the loop ends, and its answer is an
+// optimum of the full LP (a relaxation's optimum that is feasible for the full
+// LP is optimal for it). LpOptions::lazy_obedience = false builds the full LP
+// at once (tests compare both). Measured limits: see lp.h and bench/lp_scaling.cc.
 #include "taebp/persuasion/lp.h"
 
 #include "internal.h"
@@ -26,8 +50,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csetjmp>
 #include <limits>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,110 +69,362 @@ const char* ToString(LpResult::Status status) {
   return "unknown";
 }
 
+// ---------------------------------------------------------------------------
+// GLPK's error path.
+// ---------------------------------------------------------------------------
 namespace {
 
-struct ProbDeleter {
-  void operator()(glp_prob* lp) const { glp_delete_prob(lp); }
+struct GlpkGuard {
+  std::jmp_buf env;
+  void (*call)(void*);
+  void* arg;
+  std::string* log;
 };
-using ProbPtr = std::unique_ptr<glp_prob, ProbDeleter>;
 
-// Posteriors with P(a) below this are reported as NaN (action never recommended).
-constexpr double kMinSignalProbability = 1e-12;
+void OnGlpkError(void* info) { std::longjmp(static_cast<GlpkGuard*>(info)->env, 1); }
+
+int OnGlpkTerminal(void* info, const char* text) {
+  static_cast<std::string*>(info)->append(text);
+  return 1;  // handled: GLPK prints nothing
+}
+
+// setjmp returns twice: 0 now, 1 when GLPK's error hook longjmps back. Between
+// here and GLPK there are only this frame (a pointer, unchanged after setjmp)
+// and guard->call's, which keeps no object with a destructor.
+bool CallUnderHook(GlpkGuard* guard) {
+  if (setjmp(guard->env) != 0) return false;
+  glp_term_hook(OnGlpkTerminal, guard->log);
+  glp_error_hook(OnGlpkError, guard);
+  guard->call(guard->arg);
+  glp_error_hook(nullptr, nullptr);
+  glp_term_hook(nullptr, nullptr);
+  return true;
+}
 
 }  // namespace
 
-LpResult SolveTrustAwarePersuasion(const Game& game, double theta) {
-  game.Validate();
-  internal::CheckTrust(theta);
-  const int n = static_cast<int>(game.prior.size());
-  const int m = static_cast<int>(game.actions.size());
-  const Eigen::VectorXd& p0 = game.prior;
-  const Eigen::MatrixXd& u = game.receiver_utility;
-  const Eigen::VectorXd prior_utility = ExpectedUtilities(u, p0);  // U(a | p0)
+bool RunGlpkGuarded(void (*call)(void*), void* arg, std::string* error) {
+  std::string scratch;
+  GlpkGuard guard;
+  guard.call = call;
+  guard.arg = arg;
+  guard.log = error != nullptr ? error : &scratch;
+  guard.log->clear();
+  if (CallUnderHook(&guard)) {
+    guard.log->clear();  // anything printed without an error is not an error
+    return true;
+  }
+  // GLPK's manual: after an error the environment is undefined; glp_free_env
+  // frees every GLPK object of this thread (hooks included) and the next GLPK
+  // call starts a fresh one.
+  glp_free_env();
+  std::string& log = *guard.log;
+  while (!log.empty() && (log.back() == '\n' || log.back() == ' ')) log.pop_back();
+  if (log.empty()) log = "GLPK reported an error";
+  return false;
+}
 
-  ProbPtr lp(glp_create_prob());
-  glp_set_obj_dir(lp.get(), GLP_MAX);
+namespace {
 
-  // Column index (1-based) of x(w, a).
-  auto col = [m](int w, int a) { return 1 + w * m + a; };
-  glp_add_cols(lp.get(), n * m);
-  for (int w = 0; w < n; ++w) {
-    for (int a = 0; a < m; ++a) {
-      glp_set_col_bnds(lp.get(), col(w, a), GLP_LO, 0.0, 0.0);
-      glp_set_obj_coef(lp.get(), col(w, a), p0(w) * game.sender_utility(w, a));
+// A generated obedience row counts as violated below -kRowViolation (rows are
+// normalised to a largest |coefficient| of 1); GLPK's own rows hold to its
+// tol_bnd (1e-7).
+constexpr double kRowViolation = 1e-9;
+
+// 2^(k-1) with max |entry| in [2^(k-1), 2^k) (1 for an all-zero table):
+// dividing by it is exact and leaves every entry below 2 in magnitude (2^k
+// itself would overflow to inf for entries near DBL_MAX).
+double PowerOfTwoScale(const Eigen::MatrixXd& table) {
+  const double top = table.cwiseAbs().maxCoeff();
+  if (!(top > 0.0)) return 1.0;
+  int exponent = 0;
+  std::frexp(top, &exponent);  // top = f 2^exponent, f in [0.5, 1)
+  return std::ldexp(1.0, exponent - 1);
+}
+
+// Everything the GLPK side reads and writes, as plain pointers and numbers: the
+// guarded function's frame may be unwound by longjmp, so nothing in it may have
+// a destructor. The buffers are owned by SolveTrustAwarePersuasion's frame.
+struct LpWork {
+  // Inputs.
+  int n = 0, m = 0;
+  const double* prior = nullptr;          // n
+  const double* objective = nullptr;      // n * m, p0(w) v(w, a) / scale, column-major (w fastest)
+  const double* obedience = nullptr;      // m * m * n: row (a, a') coefficients of x(., a)
+  bool lazy = true;
+  // Scratch for one GLPK row (1-based, n + 1 entries each).
+  int* index = nullptr;
+  double* value = nullptr;
+  unsigned char* in_lp = nullptr;         // m * m: row (a, a') added
+  // Outputs.
+  double* x = nullptr;                    // n * m primal values, x[a * n + w]
+  int code = 0;                           // last glp_simplex return code
+  int status = 0;                         // last glp_get_status
+  int rounds = 0;                         // simplex calls
+  int rows = 0;                           // obedience rows in the final LP
+};
+
+int Column(const LpWork& work, int w, int a) { return 1 + a * work.n + w; }
+
+const double* RowCoefficients(const LpWork& work, int a, int alt) {
+  return work.obedience + (static_cast<std::size_t>(a) * work.m + alt) * work.n;
+}
+
+void AddObedienceRow(glp_prob* lp, LpWork* work, int a, int alt) {
+  const double* c = RowCoefficients(*work, a, alt);
+  int len = 0;
+  for (int w = 0; w < work->n; ++w) {
+    if (c[w] == 0.0) continue;
+    ++len;
+    work->index[len] = Column(*work, w, a);
+    work->value[len] = c[w];
+  }
+  const int row = glp_add_rows(lp, 1);
+  glp_set_row_bnds(lp, row, GLP_LO, 0.0, 0.0);
+  glp_set_mat_row(lp, row, len, work->index, work->value);
+  work->in_lp[a * work->m + alt] = 1;
+  ++work->rows;
+}
+
+// Adds every obedience row (not yet in the LP) that the current solution
+// violates; returns how many.
+int AddViolatedRows(glp_prob* lp, LpWork* work) {
+  const int n = work->n, m = work->m;
+  for (int a = 0; a < m; ++a) {
+    for (int w = 0; w < n; ++w) work->x[a * n + w] = glp_get_col_prim(lp, Column(*work, w, a));
+  }
+  int added = 0;
+  for (int a = 0; a < m; ++a) {
+    const double* xa = work->x + static_cast<std::size_t>(a) * n;
+    bool used = false;
+    for (int w = 0; w < n && !used; ++w) used = xa[w] > 0.0;
+    if (!used) continue;  // never recommended: its rows hold trivially
+    int worst = -1;
+    double worst_activity = -kRowViolation;
+    for (int alt = 0; alt < m; ++alt) {
+      if (alt == a || work->in_lp[a * m + alt]) continue;
+      const double* c = RowCoefficients(*work, a, alt);
+      double activity = 0.0;
+      for (int w = 0; w < n; ++w) activity += c[w] * xa[w];
+      if (activity < worst_activity) {
+        worst_activity = activity;
+        worst = alt;
+      }
+    }
+    if (worst >= 0) {
+      AddObedienceRow(lp, work, a, worst);
+      ++added;
     }
   }
+  return added;
+}
 
-  // GLPK's sparse triplets are 1-based; entry 0 is unused.
-  std::vector<int> ia(1, 0), ja(1, 0);
-  std::vector<double> ar(1, 0.0);
-  auto add = [&](int row, int column, double value) {
-    ia.push_back(row);
-    ja.push_back(column);
-    ar.push_back(value);
-  };
-
-  // Rows 1..n: sum_a x(w, a) = 1.
-  glp_add_rows(lp.get(), n);
-  for (int w = 0; w < n; ++w) {
-    glp_set_row_bnds(lp.get(), 1 + w, GLP_FX, 1.0, 1.0);
-    for (int a = 0; a < m; ++a) add(1 + w, col(w, a), 1.0);
-  }
-  // Rows n+1..n+m(m-1): obedience of recommendation a against deviation a'.
-  if (m > 1) glp_add_rows(lp.get(), m * (m - 1));
-  int row = n;
+// The GLPK side, run under RunGlpkGuarded. Locals are ints, doubles and a
+// glp_prob* only.
+void SolveWithGlpk(void* arg) {
+  LpWork* work = static_cast<LpWork*>(arg);
+  const int n = work->n, m = work->m;
+  glp_prob* lp = glp_create_prob();
+  glp_set_obj_dir(lp, GLP_MAX);
+  glp_add_cols(lp, n * m);
   for (int a = 0; a < m; ++a) {
-    for (int alt = 0; alt < m; ++alt) {
-      if (alt == a) continue;
-      ++row;
-      glp_set_row_bnds(lp.get(), row, GLP_LO, 0.0, 0.0);
-      const double du0 = prior_utility(a) - prior_utility(alt);
-      for (int w = 0; w < n; ++w) {
-        const double coefficient = p0(w) * ((1.0 - theta) * du0 + theta * (u(w, a) - u(w, alt)));
-        if (coefficient != 0.0) add(row, col(w, a), coefficient);
+    for (int w = 0; w < n; ++w) {
+      glp_set_col_bnds(lp, Column(*work, w, a), GLP_LO, 0.0, 0.0);
+      glp_set_obj_coef(lp, Column(*work, w, a), work->objective[a * n + w]);
+    }
+  }
+  // sum_a x(w, a) = 1.
+  glp_add_rows(lp, n);
+  for (int w = 0; w < n; ++w) {
+    for (int a = 0; a < m; ++a) {
+      work->index[a + 1] = Column(*work, w, a);
+      work->value[a + 1] = 1.0;
+    }
+    glp_set_row_bnds(lp, 1 + w, GLP_FX, 1.0, 1.0);
+    glp_set_mat_row(lp, 1 + w, m, work->index, work->value);
+  }
+  if (!work->lazy) {
+    for (int a = 0; a < m; ++a) {
+      for (int alt = 0; alt < m; ++alt) {
+        if (alt != a) AddObedienceRow(lp, work, a, alt);
       }
     }
   }
-  glp_load_matrix(lp.get(), static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
 
   glp_smcp parm;
   glp_init_smcp(&parm);
   parm.msg_lev = GLP_MSG_OFF;
-  parm.presolve = GLP_ON;
-  const int code = glp_simplex(lp.get(), &parm);
+  parm.presolve = work->lazy ? GLP_OFF : GLP_ON;  // the lazy loop re-uses the basis
+  // No glp_scale_prob: the tables are scaled to |u|, |v| <= 1 and every
+  // obedience row to a largest |coefficient| of 1 already, and GLPK's own
+  // scaling made its dual simplex stall on these degenerate rows (100 x 400:
+  // no answer in 10 minutes with it, 6 s without).
+  if (work->lazy) glp_adv_basis(lp, 0);
+  work->code = glp_simplex(lp, &parm);
+  work->status = glp_get_status(lp);
+  work->rounds = 1;
+  // Re-solves start from the last optimal basis: the new rows' auxiliary
+  // variables are basic, so that basis stays dual feasible and the dual simplex
+  // only restores primal feasibility.
+  parm.meth = GLP_DUALP;
+  while (work->lazy && work->code == 0 && work->status == GLP_OPT && AddViolatedRows(lp, work) > 0) {
+    work->code = glp_simplex(lp, &parm);
+    work->status = glp_get_status(lp);
+    ++work->rounds;
+  }
+  if (work->code == 0 && work->status == GLP_OPT) {
+    for (int a = 0; a < m; ++a) {
+      for (int w = 0; w < n; ++w) work->x[a * n + w] = glp_get_col_prim(lp, Column(*work, w, a));
+    }
+  }
+  glp_delete_prob(lp);
+}
+
+}  // namespace
+
+LpResult SolveTrustAwarePersuasion(const Game& game, double theta, const LpOptions& options) {
+  game.Validate();
+  internal::CheckTrust(theta);
+  const int n = static_cast<int>(game.prior.size());
+  const int m = static_cast<int>(game.actions.size());
+  const double variables = static_cast<double>(n) * m;
+  const double entries = variables * (m - 1);
+  if (variables > kMaxLpVariables || entries > kMaxLpObedienceEntries) {
+    throw InvalidArgument(
+        "the game has " + std::to_string(n) + " states and " + std::to_string(m) +
+        " actions: " + std::to_string(static_cast<long long>(variables)) +
+        " scheme entries pi(a|w) and " + std::to_string(static_cast<long long>(entries)) +
+        " obedience coefficients, above the LP's limits of " +
+        std::to_string(static_cast<long long>(kMaxLpVariables)) + " and " +
+        std::to_string(static_cast<long long>(kMaxLpObedienceEntries)) +
+        " (200 x 200 takes ~15 s, see lp.h)");
+  }
+  const Eigen::VectorXd& p0 = game.prior;
+  const double u_scale = PowerOfTwoScale(game.receiver_utility);
+  const double v_scale = PowerOfTwoScale(game.sender_utility);
+  const Eigen::MatrixXd u = game.receiver_utility / u_scale;  // |u| < 2
+  const Eigen::MatrixXd v = game.sender_utility / v_scale;    // |v| < 2
+
+  // Obedience coefficients, differences first:
+  //   c(a, a')(w) = p0(w) [(1 - theta) dU0(a, a') + theta D(w; a, a')],
+  //   dU0(a, a') = sum_w p0(w) D(w; a, a'),
+  // each row divided by its largest |c| (c >= 0 does not change; GLPK's
+  // tolerances then mean the same thing on every row).
+  std::vector<double> obedience(static_cast<std::size_t>(m) * m * n, 0.0);
+  std::vector<double> d(n);
+  for (int a = 0; a < m; ++a) {
+    for (int alt = 0; alt < m; ++alt) {
+      if (alt == a) continue;
+      double du0 = 0.0;
+      for (int w = 0; w < n; ++w) {
+        d[w] = u(w, a) - u(w, alt);
+        du0 += p0(w) * d[w];
+      }
+      double* c = obedience.data() + (static_cast<std::size_t>(a) * m + alt) * n;
+      double top = 0.0;
+      for (int w = 0; w < n; ++w) {
+        c[w] = p0(w) * ((1.0 - theta) * du0 + theta * d[w]);
+        top = std::max(top, std::abs(c[w]));
+      }
+      if (top > 0.0) {
+        for (int w = 0; w < n; ++w) c[w] /= top;
+      }
+      // Finite by construction (|u| < 2, p0 <= 1); GLPK would take inf or NaN
+      // without complaint and answer nonsense, so never hand it one.
+      if (!std::isfinite(top)) {
+        LpResult result;
+        result.status = LpResult::Status::kSolverError;
+        result.message = "obedience row (" + game.actions[a] + ", " + game.actions[alt] +
+                         ") has a non-finite coefficient";
+        return result;
+      }
+    }
+  }
+  std::vector<double> objective(static_cast<std::size_t>(n) * m);
+  for (int a = 0; a < m; ++a) {
+    for (int w = 0; w < n; ++w) objective[a * n + w] = p0(w) * v(w, a);
+  }
+  std::vector<int> index(std::max(n, m) + 1);
+  std::vector<double> value(std::max(n, m) + 1);
+  std::vector<unsigned char> in_lp(static_cast<std::size_t>(m) * m, 0);
+  std::vector<double> x(static_cast<std::size_t>(n) * m, 0.0);
+
+  LpWork work;
+  work.n = n;
+  work.m = m;
+  work.prior = p0.data();
+  work.objective = objective.data();
+  work.obedience = obedience.data();
+  work.lazy = options.lazy_obedience;
+  work.index = index.data();
+  work.value = value.data();
+  work.in_lp = in_lp.data();
+  work.x = x.data();
 
   LpResult result;
-  if (code == GLP_ENOPFS) {
-    result.status = LpResult::Status::kInfeasible;
-    result.message = "GLPK presolver: the LP has no primal feasible solution";
-    return result;
-  }
-  if (code != 0) {
+  std::string glpk_error;
+  if (!RunGlpkGuarded(SolveWithGlpk, &work, &glpk_error)) {
     result.status = LpResult::Status::kSolverError;
-    result.message = "glp_simplex failed with code " + std::to_string(code);
+    result.message = "GLPK failed: " + glpk_error;
     return result;
   }
-  const int status = glp_get_status(lp.get());
-  if (status == GLP_NOFEAS) {
+  result.simplex_rounds = work.rounds;
+  result.obedience_rows = work.rows;
+  if (work.code == GLP_ENOPFS || work.status == GLP_NOFEAS) {
     result.status = LpResult::Status::kInfeasible;
     result.message = "GLPK: the LP has no primal feasible solution";
     return result;
   }
-  if (status != GLP_OPT) {
+  if (work.code != 0) {
     result.status = LpResult::Status::kSolverError;
-    result.message = "GLPK solution status " + std::to_string(status) + " is not optimal";
+    result.message = "glp_simplex failed with code " + std::to_string(work.code);
+    return result;
+  }
+  if (work.status != GLP_OPT) {
+    result.status = LpResult::Status::kSolverError;
+    result.message = "GLPK solution status " + std::to_string(work.status) + " is not optimal";
     return result;
   }
 
   result.status = LpResult::Status::kOptimal;
-  result.sender_value = glp_get_obj_val(lp.get());
   result.scheme.resize(n, m);
   for (int w = 0; w < n; ++w) {
     for (int a = 0; a < m; ++a) {
       // Clip the solver's round-off below zero.
-      result.scheme(w, a) = std::max(0.0, glp_get_col_prim(lp.get(), col(w, a)));
+      result.scheme(w, a) = std::max(0.0, x[a * n + w]);
     }
   }
+  // Obedience at each recommendation's own posterior, under the tolerance
+  // policy with kObedienceTolerance (persuasion.h): a recommendation a that the
+  // receiver does not weakly prefer is merged into her best response b there.
+  // The trust posterior is affine in the Bayes posterior, so the merged
+  // posterior mixes a's and b's and b, optimal at both, stays optimal. Each
+  // merge empties a column, so this ends within m passes.
+  const double u_range = UtilityScale(u);
+  for (int pass = 0; pass < m; ++pass) {
+    bool merged = false;
+    for (int a = 0; a < m; ++a) {
+      const double pa = result.scheme.col(a).dot(p0);
+      if (!(pa > 0.0)) continue;
+      const Eigen::VectorXd posterior =
+          TrustPosterior(p0, result.scheme.col(a).cwiseProduct(p0) / pa, theta);
+      const Eigen::VectorXd utilities = ExpectedUtilities(u, posterior);
+      Eigen::Index best = 0;
+      const double top = utilities.maxCoeff(&best);
+      if (WeaklyPrefers(utilities(a) - top, u_range, kObedienceTolerance)) continue;
+      result.scheme.col(best) += result.scheme.col(a);
+      result.scheme.col(a).setZero();
+      ++result.merged_recommendations;
+      merged = true;
+    }
+    if (!merged) break;
+  }
+  // The value of the scheme found, from its definition (in v's own units).
+  double value_scaled = 0.0;
+  for (int w = 0; w < n; ++w) {
+    for (int a = 0; a < m; ++a) value_scaled += p0(w) * result.scheme(w, a) * v(w, a);
+  }
+  result.sender_value = value_scaled * v_scale;
   result.signal_probability = result.scheme.transpose() * p0;
   result.posteriors.resize(n, m);
   for (int a = 0; a < m; ++a) {

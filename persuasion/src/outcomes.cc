@@ -50,10 +50,10 @@ CommittedScheme CommitScheme(Policy policy, const AvHvParams& params, double the
   params.Validate();
   switch (policy) {
     case Policy::kNoEbp: {
-      // Never nudges; the AV predicts the HV's reaction to "no nudge" (s = 0)
-      // with its assumed trust and goes only if that reaction is DC.
+      // Never nudges, so a still AV tells the HV nothing: the AV predicts the HV's
+      // reaction from the prior (any trust gives the same) and goes iff it is DC.
       CommittedScheme scheme;
-      scheme.av_may_go = HvDrivesIfClear(params, HvPosteriorGo(params, theta_hat, model, 0.0));
+      scheme.av_may_go = HvDrivesIfClear(params, HvPosteriorGo(scheme, params, theta_hat, model, 0.0));
       return scheme;
     }
     case Policy::kNoTrust:
@@ -74,9 +74,19 @@ CommittedScheme CommitScheme(Policy policy, const AvHvParams& params, double the
   throw InvalidArgument("policy = " + std::to_string(static_cast<int>(policy)) + " is unknown");
 }
 
+double HvPosteriorGo(const CommittedScheme& scheme, const AvHvParams& params, double theta,
+                     const LikelihoodModel& model, double s) {
+  if (scheme.Signals()) return HvPosteriorGo(params, theta, model, s);
+  params.Validate();
+  internal::CheckTrust(theta);
+  model.PiGo(s);  // validates s like the signalling case
+  return params.prior_go;
+}
+
 // The HV (true trust theta_true, intuitive model hv_model) sees either the nudge
-// s (probability a under Go, b under Stop) or no nudge (s = 0) and drives if
-// clear iff its eq:pp posterior reaches p* (HvDrivesIfClear). The AV goes iff its
+// s (probability a under Go, b under Stop) or no nudge (s = 0), forms its belief
+// by HvPosteriorGo(scheme, ...) (a still AV is s = 0 under a signalling scheme,
+// nothing without one) and drives if clear iff that reaches p* (HvDrivesIfClear). The AV goes iff its
 // intent is Go and the scheme lets it go; a collision is the AV going while the
 // HV drives recklessly.
 PredictedOutcome PredictOutcome(const CommittedScheme& scheme, const AvHvParams& params,
@@ -91,11 +101,12 @@ PredictedOutcome PredictOutcome(const CommittedScheme& scheme, const AvHvParams&
   check_probability(scheme.a, "scheme a (P(nudge | Go))");
   check_probability(scheme.b, "scheme b (P(nudge | Stop))");
   const double lambda = params.prior_go;
-  const double dc_nudge =
-      HvDrivesIfClear(params, HvPosteriorGo(params, theta_true, hv_model, scheme.nudge)) ? 1.0
-                                                                                         : 0.0;
-  const double dc_still =
-      HvDrivesIfClear(params, HvPosteriorGo(params, theta_true, hv_model, 0.0)) ? 1.0 : 0.0;
+  auto dc_after = [&](double s) {
+    return HvDrivesIfClear(params, HvPosteriorGo(scheme, params, theta_true, hv_model, s)) ? 1.0
+                                                                                          : 0.0;
+  };
+  const double dc_nudge = dc_after(scheme.nudge);
+  const double dc_still = dc_after(0.0);
 
   // P(DC | Go) and P(DC | Stop).
   const double dc_go = scheme.a * dc_nudge + (1.0 - scheme.a) * dc_still;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 
 namespace taebp::persuasion {
@@ -47,6 +48,17 @@ bool Game::IsValid(std::string* why) const {
   const auto m = static_cast<Eigen::Index>(actions.size());
   if (n < 2) return fail("a game needs at least 2 states (got " + std::to_string(n) + ")");
   if (m < 2) return fail("a game needs at least 2 actions (got " + std::to_string(m) + ")");
+  // Names identify rows and columns in every output: a repeated one is ambiguous.
+  for (const auto& [key, names] : {std::pair{"states", &states}, std::pair{"actions", &actions}}) {
+    std::map<std::string, std::size_t> first;
+    for (std::size_t i = 0; i < names->size(); ++i) {
+      const auto [it, inserted] = first.emplace((*names)[i], i);
+      if (!inserted) {
+        return fail(std::string(key) + ": the name '" + (*names)[i] + "' appears twice (entries " +
+                    std::to_string(it->second) + " and " + std::to_string(i) + ")");
+      }
+    }
+  }
   if (prior.size() != n) {
     return fail("prior has " + std::to_string(prior.size()) + " entries but there are " +
                 std::to_string(n) + " states");
@@ -77,7 +89,7 @@ bool Game::IsValid(std::string* why) const {
     if (p == 0.0) return fail(entry + " is not in the interior of the simplex (must be > 0)");
   }
   const double sum = prior.sum();
-  if (std::abs(sum - 1.0) > 1e-9) return fail("prior must sum to 1 (sum = " + Num(sum) + ")");
+  if (std::abs(sum - 1.0) > kProbabilityTolerance) return fail("prior must sum to 1 (sum = " + Num(sum) + ")");
   return true;
 }
 
@@ -119,6 +131,11 @@ Eigen::VectorXd TrustPosterior(const Eigen::VectorXd& prior,
   return (1.0 - theta) * prior + theta * full_trust_posterior;
 }
 
+double UtilityScale(const Eigen::MatrixXd& utility) {
+  if (utility.size() == 0) return 0.0;
+  return utility.maxCoeff() - utility.minCoeff();
+}
+
 // U(a|p) = sum_w p(w) u(w, a) for every a.
 Eigen::VectorXd ExpectedUtilities(const Eigen::MatrixXd& utility, const Eigen::VectorXd& belief) {
   if (utility.rows() != belief.size()) {
@@ -129,7 +146,7 @@ Eigen::VectorXd ExpectedUtilities(const Eigen::MatrixXd& utility, const Eigen::V
 }
 
 // ---------------------------------------------------------------------------
-// eq:receiver_action with sender-favourable tie breaking.
+// eq:receiver_action with sender-favourable tie breaking (the tolerance policy).
 // ---------------------------------------------------------------------------
 int BestResponse(const Game& game, const Eigen::VectorXd& belief, double tolerance) {
   game.Validate();
@@ -139,13 +156,17 @@ int BestResponse(const Game& game, const Eigen::VectorXd& belief, double toleran
   if (!belief.allFinite()) throw InvalidArgument("belief has a non-finite entry");
   const Eigen::VectorXd receiver = ExpectedUtilities(game.receiver_utility, belief);
   const Eigen::VectorXd sender = ExpectedUtilities(game.sender_utility, belief);
+  const double receiver_scale = UtilityScale(game.receiver_utility);
+  const double sender_scale = UtilityScale(game.sender_utility);
   const double best = receiver.maxCoeff();
   int chosen = -1;
   for (Eigen::Index a = 0; a < receiver.size(); ++a) {
-    if (receiver(a) < best - tolerance) continue;  // not (nearly) optimal for the receiver
-    // Among near-optimal actions the sender's favourite wins; sender values within
-    // `tolerance` of each other count as tied and keep the lowest index.
-    if (chosen < 0 || sender(a) > sender(chosen) + tolerance) chosen = static_cast<int>(a);
+    if (!WeaklyPrefers(receiver(a) - best, receiver_scale, tolerance)) continue;  // not optimal
+    // Among the receiver's optimal actions the sender's favourite wins; sender
+    // values that tie under the same policy keep the lowest index.
+    if (chosen < 0 || !WeaklyPrefers(sender(chosen) - sender(a), sender_scale, tolerance)) {
+      chosen = static_cast<int>(a);
+    }
   }
   return chosen;
 }
@@ -156,28 +177,33 @@ int DefaultAction(const Game& game) { return BestResponse(game, game.prior); }
 // Theorem 1 (eq:theta_star).
 //   theta*(a') = -dU0(a') / (max_s dU_FT(a'; s) - dU0(a')),  theta* = min_a' theta*(a').
 // The per-action bound comes from theta dU_FT >= -(1 - theta) dU0 (proof of
-// Theorem 1). An action a' with dU0 >= -tol is already (weakly) optimal at the
-// prior: theta*(a') = 0. An action with max_s dU_FT <= 0 can never be induced
-// (not even at theta = 1) and is skipped.
+// Theorem 1). Under the tolerance policy (persuasion.h): an action a' weakly
+// preferred at the prior needs no trust, theta*(a') = 0; an action whose best
+// full-trust gain is a clear loss can never be induced (not even at theta = 1)
+// and is skipped; a best full-trust gain that ties (max dU_FT = 0, up to
+// round-off) is induced at theta = 1 exactly, where the receiver breaks the tie
+// toward the sender like BestResponse and the LP do: theta*(a') = 1.
 // ---------------------------------------------------------------------------
 namespace {
 
 TrustThreshold ThresholdFromBestGains(const Eigen::VectorXd& prior_gain,
                                       const Eigen::VectorXd& best_full_trust_gain,
-                                      int default_action) {
+                                      int default_action, double scale) {
   TrustThreshold result;
   result.default_action = default_action;
   double best = std::numeric_limits<double>::infinity();
   for (Eigen::Index a = 0; a < prior_gain.size(); ++a) {
     if (a == default_action) continue;
     const double du0 = prior_gain(a);
+    const double ft = best_full_trust_gain(a);
     double theta_a;
-    if (du0 >= -kTieTolerance) {
+    if (WeaklyPrefers(du0, scale)) {
       theta_a = 0.0;
-    } else if (best_full_trust_gain(a) <= 0.0) {
+    } else if (!WeaklyPrefers(ft, scale)) {
       continue;  // no signal in the set makes a' attractive, whatever theta
     } else {
-      theta_a = -du0 / (best_full_trust_gain(a) - du0);  // in (0, 1): du0 < 0 < max dU_FT
+      // du0 < -tol * scale <= ft, so ft - du0 > 0; a tie (ft <= 0) gives >= 1.
+      theta_a = std::min(1.0, -du0 / (ft - du0));
     }
     if (theta_a < best) {
       best = theta_a;
@@ -234,7 +260,7 @@ TrustThreshold MinPersuadableTrust(const Game& game, const Eigen::MatrixXd& sign
   if (!any_signal) {
     throw InvalidArgument("every signal in the set has zero probability under the prior");
   }
-  return ThresholdFromBestGains(prior_gain, best_ft, a0);
+  return ThresholdFromBestGains(prior_gain, best_ft, a0, UtilityScale(game.receiver_utility));
 }
 
 TrustThreshold MinPersuadableTrust(const Game& game) {
@@ -246,7 +272,7 @@ TrustThreshold MinPersuadableTrust(const Game& game) {
   const Eigen::MatrixXd du =
       game.receiver_utility.colwise() - game.receiver_utility.col(a0);
   const Eigen::VectorXd best_ft = du.colwise().maxCoeff().transpose();
-  return ThresholdFromBestGains(prior_gain, best_ft, a0);
+  return ThresholdFromBestGains(prior_gain, best_ft, a0, UtilityScale(game.receiver_utility));
 }
 
 // Corollary (eq:theta_two_states):

@@ -178,11 +178,14 @@ std::array<double, kEncounterOutcomeCount> OutcomeProbabilities(const CommittedS
   };
   check_probability(scheme.a, "scheme a (P(nudge | Go))");
   check_probability(scheme.b, "scheme b (P(nudge | Stop))");
-  // As PredictOutcome: the HV reads the nudge exactly; a nudge of 0 is standing still.
+  // As PredictOutcome: the HV reads the nudge exactly; a nudge of 0 is standing
+  // still, which tells it nothing when the scheme never signals (it keeps its
+  // prior: HvPosteriorGo(scheme, ...)).
   const bool signals = scheme.nudge > 0.0;
   const bool dc_nudge =
-      HvDrivesIfClear(params, HvPosteriorGo(params, theta_true, model, scheme.nudge));
-  const bool dc_still = HvDrivesIfClear(params, HvPosteriorGo(params, theta_true, model, 0.0));
+      HvDrivesIfClear(params, HvPosteriorGo(scheme, params, theta_true, model, scheme.nudge));
+  const bool dc_still =
+      HvDrivesIfClear(params, HvPosteriorGo(scheme, params, theta_true, model, 0.0));
   std::array<double, kEncounterOutcomeCount> p{};
   const double lambda = params.prior_go;
   for (const bool go : {true, false}) {
@@ -374,8 +377,8 @@ class DriftEvaluator {
   Shape ShapeAt(double theta) const {
     const CommittedScheme s = SchemeFor(rule_, params_, theta, model_);
     return {s.av_may_go, s.nudge > 0.0,
-            HvDrivesIfClear(params_, HvPosteriorGo(params_, theta, model_, s.nudge)),
-            HvDrivesIfClear(params_, HvPosteriorGo(params_, theta, model_, 0.0))};
+            HvDrivesIfClear(params_, HvPosteriorGo(s, params_, theta, model_, s.nudge)),
+            HvDrivesIfClear(params_, HvPosteriorGo(s, params_, theta, model_, 0.0))};
   }
   double G(double theta) const {
     const double q = ExpectedQuality(rule_, params_, theta, model_, update_.quality);

@@ -331,6 +331,76 @@ TEST(CliSolve, BadProblemFilesExitNonZeroNamingTheKey) {
   }
 }
 
+// Numerics and limits of `solve` (each once aborted, misled or hung).
+TEST(CliSolve, ExtremeAndLargeUtilitiesGiveTheRightAnswer) {
+  TempDir dir;
+  {
+    // [1e308, -1e308] used to end in GLPK's abort() (SIGABRT, exit 134).
+    const std::string path = dir.Write(
+        "huge.yaml",
+        "states: [a, b]\nactions: [x, y]\nprior: [0.5, 0.5]\n"
+        "receiver_utility: [[1e308, -1e308], [0, 1]]\nsender_utility: [[1, 0], [1, 0]]\ntrust: 1\n");
+    const CliResult r = RunCli({"solve", path, "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.Describe();
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j["status"], "optimal");
+    EXPECT_NEAR(j["sender_value"].get<double>(), 1.0, 1e-9);
+  }
+  {
+    // Both entries of state a at 1e17: the answer is -1 (x never obedient), not
+    // the -0.5 of a disobedient scheme.
+    const std::string path = dir.Write(
+        "large.yaml",
+        "states: [a, b]\nactions: [x, y]\nprior: [0.5, 0.5]\n"
+        "receiver_utility: [[1e17, 1e17], [0, 1]]\nsender_utility: [[0, -1], [0, -1]]\ntrust: 0.5\n");
+    const CliResult r = RunCli({"solve", path, "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.Describe();
+    const json j = json::parse(r.out);
+    EXPECT_NEAR(j["sender_value"].get<double>(), -1.0, 1e-9);
+    EXPECT_NEAR(j["scheme"][0][0].get<double>(), 0.0, 1e-9);
+  }
+}
+
+TEST(CliSolve, DuplicateNamesAndOversizedGamesAreRefused) {
+  TempDir dir;
+  const std::string tail =
+      "prior: [0.5, 0.5]\nreceiver_utility: [[1, 0], [0, 1]]\n"
+      "sender_utility: [[1, 0], [1, 0]]\ntrust: 1\n";
+  {
+    const std::string path = dir.Write("states.yaml", "states: [go, go]\nactions: [x, y]\n" + tail);
+    const CliResult r = RunCli({"solve", path});
+    EXPECT_EQ(r.exit_code, kExitConfig) << r.Describe();
+    EXPECT_THAT(r.err, HasSubstr(path));
+    EXPECT_THAT(r.err, HasSubstr("states: the name 'go' appears twice"));
+    EXPECT_EQ(r.out, "");
+  }
+  {
+    const std::string path = dir.Write("actions.yaml", "states: [a, b]\nactions: [x, x]\n" + tail);
+    const CliResult r = RunCli({"solve", path, "--json"});
+    EXPECT_EQ(r.exit_code, kExitConfig) << r.Describe();
+    EXPECT_THAT(r.err, HasSubstr(path));
+    EXPECT_THAT(r.err, HasSubstr("actions: the name 'x' appears twice"));
+    EXPECT_EQ(r.out, "");
+  }
+  {
+    // 2 states x 4001 actions: 32 million obedience coefficients, refused at once.
+    std::string actions, zeros;
+    for (int a = 0; a < 4001; ++a) {
+      actions += (a ? ", a" : "a") + std::to_string(a);
+      zeros += a ? ", 0" : "0";
+    }
+    const std::string path = dir.Write(
+        "big.yaml", "states: [a, b]\nactions: [" + actions + "]\nprior: [0.5, 0.5]\n" +
+                        "receiver_utility: [[" + zeros + "], [" + zeros + "]]\n" +
+                        "sender_utility: [[" + zeros + "], [" + zeros + "]]\ntrust: 1\n");
+    const CliResult r = RunCli({"solve", path});
+    EXPECT_EQ(r.exit_code, kExitConfig) << r.Describe();
+    EXPECT_THAT(r.err, HasSubstr(path));
+    EXPECT_THAT(r.err, HasSubstr("2 states and 4001 actions"));
+    EXPECT_THAT(r.err, HasSubstr("above the LP's limits"));
+  }
+}
+
 // ------------------------------------------------------------------ run
 
 std::vector<std::string> CsvRows(const std::string& csv, std::string* header) {

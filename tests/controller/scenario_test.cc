@@ -167,9 +167,10 @@ TEST_P(ScenarioPoint, EveryEncounterFollowsTheLibraryAndRatesAgreeWithTheory) {
         EXPECT_LE(std::abs(e.observed), kNudgeTolerance);
       }
       // The HV's belief and action follow eq:pp at the observed displacement
-      // (read as s_max when SUMO's overshoot passes it).
+      // (read as s_max when SUMO's overshoot passes it), or the prior when the
+      // scheme never signals (no_ebp, TA-EBP's fallback).
       const double posterior =
-          per::HvPosteriorGo(params, theta, *model, std::min(e.observed, s_max));
+          per::HvPosteriorGo(scheme, params, theta, *model, std::min(e.observed, s_max));
       EXPECT_NEAR(e.posterior, posterior, 1e-12);
       EXPECT_EQ(e.hv_dc, per::HvDrivesIfClear(params, e.posterior));
       // The AV goes iff its intent is Go and the committed scheme lets it.
@@ -187,8 +188,9 @@ TEST_P(ScenarioPoint, EveryEncounterFollowsTheLibraryAndRatesAgreeWithTheory) {
     ExpectAgrees(dc, n, theory.dc_rate, "DC rate");
     ExpectAgrees(collisions, n, theory.collision_rate, "collision rate");
     if (policy == per::Policy::kNoEbp) {
+      // No information: every HV decides from the prior (DC iff lambda >= p*).
       EXPECT_EQ(nudges, 0);
-      EXPECT_EQ(dc, 0);
+      EXPECT_EQ(dc, per::HvDrivesIfClear(params, params.prior_go) ? n : 0);
     }
   }
 }
@@ -206,6 +208,9 @@ INSTANTIATE_TEST_SUITE_P(
         Point{"AssumedTrust09Theta06", {"model.trust=0.6", "model.assumed_trust=0.9"}},
         // Below theta* = 0.25: TA-EBP falls back to always yielding.
         Point{"NotPersuadableTheta01", {"model.trust=0.1"}},
+        // lambda = 0.5 > p* = 0.4: No EBP's HVs drive if clear from the prior
+        // (a still AV is no signal), the schemes' still AV reads as Stop.
+        Point{"LambdaAbovePStar", {"model.prior_go=0.5"}},
         Point{"LogisticLikelihood",
               {"model.likelihood={type: logistic, s_max: 2.0, steepness: 4, midpoint: 1}"}}),
     [](const ::testing::TestParamInfo<Point>& info) { return info.param.name; });

@@ -196,8 +196,10 @@ TEST(HeterogeneousRun, DrawsPerHvTrustAndAgreesWithTheoryGivenHvs) {
   long dc = 0, col = 0;
   double theory_dc = 0;
   for (const EncounterRecord& e : run.encounters) {
-    EXPECT_NEAR(e.posterior, per::HvPosteriorGo(params, e.hv_trust, lik, std::min(e.observed, 2.0)),
-                1e-12);
+    // Exact knowledge: the AV's scheme for this HV is TA-EBP designed at its trust.
+    const per::CommittedScheme scheme = per::CommitScheme(per::Policy::kTaEbp, params, e.hv_trust, lik);
+    EXPECT_NEAR(e.posterior,
+                per::HvPosteriorGo(scheme, params, e.hv_trust, lik, std::min(e.observed, 2.0)), 1e-12);
     dc += e.hv_dc;
     col += e.collision;
     theory_dc += e.theory_dc;

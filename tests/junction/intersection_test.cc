@@ -126,12 +126,13 @@ TEST(DrawAv, AlwaysConsumesTwoUniformsSoSchemesShareStreams) {
 TEST(ReadNudge, IsThePosteriorOfTheLibraryClampedToTheModelRange) {
   const per::LinearLikelihood linear(2.0);
   const per::LogisticLikelihood logistic(2.0, 4.0, 1.0);
+  const per::CommittedScheme reveal{true, 2.0, 1.0, 0.0};  // a signalling scheme
   for (const per::LikelihoodModel* model :
        std::vector<const per::LikelihoodModel*>{&linear, &logistic}) {
     for (const per::AvHvParams params : {per::AvHvParams{0.2, 3.0}, per::AvHvParams{0.3, 2.0}}) {
       for (double theta : {0.0, 0.25, 0.6, 1.0}) {
         for (double s : {0.0, 0.5, 1.4545454545454546, 1.641025641025641, 1.9999, 2.0}) {
-          const HvReading r = ReadNudge(params, theta, *model, s);
+          const HvReading r = ReadNudge(reveal, params, theta, *model, s);
           EXPECT_EQ(r.observed, s);
           EXPECT_EQ(r.posterior, per::HvPosteriorGo(params, theta, *model, s));
           EXPECT_EQ(r.drives_if_clear, per::HvDrivesIfClear(params, r.posterior));
@@ -139,11 +140,11 @@ TEST(ReadNudge, IsThePosteriorOfTheLibraryClampedToTheModelRange) {
         // Past s_max (SUMO overshoot, the full-reveal nudge + kNudgeOvershoot)
         // reads as s_max; a round-off negative displacement reads as 0.
         for (double past : {2.0 + 1e-6, 2.001, 3.5}) {
-          const HvReading r = ReadNudge(params, theta, *model, past);
+          const HvReading r = ReadNudge(reveal, params, theta, *model, past);
           EXPECT_EQ(r.observed, past);
           EXPECT_EQ(r.posterior, per::HvPosteriorGo(params, theta, *model, 2.0));
         }
-        const HvReading neg = ReadNudge(params, theta, *model, -1e-12);
+        const HvReading neg = ReadNudge(reveal, params, theta, *model, -1e-12);
         EXPECT_EQ(neg.posterior, per::HvPosteriorGo(params, theta, *model, 0.0));
       }
     }
@@ -151,10 +152,30 @@ TEST(ReadNudge, IsThePosteriorOfTheLibraryClampedToTheModelRange) {
   // The paper's numbers: theta = 0.6 is persuaded by s* = 64/39 but not by
   // No Trust's 16/11 (posterior 0.32 < p* = 0.4).
   const per::AvHvParams paper{0.2, 3.0};
-  EXPECT_TRUE(ReadNudge(paper, 0.6, linear, 64.0 / 39.0).drives_if_clear);
-  const HvReading nt = ReadNudge(paper, 0.6, linear, 16.0 / 11.0);
+  const per::CommittedScheme taebp = per::CommitScheme(per::Policy::kTaEbp, paper, 0.6, linear);
+  EXPECT_TRUE(ReadNudge(taebp, paper, 0.6, linear, 64.0 / 39.0).drives_if_clear);
+  const HvReading nt = ReadNudge(taebp, paper, 0.6, linear, 16.0 / 11.0);
   EXPECT_NEAR(nt.posterior, 0.32, 1e-12);
   EXPECT_FALSE(nt.drives_if_clear);
+}
+
+// Without a signalling scheme (no_ebp) the AV's standing still tells the HV
+// nothing: it keeps its prior and, for lambda = 0.5 > p* = 0.4, drives if clear
+// whatever its trust (read as the signal s = 0 it would believe 0.5 (1 - theta)).
+TEST(ReadNudge, WithoutASchemeTheHvKeepsItsPrior) {
+  const per::LinearLikelihood linear(2.0);
+  const per::AvHvParams eager{0.5, 3.0};
+  const per::CommittedScheme none = per::CommitScheme(per::Policy::kNoEbp, eager, 0.6, linear);
+  ASSERT_FALSE(none.Signals());
+  for (double theta : {0.0, 0.6, 1.0}) {
+    for (double observed : {0.0, 1e-4, -1e-12}) {
+      const HvReading r = ReadNudge(none, eager, theta, linear, observed);
+      EXPECT_EQ(r.posterior, 0.5);
+      EXPECT_TRUE(r.drives_if_clear);
+    }
+  }
+  const per::CommittedScheme reveal = per::CommitScheme(per::Policy::kFullReveal, eager, 0.6, linear);
+  EXPECT_FALSE(ReadNudge(reveal, eager, 0.6, linear, 0.0).drives_if_clear);  // 0.2 < 0.4
 }
 
 // ------------------------------------------------------------------ encounter

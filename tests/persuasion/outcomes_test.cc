@@ -113,23 +113,90 @@ TEST(PredictOutcome, FallbackBelowThresholdAlwaysYields) {
   EXPECT_EQ(o.nudge_rate, 0.0);
 }
 
-TEST(PredictOutcome, NoEbpGoesOnlyWhenTheStillAvPersuades) {
+// No EBP is "no information" (the paper, Section V-B: the AV "never sends a
+// signal", the HV decides "from the prior"): whatever the HV's trust, it drives
+// if clear iff lambda >= p*, and the AV, predicting the same, goes on Go intent
+// exactly then. At lambda = 0.5 > p* = 0.4 that is a DC rate of 1 (a still AV
+// used to be read as the signal s = 0, giving 0 for any theta > 0.2).
+TEST(PredictOutcome, NoEbpDecidesFromThePriorOnBothSidesOfPStar) {
   const LinearLikelihood linear(2.0);
-  const AvHvParams eager{0.5, 3.0};  // lambda = 0.5 > p* = 0.4
-  // theta = 0: the HV keeps its prior 0.5 >= 0.4 -> DC; the AV may go.
-  EXPECT_TRUE(CommitScheme(Policy::kNoEbp, eager, 0.0, linear).av_may_go);
-  const PredictedOutcome calm = PredictOutcome(Policy::kNoEbp, eager, 0.0, linear);
-  EXPECT_EQ(calm.dc_rate, 1.0);
-  EXPECT_EQ(calm.collision_rate, 0.0);
-  EXPECT_EQ(calm.av_first_rate, 0.5);
-  // theta = 0.5: a still AV reads as Stop (p = 0.25 < 0.4); the AV predicts DR and yields.
-  EXPECT_FALSE(CommitScheme(Policy::kNoEbp, eager, 0.5, linear).av_may_go);
-  EXPECT_EQ(PredictOutcome(Policy::kNoEbp, eager, 0.5, linear).collision_rate, 0.0);
-  // If the AV wrongly assumes theta = 0 while the HV has 0.5: it goes on Go intent
-  // and meets a reckless HV.
-  const PredictedOutcome wrong = PredictOutcome(Policy::kNoEbp, eager, 0.5, linear, 0.0);
-  EXPECT_EQ(wrong.collision_rate, 0.5);
-  EXPECT_EQ(wrong.dc_rate, 0.0);
+  const PredictedOutcome eager = PredictOutcome(Policy::kNoEbp, AvHvParams{0.5, 3.0}, 0.6, linear);
+  EXPECT_EQ(eager.dc_rate, 1.0);
+  EXPECT_EQ(eager.collision_rate, 0.0);
+  EXPECT_EQ(eager.av_first_rate, 0.5);
+  EXPECT_EQ(eager.nudge_rate, 0.0);
+  int above = 0, below = 0;
+  for (double lambda : {0.01, 0.1, 0.2, 0.3, 0.39, 0.4, 0.41, 0.5, 0.7, 0.9, 0.99}) {
+    for (double r : {0.5, 1.0, 3.0, 5.0, 20.0}) {
+      const AvHvParams params{lambda, r};
+      const bool prior_dc = lambda >= AvHvPStar(r) - 1e-12;
+      (prior_dc ? above : below) += 1;
+      for (double theta : {0.0, 0.3, 0.6, 1.0}) {
+        for (double theta_hat : {0.0, 0.5, 1.0}) {
+          const PredictedOutcome o = PredictOutcome(Policy::kNoEbp, params, theta, linear, theta_hat);
+          EXPECT_EQ(CommitScheme(Policy::kNoEbp, params, theta_hat, linear).av_may_go, prior_dc);
+          EXPECT_EQ(o.dc_rate, prior_dc ? 1.0 : 0.0) << lambda << " " << r << " " << theta;
+          EXPECT_EQ(o.av_first_rate, prior_dc ? lambda : 0.0) << lambda << " " << r << " " << theta;
+          // The AV's and the HV's readings are the same prior: no mismatch can collide.
+          EXPECT_EQ(o.collision_rate, 0.0) << lambda << " " << r << " " << theta;
+          EXPECT_EQ(o.nudge_rate, 0.0);
+        }
+      }
+    }
+  }
+  EXPECT_GT(above, 10);
+  EXPECT_GT(below, 10);
+}
+
+// Under a committed scheme a still AV is the signal s = 0, read through the HV's
+// likelihood (eq:pp): for full revelation above p*, a still AV means Stop, so a
+// trusting HV drives recklessly when the AV stays and the DC rate is lambda; an
+// HV with little trust keeps enough of its prior to drive if clear anyway.
+TEST(PredictOutcome, UnderASchemeAStillAvIsTheSignalZero) {
+  const LinearLikelihood linear(2.0);
+  const AvHvParams eager{0.5, 3.0};
+  // theta = 0.6: still -> 0.4 * 0.5 = 0.2 < 0.4 (DR); s_max -> 0.2 + 0.6 = 0.8 (DC).
+  const PredictedOutcome trusting = PredictOutcome(Policy::kFullReveal, eager, 0.6, linear);
+  EXPECT_EQ(trusting.dc_rate, 0.5);
+  EXPECT_EQ(trusting.collision_rate, 0.0);
+  // theta = 0.1: still -> 0.9 * 0.5 = 0.45 >= 0.4 (DC).
+  EXPECT_EQ(PredictOutcome(Policy::kFullReveal, eager, 0.1, linear).dc_rate, 1.0);
+  // TA-EBP above p* nudges always (b = 1) and the nudge lands on p*; at theta = 0.1
+  // no nudge is needed (s* = 0) and the still AV, read as s = 0, persuades.
+  for (double theta : {0.1, 0.5, 1.0}) {
+    const PredictedOutcome o = PredictOutcome(Policy::kTaEbp, eager, theta, linear);
+    EXPECT_EQ(o.dc_rate, 1.0) << theta;
+    EXPECT_EQ(o.collision_rate, 0.0) << theta;
+  }
+  EXPECT_EQ(CommitScheme(Policy::kTaEbp, eager, 0.1, linear).nudge, 0.0);
+}
+
+// The belief function the runner's HV uses: eq:pp under a signalling scheme,
+// the prior without one, for every s in range (and the same range check).
+TEST(HvPosteriorGoUnderScheme, SignallingReadsTheLikelihoodOtherwiseThePrior) {
+  const LinearLikelihood linear(2.0);
+  const LogisticLikelihood logistic(2.0, 4.0, 1.0);
+  for (const LikelihoodModel* model : {static_cast<const LikelihoodModel*>(&linear),
+                                       static_cast<const LikelihoodModel*>(&logistic)}) {
+    for (const AvHvParams& params : {kPaper, AvHvParams{0.5, 3.0}}) {
+      for (Policy policy : {Policy::kNoEbp, Policy::kNoTrust, Policy::kTaEbp, Policy::kFullReveal}) {
+        for (double theta : {0.0, 0.1, 0.6, 1.0}) {
+          const CommittedScheme scheme = CommitScheme(policy, params, theta, *model);
+          const bool signals = policy != Policy::kNoEbp && !(policy == Policy::kTaEbp && !scheme.av_may_go);
+          EXPECT_EQ(scheme.Signals(), signals) << ToString(policy) << " " << theta;
+          for (double s : {0.0, 0.7, 2.0}) {
+            const double p = HvPosteriorGo(scheme, params, theta, *model, s);
+            EXPECT_EQ(p, signals ? HvPosteriorGo(params, theta, *model, s) : params.prior_go);
+          }
+          EXPECT_THAT(InvalidArgumentMessage([&] { HvPosteriorGo(scheme, params, theta, *model, 2.5); }),
+                      HasSubstr("signal s = 2.5 is outside [0, 2]"));
+        }
+      }
+    }
+  }
+  // TA-EBP's fallback (theta = 0.2 < theta* = 0.25) never nudges: no signal either.
+  EXPECT_FALSE(CommitScheme(Policy::kTaEbp, kPaper, 0.2, linear).Signals());
+  EXPECT_EQ(HvPosteriorGo(CommitScheme(Policy::kTaEbp, kPaper, 0.2, linear), kPaper, 0.2, linear, 0.0), 0.2);
 }
 
 // With theta_hat = theta_true, TA-EBP never collides and its DC rate is the

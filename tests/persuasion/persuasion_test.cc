@@ -57,6 +57,18 @@ TEST(GameValidation, AcceptsAValidGame) {
   EXPECT_NO_THROW(SmallGame().Validate());
 }
 
+TEST(GameValidation, RejectsDuplicateNames) {
+  Game g = SmallGame();
+  g.states = {"w1", "w1"};
+  std::string why;
+  EXPECT_FALSE(g.IsValid(&why));
+  EXPECT_THAT(why, HasSubstr("states: the name 'w1' appears twice (entries 0 and 1)"));
+  g = ThreeActionGame();
+  g.actions = {"a0", "a1", "a0"};
+  EXPECT_THAT(InvalidArgumentMessage([&] { g.Validate(); }),
+              HasSubstr("actions: the name 'a0' appears twice (entries 0 and 2)"));
+}
+
 TEST(GameValidation, RejectsNegativePriorEntry) {
   Game g = SmallGame();
   g.prior = Eigen::Vector2d(1.2, -0.2);

@@ -110,7 +110,12 @@ int Solve(const std::string& path, bool json) {
   if (!(pc.trust >= 0 && pc.trust <= 1))
     throw taebp::ConfigError(path + ": key 'trust' = " + std::to_string(pc.trust) +
                              " is outside [0, 1]");
-  const per::LpResult r = per::SolveTrustAwarePersuasion(g, pc.trust);
+  per::LpResult r;
+  try {
+    r = per::SolveTrustAwarePersuasion(g, pc.trust);
+  } catch (const per::InvalidArgument& e) {  // e.g. a game above the LP's size limits
+    throw taebp::ConfigError(path + ": " + e.what());
+  }
   if (json) {
     ordered_json j;
     j["status"] = per::ToString(r.status);

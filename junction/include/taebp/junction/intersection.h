@@ -36,8 +36,12 @@ struct HvReading {
   bool drives_if_clear = false;
 };
 // The HV reads the observed displacement with its intuitive likelihood model
-// (clamped to [0, s_max]: a nudge past s_max reads as s_max) and its own trust.
-HvReading ReadNudge(const persuasion::AvHvParams& params, double theta,
+// (clamped to [0, s_max]: a nudge past s_max reads as s_max) and its own trust,
+// under the AV's committed scheme: persuasion::HvPosteriorGo(scheme, ...), so a
+// still AV is the signal s = 0 under a signalling scheme and no information
+// (the prior) without one (no_ebp, TA-EBP's fallback), as the theory predicts.
+HvReading ReadNudge(const persuasion::CommittedScheme& scheme,
+                    const persuasion::AvHvParams& params, double theta,
                     const persuasion::LikelihoodModel& model, double observed);
 
 // ---------------------------------------------------------------- encounter

@@ -30,11 +30,16 @@ double AvHvPStar(double collision_penalty);
 // persuasion is needed and theta* = 0.
 double AvHvThetaStar(const AvHvParams& params);
 
-// eq:pp: p_theta(Go | s) under the HV's intuitive likelihood model.
+// eq:pp: p_theta(Go | s) under the HV's intuitive likelihood model, reading s
+// (0 included) as a signal. Whether a still AV is a signal at all depends on the
+// AV's scheme: see HvPosteriorGo(scheme, ...) in outcomes.h.
 double HvPosteriorGo(const AvHvParams& params, double theta,
                      const LikelihoodModel& model, double s);
 
-// True if the HV drives if clear at posterior p_go (p_go >= p* - kTieTolerance).
+// True if the HV drives if clear at posterior p_go: DC is a best response in
+// AvHvGame (p_go >= p*, ties toward the AV, under the tolerance policy of
+// persuasion.h). Every AV-HV decision (theta*, s*, b, the design, the outcomes,
+// the runner's HV) goes through this one function.
 bool HvDrivesIfClear(const AvHvParams& params, double p_go);
 
 // The likelihood ratio required by Theorem 2 (the argument of L^{-1} in

@@ -4,9 +4,25 @@
 // The AV designs with an assumed trust theta_hat; the HV's true trust is theta
 // and it reads the observed nudge with its intuitive likelihood model.
 // The AV's action: if the design is persuadable, Go intent -> go, Stop intent
-// -> wait; if not (fallback) or under no_ebp, the AV always yields (it predicts
-// from the prior that the HV drives recklessly). A collision happens when the
+// -> wait; if not (fallback), the AV always yields; under no_ebp it goes on Go
+// intent iff the HV drives if clear at the prior. A collision happens when the
 // AV goes and the HV drives recklessly.
+//
+// What a still AV means (the choice behind HvPosteriorGo(scheme, ...)):
+// - With a signalling scheme -- the AV nudges with positive probability in some
+//   state (a > 0 or b > 0: TA-EBP, No Trust, full revelation) -- the HV knows
+//   the AV may nudge, so every motion is a signal, standing still included: a
+//   still AV is the signal s = 0, read like any nudge through eq:pp and the HV's
+//   intuitive likelihood (linear model: p_FT(Go | 0) = 0, "it would have nudged
+//   if it meant to go"). This is the paper's signal space S = {s*, 0} (Step 2 of
+//   Section IV-C).
+// - Without one (no_ebp, and TA-EBP's fallback "always yield": a = b = 0) the
+//   AV never nudges, so its standing still carries no information -- under the
+//   scheme pi(0 | Go) = pi(0 | Stop) = 1 and Bayes' rule returns the prior. The
+//   HV decides "from the prior" (the paper's description of No EBP, Section
+//   V-B): p = lambda whatever its trust, DC iff lambda >= p*. The AV predicts
+//   the same, so No EBP never collides, and for lambda >= p* every HV drives if
+//   clear. (Below p*, the paper's setting, both readings give DR.)
 #pragma once
 
 #include "taebp/persuasion/av_hv.h"
@@ -27,12 +43,22 @@ struct CommittedScheme {
   double nudge = 0.0;      // s emitted when signalling
   double a = 0.0;          // P(nudge | Go)
   double b = 0.0;          // P(nudge | Stop)
+  // True when the AV nudges with positive probability in some state: then the
+  // AV's motion, standing still included, is a signal (see the top of the file).
+  bool Signals() const { return a > 0.0 || b > 0.0; }
 };
-// theta_hat: the AV's assumed trust (ignored for full_reveal; no_trust forces 1).
-// For no_ebp, av_may_go is true only if the HV would drive if clear after seeing
-// no nudge (s = 0), as predicted with trust theta_hat.
+// theta_hat: the AV's assumed trust (ignored for full_reveal and no_ebp;
+// no_trust forces 1). For no_ebp, av_may_go is true iff the HV drives if clear
+// at the prior (lambda >= p*), which is what a still AV leaves it with.
 CommittedScheme CommitScheme(Policy policy, const AvHvParams& params, double theta_hat,
                              const LikelihoodModel& model);
+
+// The HV's belief p(Go) after seeing the AV move s metres (0: stood still)
+// under `scheme`: eq:pp (HvPosteriorGo in av_hv.h) when the scheme signals, the
+// prior lambda when it does not. s must be in [0, s_max] either way. The
+// runner's HV (controller ReadNudge) reads SUMO's displacement through this.
+double HvPosteriorGo(const CommittedScheme& scheme, const AvHvParams& params, double theta,
+                     const LikelihoodModel& model, double s);
 
 struct PredictedOutcome {
   double dc_rate = 0.0;         // P(HV drives if clear) per encounter

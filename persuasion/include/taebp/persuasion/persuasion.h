@@ -21,11 +21,58 @@ class InvalidArgument : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// Tolerance used when comparing expected utilities / posteriors against an
-// indifference threshold. Ties break toward the sender: a posterior computed at
-// exactly p* that lands up to kTieTolerance below it through round-off still
-// counts as persuaded.
+// ---------------------------------------------------------------------------
+// The tolerance policy: the one rule behind every comparison in persuasion/.
+//
+// Every decision the library makes about the receiver is whether she (weakly)
+// prefers an action a' to an action a at a belief p, i.e. the sign of the
+// expected-utility gain
+//     dU(a', a | p) = sum_w p(w) (u(w, a') - u(w, a)).
+// That covers eq:receiver_action (BestResponse, DefaultAction), the HV's choice
+// at eq:ppp (HvDrivesIfClear: p_go against p*), Theorem 1 (eq:theta_star: an
+// action weakly optimal at the prior, an action a fully trusting receiver can
+// be brought to), Step 1 of Section IV-C (theta_hat against theta*), eq:s^*
+// (does a nudge suffice) and eq:b (is the HV persuadable at all). All of them
+// are made by WeaklyPrefers:
+//     a' is weakly preferred to a at p  <=>  dU(a', a | p) >= -kTieTolerance * scale,
+//     scale = UtilityScale(u) = max_{w,a} u(w, a) - min_{w,a} u(w, a),
+// the largest |dU| any belief can produce, so scaling or shifting the utility
+// table changes no decision. Weak preference is a tie, and ties go to the sender
+// (Section II: "break ties in favor of Sender"); the band of kTieTolerance only
+// absorbs round-off in a belief or gain computed to lie exactly on a threshold.
+//
+// Thresholds (p*, theta*, s*, b) are reported as their exact closed forms, but
+// no function decides by comparing theta with theta* or p_go with p*: the
+// decision at a threshold is always the receiver's gain evaluated there (for
+// Step 1, at the strongest nudge s_max). So two functions cannot disagree near
+// a threshold, and at theta* the HV is persuaded by s_max (the Remark after
+// Theorem 2).
+//
+// The LP (lp.h) states obedience as dU >= 0 exactly (ties toward the sender),
+// multiplied by P(a), and GLPK satisfies it to its own feasibility tolerance.
+// Divided by a tiny P(a) that round-off can become a visible gap in the
+// posterior, so the LP's answer is checked the same way as everything else,
+// with the looser kObedienceTolerance for solver round-off: a recommendation
+// the receiver does not weakly prefer at its own posterior is merged into her
+// best response there (which keeps every other recommendation obedient and
+// moves the value by at most that recommendation's tiny probability). A
+// recommendation whose probability is below kMinSignalProbability counts as
+// never sent (NaN posterior). Probability inputs (a prior, a posterior handed
+// to HvDrivesIfClear) may miss [0, 1] or a sum of 1 by kProbabilityTolerance.
 inline constexpr double kTieTolerance = 1e-9;
+inline constexpr double kObedienceTolerance = 1e-6;
+inline constexpr double kProbabilityTolerance = 1e-9;
+inline constexpr double kMinSignalProbability = 1e-12;
+
+// max u - min u over the table (0 for a constant table, where every action ties).
+double UtilityScale(const Eigen::MatrixXd& utility);
+
+// The policy itself: true when a gain dU(a', a | p) counts as "a' at least as
+// good as a" for a utility table of scale `scale` (UtilityScale). `tolerance`
+// is relative; only BestResponse's callers ever pass another one.
+inline bool WeaklyPrefers(double gain, double scale, double tolerance = kTieTolerance) {
+  return gain >= -tolerance * scale;
+}
 
 // A finite persuasion game.
 struct Game {
@@ -35,8 +82,9 @@ struct Game {
   Eigen::MatrixXd receiver_utility;  // n x m, u(w, a)
   Eigen::MatrixXd sender_utility;    // n x m, v(w, a)
 
-  // True if shapes agree, n >= 2, m >= 2, prior entries are > 0 and sum to 1
-  // (within 1e-9). Otherwise false with a message naming the field and value.
+  // True if shapes agree, n >= 2, m >= 2, state and action names are unique,
+  // prior entries are > 0 and sum to 1 (within kProbabilityTolerance).
+  // Otherwise false with a message naming the field and value.
   bool IsValid(std::string* why) const;
   // Throws InvalidArgument with the IsValid message.
   void Validate() const;
@@ -57,9 +105,11 @@ Eigen::VectorXd TrustPosterior(const Eigen::VectorXd& prior,
 Eigen::VectorXd ExpectedUtilities(const Eigen::MatrixXd& utility,
                                   const Eigen::VectorXd& belief);
 
-// eq:receiver_action: argmax_a U(a | belief). Among the actions whose receiver
-// utility is within `tolerance` of the maximum, picks the one the sender likes
-// best under `belief` (ties toward the sender); remaining ties: lowest index.
+// eq:receiver_action: argmax_a U(a | belief). Among the actions the receiver
+// weakly prefers to every other (WeaklyPrefers: within tolerance * UtilityScale
+// of the maximum), picks the one the sender likes best under `belief` (ties
+// toward the sender; sender values within tolerance * UtilityScale(v) tie too);
+// remaining ties: lowest index. `tolerance` is relative, like kTieTolerance.
 int BestResponse(const Game& game, const Eigen::VectorXd& belief,
                  double tolerance = kTieTolerance);
 
@@ -68,8 +118,11 @@ int DefaultAction(const Game& game);
 
 // Theorem 1 (eq:theta_star) over a finite signal set: `signals` is n x k, column
 // j holding pi(s_j | w). Result in [0, 1]: 0 when some non-default action is
-// already (weakly) preferred at the prior, 1 when no signal in the set can ever
-// persuade (also reported by `persuadable = false`).
+// already weakly preferred at the prior, 1 when no signal in the set can ever
+// persuade (also reported by `persuadable = false`). "Persuade" is the paper's
+// weak inequality U(a'|p_theta) >= U(a0|p_theta) under the tolerance policy: an
+// action whose best full-trust gain is a tie (0) is persuadable at theta* = 1,
+// one whose best full-trust gain is a clear loss never is.
 struct TrustThreshold {
   double theta_star = 1.0;
   bool persuadable = false;  // some theta in [0,1] persuades to a non-default action
