@@ -677,9 +677,7 @@ struct NetworkController::Impl : junction::EncounterModel {
   void FinishNudge(int h, double observed) {
     Veh& v = vehs[h];
     const double s = v.commanded;
-    const bool ok = s > 0 ? (observed >= s - 1e-9 && observed <= s + kNudgeTolerance)
-                          : std::abs(observed) <= kNudgeTolerance;
-    if (!ok) {
+    if (!NudgeRealised(s, observed, kNudgeTolerance)) {
       if (sc.nudge_check == "error")
         throw NudgeError("junction '" + junctions[v.junction].info.id + "', AV " + v.id +
                          " at t = " + Fmt(now) + " s: commanded nudge " + Fmt(s) +

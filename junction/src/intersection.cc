@@ -65,6 +65,12 @@ std::vector<EncounterSequence::Release> EncounterSequence::Update(double now, bo
   return out;
 }
 
+bool NudgeRealised(double commanded, double observed, double tolerance) {
+  if (commanded > 0)
+    return observed >= commanded - 1e-9 && observed <= commanded + tolerance;
+  return std::abs(observed) <= tolerance;
+}
+
 double CreepSpeed(double target, double covered, double speed, double dt, double accel,
                   double decel, double creep_speed) {
   const double remaining = target - covered;

@@ -338,6 +338,67 @@ TEST(ScenarioBadInput, StopInsideTheJunctionIsAConfigError) {
   ExpectAShortRunStillWorks();
 }
 
+// ------------------------------------------------------------------ SUMO decides
+
+// Collisions are SUMO's, not a rule's: with the paper's 1.7 m stop an AV that
+// nudged and then waits has its nose in the crossing path, and SUMO reports
+// the reckless HV hitting it — collisions the rule "the AV goes and the HV
+// drives recklessly" does not predict. With the shipped 3.0 m geometry every
+// SUMO collision is exactly such a pair (and every such pair collides).
+TEST(SumoDecides, CollisionsComeFromSumoNotFromTheRule) {
+  const ExperimentConfig tight =
+      Config({"scenario.stop_distance=1.7", "scenario.duration=1800", "policies=[no_trust]"});
+  const PolicyRun r = RunOne(tight, "no_trust");
+  long unpredicted = 0, collisions = 0;
+  for (const EncounterRecord& e : r.encounters) {
+    collisions += e.collision;
+    if (e.collision && !(e.av_first && !e.hv_dc)) {
+      ++unpredicted;
+      EXPECT_GT(e.commanded, 0.0) << "only a nudged AV intrudes into the crossing path";
+      EXPECT_FALSE(e.av_first) << "the AV waited: the rule says no collision";
+    }
+  }
+  EXPECT_GT(unpredicted, 20) << collisions << " collisions in " << r.encounters.size();
+  // Shipped geometry: SUMO and the rule agree on every encounter.
+  const ExperimentConfig safe = Config({"scenario.duration=1800", "policies=[no_trust]"});
+  const PolicyRun s = RunOne(safe, "no_trust");
+  long both = 0;
+  for (const EncounterRecord& e : s.encounters) {
+    EXPECT_EQ(e.collision, e.av_first && !e.hv_dc) << e.av << "/" << e.hv << " at " << e.time;
+    both += e.collision;
+  }
+  EXPECT_GT(both, 20);
+}
+
+// The HV reads the displacement SUMO reports, not the commanded distance:
+// the creep aims 1e-6 m past the command (kNudgeOvershoot) and SUMO lands
+// there to ~1e-15 m, so every reading carries that overshoot; and the run
+// itself checked every nudge against its tolerance (none unrealised).
+TEST(SumoDecides, TheHvReadsSumosDisplacementNotTheCommand) {
+  const ExperimentConfig cfg = Config({"scenario.duration=900", "policies=[ta_ebp]"});
+  const PolicyRun r = RunOne(cfg, "ta_ebp");
+  long nudges = 0;
+  for (const EncounterRecord& e : r.encounters) {
+    if (e.commanded <= 0) continue;
+    ++nudges;
+    EXPECT_NEAR(e.observed - e.commanded, kNudgeOvershoot, 1e-9)
+        << "the reading is not SUMO's odometer difference";
+  }
+  EXPECT_GT(nudges, 20);
+  EXPECT_EQ(r.nudges_unrealised, 0);
+}
+
+TEST(NudgeRealised, TheToleranceOfTheRunsCheck) {
+  EXPECT_TRUE(NudgeRealised(1.5, 1.5 + 1e-6));
+  EXPECT_TRUE(NudgeRealised(1.5, 1.5 + kNudgeTolerance));
+  EXPECT_FALSE(NudgeRealised(1.5, 1.5 + 2 * kNudgeTolerance));  // overshot
+  EXPECT_FALSE(NudgeRealised(1.5, 1.4));                         // short
+  EXPECT_FALSE(NudgeRealised(1.5, 1.5 - 1e-6));
+  EXPECT_TRUE(NudgeRealised(0.0, 0.0));  // a still AV stayed still
+  EXPECT_TRUE(NudgeRealised(0.0, 0.5 * kNudgeTolerance));
+  EXPECT_FALSE(NudgeRealised(0.0, 0.01));  // it moved
+}
+
 TEST(ScenarioWarnings, PaperStopDistanceKeepsTheNoseOutOfTheCrossingPath) {
   EXPECT_TRUE(ScenarioWarnings(Config({})).empty());
   const std::vector<std::string> w = ScenarioWarnings(Config({"scenario.stop_distance=1.7"}));

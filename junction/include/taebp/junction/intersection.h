@@ -44,6 +44,11 @@ HvReading ReadNudge(const persuasion::CommittedScheme& scheme,
                     const persuasion::AvHvParams& params, double theta,
                     const persuasion::LikelihoodModel& model, double observed);
 
+// Was a nudge realised? SUMO's displacement d for a commanded s > 0 must lie
+// in [s, s + tolerance] (the creep aims at s + kNudgeOvershoot); a still AV
+// (s = 0) must not have moved more than the tolerance.
+bool NudgeRealised(double commanded, double observed, double tolerance = 1e-3);
+
 // ---------------------------------------------------------------- encounter
 // The order of releases once the HV has decided.
 //   AV goes:  AV at once; HV DR at once (they collide), HV DC after the AV cleared.
