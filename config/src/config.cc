@@ -140,6 +140,11 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   if (s.avs >= 0 && s.hvs >= 0 && s.avs + s.hvs == 0)
     c.Fail("scenario.avs + scenario.hvs = 0: the scenario needs at least one vehicle");
   c.Positive("scenario.cruise_speed", s.cruise_speed);
+  // A road vehicle: SUMO's physics (and the controller's braking and creep
+  // profiles) mean nothing far beyond motorway speeds.
+  if (c.ok() && s.cruise_speed > kMaxCruiseSpeed)
+    c.Fail("scenario.cruise_speed = " + Num(s.cruise_speed) + " m/s is above " +
+           Num(kMaxCruiseSpeed) + " m/s (" + Num(kMaxCruiseSpeed * 3.6) + " km/h)");
   c.NonNegative("scenario.min_gap", s.min_gap);
   c.Positive("scenario.stop_distance", s.stop_distance);
   c.Positive("scenario.step_length", s.step_length);
@@ -148,6 +153,16 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   c.Positive("scenario.duration", s.duration);
   if (c.ok() && s.duration < s.step_length)
     c.Fail("scenario.duration = " + Num(s.duration) + " is shorter than one step");
+  // What the run allocates grows with the simulated time (one record per
+  // encounter, about 300 bytes, ~500 an hour on the figure-8, more on a
+  // network): bound it, and the number of steps, before anything starts.
+  if (c.ok() && s.duration > kMaxDuration)
+    c.Fail("scenario.duration = " + Num(s.duration) + " s is above " + Num(kMaxDuration) +
+           " s (" + Num(kMaxDuration / 86400.0) +
+           " simulated days; split a longer study into seeds or a sweep)");
+  if (c.ok() && s.duration / s.step_length > kMaxSteps)
+    c.Fail("scenario.duration / scenario.step_length = " + Num(s.duration / s.step_length) +
+           " steps is above " + Num(kMaxSteps));
   c.Positive("scenario.vehicle_length", s.vehicle_length);
   c.Positive("scenario.vehicle_width", s.vehicle_width);
   c.Positive("scenario.accel", s.accel);

@@ -234,6 +234,27 @@ TEST(ConfigErrors, OutOfRangeValuesNameKeyAndValue) {
       {"policies: [ta_ebp, yolo]\n", "'yolo'"},
       {"policies: [ta_ebp, no_ebp, ta_ebp]\n", "'ta_ebp' is listed twice"},
       {"policies: []\n", "policies is empty"},
+      // What a run would allocate or simulate is bounded before it starts
+      // (1e6 m/s used to grow routes to 18 GB; 1e9 s ended in bad_alloc).
+      {"scenario: {cruise_speed: 1e6}\n", "scenario.cruise_speed = 1000000 m/s is above 70"},
+      {"scenario: {duration: 1e9}\n", "scenario.duration = 1000000000 s is above"},
+      {"scenario: {duration: 1e12}\n", "scenario.duration = 1e+12 s is above"},
+      {"scenario: {duration: 5e6, step_length: 0.001}\n", "steps is above"},
+      {"scenario: {kind: grid}\n", "scenario.kind = 'grid'"},
+      {"scenario: {kind: network}\n", "scenario.kind = 'network' needs one of"},
+      {"scenario: {kind: network, network: a.net.xml}\n", "has no vehicles"},
+      {"scenario: {kind: network, network: a.net.xml, routes: [r.xml], av_share: 1.5}\n",
+       "scenario.av_share = 1.5"},
+      {"scenario: {junctions: {types: [traffic_light]}}\n", "'traffic_light' is not a junction type"},
+      {"scenario: {junctions: {priority: three_way}}\n", "scenario.junctions.priority = 'three_way'"},
+      {"scenario: {grid: {columns: 1, rows: 4}, kind: network, demand: {flow: 10}}\n",
+       "scenario.grid = 1 x 4"},
+      {"scenario: {kind: network, grid: {}, demand: {flow: -3}}\n", "scenario.demand.flow = -3"},
+      {"scenario: {kind: network, grid: {}, demand: {flow: 10}, warmup: 4000}\n",
+       "scenario.warmup = 4000 leaves nothing"},
+      {"scenario: {stall_action: ignore}\n", "scenario.stall_action = 'ignore'"},
+      {"scenario: {nudge_check: maybe}\n", "scenario.nudge_check = 'maybe'"},
+      {"policies: [sumo_native, yolo]\n", "'yolo' is not one of sumo_native"},
   };
   for (const Case& c : cases) {
     const FileError e = LoadError(c.yaml);

@@ -262,6 +262,11 @@ struct SweepConfig {
   }
 };
 
+// Bounds that keep a run's allocations and SUMO's physics sane.
+inline constexpr double kMaxCruiseSpeed = 70.0;  // m/s (252 km/h)
+inline constexpr double kMaxDuration = 1e7;      // s (~116 simulated days)
+inline constexpr double kMaxSteps = 1e9;
+
 // The baseline policy without a controller: SUMO's own junction logic.
 inline constexpr const char* kSumoNative = "sumo_native";
 
