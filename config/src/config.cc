@@ -235,6 +235,7 @@ bool ExperimentConfig::IsValid(std::string* why) const {
         c.Fail(std::string("scenario.junctions.") + key + " = '" + *value +
                "' is not one of: all_way, two_way");
   }
+  c.NonNegative("scenario.junctions.max_speed", s.junctions.max_speed);
   if (s.av_share) c.Closed01("scenario.av_share", *s.av_share);
   c.NonNegative("scenario.warmup", s.warmup);
   if (c.ok() && s.warmup >= s.duration)

@@ -86,9 +86,11 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     controller.Start();
     if (options.after_start) options.after_start();
     const long steps = std::lround(config.scenario.duration / config.scenario.step_length);
+    const long minute = std::max(1L, std::lround(60.0 / config.scenario.step_length));
     for (long k = 0; k < steps; ++k) {
       sumo::Step();
       controller.Step();
+      if (options.every_minute && (k + 1) % minute == 0) options.every_minute(policy, sumo::Time());
     }
     if (options.before_close) options.before_close();
     run = controller.Finish();

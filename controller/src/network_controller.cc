@@ -722,6 +722,7 @@ struct NetworkController::Impl : junction::EncounterModel {
       if (c.kind == Command::Kind::kRelease) {
         Release(c.vehicle, c.reckless);
       } else {
+        if (now >= sc.warmup) ++out.encounters_formed;
         StartNudge(c.vehicle, c.distance);
       }
     }
@@ -829,6 +830,8 @@ struct NetworkController::Impl : junction::EncounterModel {
     CheckStalls();
     if (now < sc.warmup) return;
     if (scenario.kind == "network") {
+      out.network.vehicles_max =
+          std::max(out.network.vehicles_max, static_cast<long>(index.size()));
       const long pending = static_cast<long>(sumo::PendingVehicles().size());
       out.network.pending_max = std::max(out.network.pending_max, pending);
       out.network.pending_end = pending;
@@ -941,6 +944,7 @@ PolicyRun NetworkController::Finish() {
     s.out.wait_sum += j.run.wait_sum;
     s.out.wait_max = std::max(s.out.wait_max, j.run.wait_max);
     s.out.held += j.run.held;
+    s.out.encounters_unfinished += j.logic->Encounters();
     s.out.junctions.push_back(j.run);
   }
   return std::move(s.out);

@@ -123,6 +123,7 @@ json NetworkJson(const PolicyRun& r) {
   j["arrived"] = n.arrived;
   j["served_flow_per_hour"] = PerHour(static_cast<double>(n.arrived), r.measured_seconds);
   j["waiting_to_depart"] = {{"max", n.pending_max}, {"end", n.pending_end}};
+  j["vehicles_max"] = n.vehicles_max;
   j["trips"] = n.trips;
   j["trip_duration_mean"] = n.trips ? n.duration_sum / n.trips : 0.0;
   j["time_loss_mean"] = n.trips ? n.time_loss_sum / n.trips : 0.0;
@@ -244,6 +245,8 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
     j["simulated_seconds"] = r.simulated_seconds;
     j["measured_seconds"] = r.measured_seconds;
     j["nudges_unrealised"] = r.nudges_unrealised;
+    j["encounters_formed"] = r.encounters_formed;
+    j["encounters_unfinished"] = r.encounters_unfinished;
     json stalls = json::array();
     for (const StallRecord& st : r.stalls)
       stalls.push_back({{"junction", st.junction}, {"since", st.since}, {"detected", st.detected}});

@@ -308,8 +308,34 @@ void SelectJunctions(const ScenarioConfig& sc, const net::NetFile& net, Scenario
   }
   const std::set<std::string> ids(sel.ids.begin(), sel.ids.end());
   const std::set<std::string> types(sel.types.begin(), sel.types.end());
+  auto slow_enough = [&](const net::Junction& j) {
+    if (sel.max_speed <= 0) return true;
+    for (const std::string& lane : j.inc_lanes) {
+      const net::Lane* l = net.FindLane(lane);
+      if (l && l->speed > sel.max_speed + 1e-9) return false;
+    }
+    return true;
+  };
+  // Selected by type, a junction must be an intersection: two or more
+  // incoming roads with movements that conflict between them (an OSM import
+  // has many nodes where a road only changes its lanes, and a stop there
+  // would make SUMO's own all-way logic deadlock between the lanes).
+  auto intersection = [&](const net::Junction& j) {
+    std::set<std::string> roads;
+    for (const std::string& lane : j.inc_lanes)
+      if (const net::Lane* l = net.FindLane(lane)) roads.insert(l->edge);
+    if (roads.size() < 2) return false;
+    for (std::size_t a = 0; a < j.links.size(); ++a)
+      for (std::size_t b = 0; b < j.links.size(); ++b) {
+        if (j.links[a] < 0 || j.links[b] < 0 || !j.foes[a][b]) continue;
+        const net::Lane* la = net.FindLane(net.links()[j.links[a]].from_lane);
+        const net::Lane* lb = net.FindLane(net.links()[j.links[b]].from_lane);
+        if (la && lb && la->edge != lb->edge) return true;
+      }
+    return false;
+  };
   for (const auto& [id, j] : net.junctions()) {
-    if (!ids.count(id) && !types.count(j.type)) continue;
+    if (!ids.count(id) && !(types.count(j.type) && slow_enough(j) && intersection(j))) continue;
     if (j.int_lanes.empty())
       throw ConfigError("scenario.junctions: junction '" + id + "'" + where +
                         " has no internal lanes (built with --no-internal-links?): SUMO cannot "
@@ -352,9 +378,12 @@ bool PatchJunctionTypes(Scenario* s) {
     throw ConfigError("scenario.junctions: netconvert could not turn " +
                       std::to_string(changed.size()) + " junctions of " + s->net +
                       " into stop-controlled ones (" + LogTail(log) + ")");
+  std::map<std::string, int> kinds;
+  for (const ControlledJunction* j : changed) ++kinds[j->original_type + " -> " + j->type];
+  std::string list;
+  for (const auto& [k, n] : kinds) list += (list.empty() ? "" : ", ") + std::to_string(n) + " " + k;
   s->notes.push_back(std::to_string(changed.size()) + " junctions of " + s->net +
-                     " run as stop-controlled (priority -> " + changed.front()->type +
-                     " etc.; see summary.json junctions)");
+                     " run as stop-controlled (" + list + "; see summary.json junctions)");
   s->net = patched.string();
   return true;
 }

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <optional>
@@ -259,6 +260,10 @@ int main(int argc, char** argv) {
                   "e.g. --set scenario.duration=600 --set policies=[ta_ebp]");
   run->add_option("--out", out_dir, "output directory (default: results/<config name>)");
   run->add_flag("--quiet", quiet, "no progress on stderr");
+  std::string rss_log;
+  run->add_option("--rss-log", rss_log,
+                  "append 'policy,simulated_seconds,rss_kb' every simulated minute (tools/soak)")
+      ->group("");  // hidden: for tools/soak and benchmarks
   taebp::gui::RunGui run_gui(run);           // run --gui [--delay MS]
   taebp::sweep::Commands sweep_commands(  // sweep, merge; a task = `run` in a forked worker
       app, [](const std::string& c, const std::vector<std::string>& o, const std::string& out) {
@@ -270,7 +275,20 @@ int main(int argc, char** argv) {
   return ReportErrors([&] {
     if (*theory) return Theory(th);
     if (*solve) return Solve(problem, solve_json);
-    if (*run) return RunExperimentCommand(config_path, overrides, out_dir, quiet, run_gui.Prepare());
+    if (*run) {
+      taebp::RunOptions options = run_gui.Prepare();
+      if (!rss_log.empty()) {
+        std::ofstream(rss_log, std::ios::trunc) << "policy,simulated_seconds,rss_kb\n";
+        options.every_minute = [&rss_log](const std::string& policy, double t) {
+          std::ifstream status("/proc/self/status");
+          long kb = -1;
+          for (std::string line; std::getline(status, line);)
+            if (line.rfind("VmRSS:", 0) == 0) kb = std::atol(line.c_str() + 6);
+          std::ofstream(rss_log, std::ios::app) << policy << ',' << t << ',' << kb << '\n';
+        };
+      }
+      return RunExperimentCommand(config_path, overrides, out_dir, quiet, options);
+    }
     if (snapshot.Parsed()) return snapshot.Run(argc, argv);
     if (sweep_commands.Parsed()) return sweep_commands.Run();
     return 0;

@@ -31,11 +31,16 @@ struct JunctionSelection {
   std::string priority = "two_way";           // two_way | all_way
   std::string right_before_left = "all_way";  // all_way | two_way
   std::string unregulated = "all_way";        // all_way | two_way
+  // Only junctions whose incoming lanes all have speed limits at most this
+  // (m/s; 0: any), e.g. 13.9 keeps an OSM import's town streets and leaves
+  // its motorway and trunk junctions to SUMO. Applies to `types`, not `ids`.
+  double max_speed = 0.0;
 
   template <typename Archive>
   void Serialize(Archive* a) {
     a->Visit("ids", &ids);
     a->Visit("types", &types);
+    a->Visit("max_speed", &max_speed);
     a->Visit("priority", &priority);
     a->Visit("right_before_left", &right_before_left);
     a->Visit("unregulated", &unregulated);

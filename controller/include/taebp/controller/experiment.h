@@ -31,6 +31,9 @@ struct RunOptions {
   // keep-clear release rule prevents the controller's own gridlocks; this
   // catches what it cannot foresee.
   double stall_limit = -1.0;
+  // Called once every simulated minute with the policy and the simulated time
+  // (e.g. `taebp run --rss-log` for tools/soak); nothing when empty.
+  std::function<void(const std::string& policy, double simulated_seconds)> every_minute;
 };
 
 // Runs one policy (a persuasion policy name or "sumo_native") for

@@ -54,6 +54,7 @@ struct JunctionRun {
 struct NetworkRun {
   long departed = 0, arrived = 0;    // vehicles that entered / left the network
   long pending_max = 0;              // most vehicles waiting to be inserted at once
+  long vehicles_max = 0;             // most vehicles in the network at once (sampled each second)
   long pending_end = 0;              // waiting to be inserted at the end (demand not served)
   long trips = 0;                    // SUMO tripinfo records of the vehicles that arrived
   double duration_sum = 0, time_loss_sum = 0, waiting_time_sum = 0;  // their sums (s)
@@ -85,6 +86,9 @@ struct PolicyRun {
   std::string sumo_version;
   double measured_seconds = 0;            // simulated time after the warm-up
   long nudges_unrealised = 0;             // nudges SUMO did not realise (nudge_check: count)
+  // Encounters that formed after the warm-up, and those still in progress at
+  // the end: encounters.size() == formed - unfinished (tools/soak checks it).
+  long encounters_formed = 0, encounters_unfinished = 0;
   std::vector<JunctionRun> junctions;     // every controlled junction
   std::vector<StallRecord> stalls;        // scenario.stall_action: record
   NetworkRun network;
