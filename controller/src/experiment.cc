@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <sstream>
 
@@ -99,7 +100,27 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     throw;
   }
   sumo::Close();
-  if (scenario.scratch) ReadTripinfo(TripinfoPath(scenario, policy), config.scenario.warmup, &run.network);
+  if (scenario.scratch) {
+    ReadTripinfo(TripinfoPath(scenario, policy), config.scenario.warmup, &run.network);
+    // SUMO heads its outputs with a comment holding the date and this run's
+    // scratch paths; dropped so the same config and seed give the same bytes
+    // (the provenance is in summary.json).
+    auto slurp = [](const fs::path& path) {
+      std::ifstream in(path, std::ios::binary);
+      std::ostringstream text;
+      text << in.rdbuf();
+      std::string s = text.str();
+      const auto begin = s.find("<!-- generated on");
+      const auto end = begin == std::string::npos ? begin : s.find("-->", begin);
+      if (end != std::string::npos)
+        s.replace(begin, end + 3 - begin, "<!-- SUMO's own output; provenance in summary.json -->");
+      return s;
+    };
+    if (config.scenario.tripinfo_output) run.sumo_tripinfo_xml = slurp(TripinfoPath(scenario, policy));
+    if (config.scenario.summary_output)
+      run.sumo_summary_xml =
+          slurp(fs::path(scenario.scratch->path()) / ("summary-" + policy + ".xml"));
+  }
   return run;
 }
 

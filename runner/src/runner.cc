@@ -20,11 +20,19 @@ namespace fs = std::filesystem;
 std::vector<std::pair<std::string, std::string>> ExperimentResult::Files() const {
   nlohmann::ordered_json timing;
   timing["wall_seconds_total"] = wall_seconds;
-  return {{"summary.json", SummaryJson(runs, provenance)},
-          {"encounters.csv", EncountersCsv(runs)},
-          {"junctions.csv", JunctionsCsv(runs)},
-          {"config.yaml", ToYaml(config)},
-          {"timing.json", timing.dump(2) + "\n"}};
+  std::vector<std::pair<std::string, std::string>> files = {
+      {"summary.json", SummaryJson(runs, provenance)},
+      {"encounters.csv", EncountersCsv(runs)},
+      {"junctions.csv", JunctionsCsv(runs)},
+      {"config.yaml", ToYaml(config)},
+      {"timing.json", timing.dump(2) + "\n"}};
+  for (const PolicyRun& r : runs) {
+    if (!r.sumo_tripinfo_xml.empty())
+      files.emplace_back("tripinfo-" + r.policy + ".xml", r.sumo_tripinfo_xml);
+    if (!r.sumo_summary_xml.empty())
+      files.emplace_back("summary-" + r.policy + ".xml", r.sumo_summary_xml);
+  }
+  return files;
 }
 
 std::string ExperimentResult::Table() const {

@@ -55,8 +55,9 @@ def check(path, expected):
 
 def test_every_csv_of_a_run_and_a_sweep(tmp_path):
     docs = documented()
-    assert set(docs) == {(False, "encounters.csv"), (False, "results.csv"),
-                         (False, "aggregate.csv"), (True, "encounters.csv")}, docs
+    assert set(docs) == {(False, "encounters.csv"), (False, "junctions.csv"),
+                         (False, "results.csv"), (False, "aggregate.csv"),
+                         (True, "encounters.csv")}, docs
     run_columns = docs[(False, "encounters.csv")]
     assert run_columns == taebp.encounter_columns()
 
@@ -67,7 +68,8 @@ def test_every_csv_of_a_run_and_a_sweep(tmp_path):
     swept = ["model.trust", "scenario.avs", "scenario.hvs"]
 
     written = sorted(glob.glob(str(tmp_path / "**" / "*.csv"), recursive=True))
-    assert len(written) == 1 + 3 + 8  # run; sweep tables + pooled; 8 tasks
+    # run (encounters, junctions); sweep tables + pooled; 8 tasks x 2
+    assert len(written) == 2 + 3 + 8 * 2
     read = 0
     for path in written:
         rel = os.path.relpath(path, tmp_path)

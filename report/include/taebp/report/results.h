@@ -93,6 +93,9 @@ struct PolicyRun {
   std::vector<StallRecord> stalls;        // scenario.stall_action: record
   NetworkRun network;
   std::string scenario_kind = "figure8";
+  // SUMO's own outputs when the config asks for them (scenario.tripinfo_output,
+  // summary_output): the files' text, written next to the results.
+  std::string sumo_tripinfo_xml, sumo_summary_xml;
 };
 
 }  // namespace taebp
