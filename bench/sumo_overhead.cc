@@ -1,7 +1,11 @@
-// Controller overhead against bare SUMO: the same network, vehicles and step,
-// timed interleaved (bare, policy 1, policy 2, ..., bare, ...) so machine noise
-// hits all alike. Prints the median wall time of each and the ratio
-// median(policy) / median(bare). A benchmark, not a test: run it on demand
+// Controller overhead against a baseline: the same network, vehicles and step,
+// timed interleaved (baseline, policy 1, policy 2, ..., baseline, ...) so
+// machine noise hits all alike. The baseline is bare SUMO (only
+// Simulation::step; the default) or, with --baseline sumo_native, SUMO's own
+// junction logic under the controller's observation (the policy every
+// network throughput figure is compared with). Prints the median wall time of
+// each, the ratio median(policy) / median(baseline), and on a network the
+// most vehicles in it at once. A benchmark, not a test: run it on demand
 // (tools/bench), not in ctest.
 #include "taebp/config/config.h"
 #include "taebp/controller/experiment.h"
@@ -30,15 +34,18 @@ double Time(F&& f) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: sumo_overhead CONFIG [ROUNDS] [--set K=V]...\n");
+    std::fprintf(stderr,
+                 "usage: sumo_overhead CONFIG [ROUNDS] [--baseline bare|sumo_native] [--set K=V]...\n");
     return 2;
   }
   const std::string path = argv[1];
   int rounds = 5;
+  std::string baseline = "bare";
   std::vector<std::string> overrides;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--set" && i + 1 < argc) overrides.push_back(argv[++i]);
+    else if (a == "--baseline" && i + 1 < argc) baseline = argv[++i];
     else rounds = std::max(1, std::atoi(a.c_str()));
   }
   try {
@@ -46,19 +53,39 @@ int main(int argc, char** argv) {
     const taebp::Scenario files = taebp::BuildScenario(config, "");
     std::vector<double> bare;
     std::map<std::string, std::vector<double>> policy;
+    long vehicles_max = 0;
+    std::size_t junctions = files.junctions.size();
     for (int r = 0; r < rounds; ++r) {
-      bare.push_back(Time([&] { taebp::RunBareSumo(config, files); }));
-      for (const std::string& p : config.policies)
-        policy[p].push_back(
-            Time([&] { taebp::RunPolicy(config, p, files); }));
+      if (baseline == "bare") {
+        bare.push_back(Time([&] { taebp::RunBareSumo(config, files); }));
+      } else {
+        bare.push_back(Time([&] {
+          const taebp::PolicyRun run = taebp::RunPolicy(config, taebp::kSumoNative, files);
+          vehicles_max = std::max(vehicles_max, run.network.vehicles_max);
+        }));
+      }
+      for (const std::string& p : config.policies) {
+        if (p == taebp::kSumoNative) continue;
+        policy[p].push_back(Time([&] {
+          const taebp::PolicyRun run = taebp::RunPolicy(config, p, files);
+          vehicles_max = std::max(vehicles_max, run.network.vehicles_max);
+        }));
+      }
     }
     const double b = Median(bare);
-    std::printf("%.0f simulated s, %d vehicles, step %.2f s, %d interleaved rounds\n",
-                config.scenario.duration, config.scenario.avs + config.scenario.hvs,
-                config.scenario.step_length, rounds);
+    if (config.scenario.IsNetwork())
+      std::printf("%.0f simulated s, %zu controlled junctions, up to %ld vehicles at once, step "
+                  "%.2f s, %d interleaved rounds\n",
+                  config.scenario.duration, junctions, vehicles_max, config.scenario.step_length,
+                  rounds);
+    else
+      std::printf("%.0f simulated s, %d vehicles, step %.2f s, %d interleaved rounds\n",
+                  config.scenario.duration, config.scenario.avs + config.scenario.hvs,
+                  config.scenario.step_length, rounds);
     std::printf("%-12s %10s %8s\n", "run", "median s", "ratio");
-    std::printf("%-12s %10.3f %8.3f\n", "bare SUMO", b, 1.0);
+    std::printf("%-12s %10.3f %8.3f\n", baseline == "bare" ? "bare SUMO" : "sumo_native", b, 1.0);
     for (const std::string& p : config.policies) {
+      if (p == taebp::kSumoNative) continue;
       const double m = Median(policy[p]);
       std::printf("%-12s %10.3f %8.3f\n", p.c_str(), m, m / b);
     }

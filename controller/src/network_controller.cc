@@ -763,6 +763,26 @@ struct NetworkController::Impl : junction::EncounterModel {
   // Why the heads of a stalled junction cannot go: exit room, major road.
   std::string StallDetail(JunctionRt& j) {
     std::string out;
+    // The front vehicle of each approach with a queue, as SUMO has it.
+    for (int a : j.approaches) {
+      const ApproachRt& ap = approaches[a];
+      if (sumo::LaneHaltingNumber(ap.lane) == 0) continue;
+      const std::vector<std::string> ids = sumo::LaneVehicleIDs(ap.lane);
+      if (ids.empty()) continue;
+      const std::string& front = ids.back();
+      const auto it = index.find(front);
+      std::string state = "unknown";
+      if (it != index.end()) {
+        const Veh& v = vehs[it->second];
+        state = v.state == State::kHeld       ? "held"
+                : v.state == State::kCrossing ? "released"
+                : ap.skip == it->second       ? "not held: no stop movement towards its next edge"
+                                              : "halted by SUMO";
+      }
+      out += "; lane " + ap.lane + ": " + std::to_string(ids.size()) + " vehicles, front " +
+             front + " " + Fmt(ap.length - sumo::LanePosition(front)) + " m before the line (" +
+             state + ")";
+    }
     for (int a : j.approaches) {
       const int h = approaches[a].head;
       if (h < 0 || vehs[h].state != State::kHeld) continue;
