@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -385,20 +386,104 @@ YAML::Node ParseYaml(const std::string& text, const std::string& origin) {
 }
 
 std::string ReadFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw ConfigError(path + ": is a directory, not a config file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path + ": cannot open the file (does it exist?)");
   std::ostringstream ss;
   ss << in.rdbuf();
+  if (in.bad()) throw ConfigError(path + ": cannot read the file");
   return ss.str();
+}
+
+// A file whose YAML document is empty (no text, only comments, `---` or `~`):
+// not a config. An explicit `{}` is.
+YAML::Node ParseFileYaml(const std::string& path) {
+  YAML::Node root = ParseYaml(ReadFile(path), path);
+  if (!root.IsDefined() || root.IsNull())
+    throw ConfigError(path + ": the file is empty (no keys; `{}` means all defaults)");
+  return root;
+}
+
+// The key paths of the config sections: nested structs, into which a map
+// VALUE of --set is merged key by key (everything else is replaced).
+class SectionCollector {
+ public:
+  SectionCollector(std::set<std::string>* out, std::string prefix)
+      : out_(out), prefix_(std::move(prefix)) {}
+  template <typename T>
+  void Visit(const char* name, T* value) {
+    Collect(Join(prefix_, name), value);
+  }
+
+ private:
+  template <typename T>
+  void Collect(const std::string& key, std::optional<T>*) {
+    T inner{};
+    Collect(key, &inner);
+  }
+  template <typename T>
+  void Collect(const std::string& key, T* value) {
+    if constexpr (HasSerialize<T>::value) {
+      out_->insert(key);
+      SectionCollector sub(out_, key);
+      value->Serialize(&sub);
+    }
+  }
+  template <typename T, typename = void>
+  struct HasSerialize : std::false_type {};
+  template <typename T>
+  struct HasSerialize<T, std::void_t<decltype(std::declval<T&>().Serialize(
+                             static_cast<SectionCollector*>(nullptr)))>> : std::true_type {};
+
+  std::set<std::string>* out_;
+  std::string prefix_;
+};
+
+const std::set<std::string>& ExperimentSections() {
+  static const std::set<std::string> sections = [] {
+    std::set<std::string> s;
+    ExperimentConfig c;
+    SectionCollector collector(&s, "");
+    c.Serialize(&collector);
+    return s;
+  }();
+  return sections;
+}
+
+// node[name] = value, except that a map value for a config section that is
+// already a map is merged into it key by key (recursively for sub-sections).
+// `written` gets the key path of every value set.
+void Assign(YAML::Node node, const std::string& name, const std::string& key,
+            const YAML::Node& value, std::vector<std::string>* written) {
+  YAML::Node existing = node[name];
+  if (value.IsMap() && ExperimentSections().count(key) && existing.IsDefined() &&
+      existing.IsMap()) {
+    for (const auto& kv : value) {
+      if (!kv.first.IsScalar()) {  // the loader names it as an unknown key
+        existing[kv.first] = kv.second;
+        written->push_back(key);
+        continue;
+      }
+      const std::string sub = kv.first.Scalar();
+      Assign(existing, sub, key + "." + sub, kv.second, written);
+    }
+    return;
+  }
+  node[name] = value;
+  written->push_back(key);
 }
 
 // Sets root[a][b][c] = value for key "a.b.c", creating maps on the way.
 void SetPath(YAML::Node node, const std::vector<std::string>& parts, std::size_t i,
-             const YAML::Node& value, const std::string& text) {
+             const YAML::Node& value, const std::string& text, std::vector<std::string>* written) {
   if (!node.IsMap() && !node.IsNull())
     throw ConfigError("--set " + text + ": '" + parts[i - 1] + "' is not a map");
   if (i + 1 == parts.size()) {
-    node[parts[i]] = value;
+    std::string key;
+    for (const std::string& p : parts) key = Join(key, p);
+    Assign(node, parts[i], key, value, written);
     return;
   }
   YAML::Node child = node[parts[i]];
@@ -406,7 +491,7 @@ void SetPath(YAML::Node node, const std::vector<std::string>& parts, std::size_t
     node[parts[i]] = YAML::Node(YAML::NodeType::Map);
     child = node[parts[i]];
   }
-  SetPath(child, parts, i + 1, value, text);
+  SetPath(child, parts, i + 1, value, text, written);
 }
 
 void ApplyOverride(YAML::Node& root, const std::string& text, Origins* origins) {
@@ -428,8 +513,9 @@ void ApplyOverride(YAML::Node& root, const std::string& text, Origins* origins) 
     throw ConfigError("--set " + text + ": value is not valid YAML: " + e.msg);
   }
   if (!root.IsDefined() || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
-  SetPath(root, parts, 0, value, text);
-  origins->AddOverride(key, text);
+  std::vector<std::string> written;
+  SetPath(root, parts, 0, value, text, &written);
+  for (const std::string& k : written) origins->AddOverride(k, text);
 }
 
 template <typename T>
@@ -449,9 +535,8 @@ T ReadRoot(const YAML::Node& root, const Origins& origins, const std::string& or
 
 }  // namespace
 
-ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& origin,
-                                       const std::vector<std::string>& overrides) {
-  YAML::Node root = ParseYaml(yaml_text, origin);
+static ExperimentConfig ParseExperimentRoot(YAML::Node root, const std::string& origin,
+                                     const std::vector<std::string>& overrides) {
   Origins origins(origin);
   for (const std::string& o : overrides) ApplyOverride(root, o, &origins);
   ExperimentConfig config = ReadRoot<ExperimentConfig>(root, origins, origin, false);
@@ -463,9 +548,14 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
   return config;
 }
 
+ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& origin,
+                                       const std::vector<std::string>& overrides) {
+  return ParseExperimentRoot(ParseYaml(yaml_text, origin), origin, overrides);
+}
+
 ExperimentConfig LoadExperimentConfig(const std::string& path,
                                       const std::vector<std::string>& overrides) {
-  return ParseExperimentConfig(ReadFile(path), path, overrides);
+  return ParseExperimentRoot(ParseFileYaml(path), path, overrides);
 }
 
 std::string ToJson(const ExperimentConfig& config) {
@@ -482,7 +572,7 @@ std::string ToYaml(const ExperimentConfig& config) {
 }
 
 ProblemConfig LoadProblemConfig(const std::string& path) {
-  YAML::Node root = ParseYaml(ReadFile(path), path);
+  YAML::Node root = ParseFileYaml(path);
   Origins origins(path);
   return ReadRoot<ProblemConfig>(root, origins, path, true);
 }

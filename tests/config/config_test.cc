@@ -121,6 +121,15 @@ TEST(ConfigLoad, ToYamlRoundTripGivesIdenticalJson) {
   EXPECT_EQ(ToYaml(back), rich_yaml);
 }
 
+// The built-in default is the safe geometry (README "Geometry"): a nudge of up
+// to s_max from the stop line keeps the AV's nose out of a crossing HV's path.
+TEST(ConfigLoad, DefaultGeometryIsTheSafeOne) {
+  const ExperimentConfig d;
+  EXPECT_EQ(d.scenario.stop_distance, 3.0);
+  EXPECT_GE(d.scenario.stop_distance, d.model.likelihood.s_max + d.scenario.vehicle_width / 2);
+  EXPECT_EQ(ParseExperimentConfig("scenario: {avs: 2}", "t.yaml").scenario.stop_distance, 3.0);
+}
+
 TEST(ConfigLoad, EmptyTextGivesTheDefaults) {
   EXPECT_EQ(ToJson(ParseExperimentConfig("", "empty.yaml")), ToJson(ExperimentConfig{}));
   EXPECT_EQ(ToJson(ParseExperimentConfig("{}", "empty.yaml")), ToJson(ExperimentConfig{}));
@@ -277,6 +286,55 @@ TEST(ConfigErrors, NonMapTopLevelIsRejected) {
   EXPECT_THAT(LoadError("- a\n- b\n").message, HasSubstr("top level"));
 }
 
+// A directory, an empty file or a file of comments only is not a config: an
+// error naming the path (it used to run with the built-in defaults), for the
+// experiment loader and the problem loader alike.
+TEST(ConfigErrors, DirectoryOrEmptyFileIsAnErrorNamingThePath) {
+  TempDir dir;
+  const std::string folder = (dir.path() / "configs").string();
+  fs::create_directories(folder);
+  const std::string dmsg = ConfigErrorOf([&] { LoadExperimentConfig(folder); });
+  EXPECT_THAT(dmsg, HasSubstr(folder));
+  EXPECT_THAT(dmsg, HasSubstr("is a directory"));
+  EXPECT_THAT(ConfigErrorOf([&] { LoadProblemConfig(folder); }), HasSubstr("is a directory"));
+  for (const std::string& text : {std::string(""), std::string("# only a comment\n\n"),
+                                  std::string("---\n"), std::string("~\n")}) {
+    SCOPED_TRACE("text '" + text + "'");
+    const std::string path = dir.Write("empty.yaml", text);
+    const std::string msg = ConfigErrorOf([&] { LoadExperimentConfig(path); });
+    EXPECT_THAT(msg, HasSubstr(path));
+    EXPECT_THAT(msg, HasSubstr("empty"));
+    // --set overrides do not turn an empty file into a config either.
+    EXPECT_THAT(ConfigErrorOf([&] { LoadExperimentConfig(path, {"scenario.avs=2"}); }),
+                HasSubstr(path + ": the file is empty"));
+    EXPECT_THAT(ConfigErrorOf([&] { LoadProblemConfig(path); }),
+                HasSubstr(path + ": the file is empty"));
+  }
+  // An explicit empty map is a deliberate "all defaults".
+  const std::string braces = dir.Write("braces.yaml", "{}\n");
+  EXPECT_EQ(ToJson(LoadExperimentConfig(braces)), ToJson(ExperimentConfig{}));
+}
+
+// SUMO counts time in whole milliseconds: it refuses a step below 0.001 s
+// ("the minimum step-length is 0.001") and rounds any other step to a whole
+// millisecond (0.0015 runs as 0.002 s), which would desynchronise the
+// controller's clock. Both are config errors naming the key and the value.
+TEST(ConfigErrors, StepLengthIsAWholeNumberOfMillisecondsOfAtLeastOne) {
+  for (const char* bad : {"1e-9", "0.0005", "0.0009999", "0.0015", "0.1234"}) {
+    SCOPED_TRACE(bad);
+    const std::string msg = ConfigErrorOf(
+        [&] { LoadExperimentConfig(kPaper, {std::string("scenario.step_length=") + bad}); });
+    EXPECT_THAT(msg, HasSubstr("scenario.step_length = "));
+    EXPECT_THAT(msg, HasSubstr("millisecond"));
+  }
+  EXPECT_THAT(ConfigErrorOf([&] { LoadExperimentConfig(kPaper, {"scenario.step_length=1e-9"}); }),
+              HasSubstr("scenario.step_length = 1e-09"));
+  for (const char* good : {"0.001", "0.002", "0.05", "0.1", "0.25", "1"}) {
+    SCOPED_TRACE(good);
+    EXPECT_NO_THROW(LoadExperimentConfig(kPaper, {std::string("scenario.step_length=") + good}));
+  }
+}
+
 // ------------------------------------------------------------------ --set
 
 TEST(ConfigOverrides, OverridesApply) {
@@ -329,6 +387,50 @@ TEST(ConfigOverrides, ErrorsNameTheSetNotTheFile) {
     // The error is about this --set, not the valid one before it.
     EXPECT_THAT(msg, Not(HasSubstr("scenario.duration=60"))) << c.set;
   }
+}
+
+// A map value for a section (scenario, model, model.likelihood, sweep) is
+// merged into it key by key: `--set 'scenario={avs: 1}'` changes avs and keeps
+// every other scenario key of the file (it used to replace the section, so the
+// omitted keys fell back to the built-in defaults). Values that are maps
+// themselves (a trust distribution, sweep.grid) still replace.
+TEST(ConfigOverrides, MapValueMergesIntoASection) {
+  const ExperimentConfig file = LoadExperimentConfig(kPaper);
+  const ExperimentConfig c = LoadExperimentConfig(
+      kPaper, {"scenario={avs: 1, duration: 60}", "model={likelihood: {s_max: 1.5}}"});
+  ExperimentConfig expected = file;
+  expected.scenario.avs = 1;
+  expected.scenario.duration = 60;
+  expected.model.likelihood.s_max = 1.5;
+  EXPECT_EQ(ToJson(c), ToJson(expected));
+
+  TempDir dir;
+  const std::string path = dir.Write(
+      "exp.yaml",
+      "scenario: {hvs: 3, stop_distance: 3.5}\n"
+      "model: {trust: {dist: uniform, low: 0.2, high: 0.4}, likelihood: {type: logistic}}\n"
+      "sweep: {replicates: 3, grid: {model.prior_go: [0.1, 0.2], scenario.avs: [1, 2]}}\n");
+  const ExperimentConfig m = LoadExperimentConfig(
+      path, {"model={trust: {dist: beta, alpha: 2, beta: 5}}", "sweep={grid: {model.trust: [0.5]}}"});
+  EXPECT_EQ(m.model.trust.dist, "beta");  // a distribution replaces the old one
+  EXPECT_EQ(m.model.trust.alpha, 2.0);
+  EXPECT_EQ(m.model.likelihood.type, "logistic");  // kept from the file
+  ASSERT_TRUE(m.sweep.has_value());
+  EXPECT_EQ(m.sweep->replicates, 3);  // kept from the file
+  ASSERT_EQ(m.sweep->grid.size(), 1u);  // the grid is one value: replaced
+  EXPECT_EQ(m.sweep->grid[0].first, "model.trust");
+
+  // A bad key inside the merged map names the --set; a bad file key the file.
+  const std::string set_error =
+      ConfigErrorOf([&] { LoadExperimentConfig(path, {"scenario={avs: 1, avss: 2}"}); });
+  EXPECT_THAT(set_error, HasSubstr("--set scenario={avs: 1, avss: 2}"));
+  EXPECT_THAT(set_error, HasSubstr("scenario.avss"));
+  const std::string bad_file = dir.Write("bad.yaml", "scenario:\n  hvs: 3\n  min_gap: -1\n");
+  const std::string file_error =
+      ConfigErrorOf([&] { LoadExperimentConfig(bad_file, {"scenario={avs: 1}"}); });
+  EXPECT_THAT(file_error, HasSubstr(bad_file));
+  EXPECT_THAT(file_error, HasSubstr("scenario.min_gap = -1"));
+  EXPECT_THAT(file_error, Not(HasSubstr("--set")));
 }
 
 TEST(ConfigOverrides, FileErrorsStillNameTheFileWhenOverridesAreGiven) {

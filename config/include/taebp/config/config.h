@@ -24,7 +24,7 @@ struct ScenarioConfig {
   int hvs = 8;                  // number of human-driven vehicles (red)
   double cruise_speed = 4.0;    // m/s
   double min_gap = 2.0;         // m, SUMO minGap
-  double stop_distance = 1.7;   // m from the vehicle's front to the centre when held
+  double stop_distance = 3.0;   // m from the front to the centre when held (>= s_max + width/2: README "Geometry")
   double step_length = 0.1;     // s
   double duration = 3600.0;     // simulated seconds per policy
   std::uint64_t seed = 1;       // run seed (SUMO --seed and the controller's RNG)
