@@ -385,7 +385,7 @@ YAML::Node ParseYaml(const std::string& text, const std::string& origin) {
   }
 }
 
-std::string ReadFile(const std::string& path) {
+std::string ReadFileText(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw ConfigError(path + ": is a directory, not a config file");
@@ -400,7 +400,7 @@ std::string ReadFile(const std::string& path) {
 // A file whose YAML document is empty (no text, only comments, `---` or `~`):
 // not a config. An explicit `{}` is.
 YAML::Node ParseFileYaml(const std::string& path) {
-  YAML::Node root = ParseYaml(ReadFile(path), path);
+  YAML::Node root = ParseYaml(ReadFileText(path), path);
   if (!root.IsDefined() || root.IsNull())
     throw ConfigError(path + ": the file is empty (no keys; `{}` means all defaults)");
   return root;
@@ -546,6 +546,26 @@ static ExperimentConfig ParseExperimentRoot(YAML::Node root, const std::string& 
     throw ConfigError(origins.For(key) + ": " + why);
   }
   return config;
+}
+
+std::string ReadConfigFile(const std::string& path) { return ReadFileText(path); }
+
+struct ExperimentTemplate::Impl {
+  YAML::Node root;
+  std::string origin;
+};
+
+ExperimentTemplate::ExperimentTemplate(const std::string& yaml_text, const std::string& origin) {
+  auto impl = std::make_shared<Impl>();
+  impl->root = ParseYaml(yaml_text, origin);
+  impl->origin = origin;
+  impl_ = std::move(impl);
+}
+
+ExperimentTemplate::~ExperimentTemplate() = default;
+
+ExperimentConfig ExperimentTemplate::Load(const std::vector<std::string>& overrides) const {
+  return ParseExperimentRoot(YAML::Clone(impl_->root), impl_->origin, overrides);
 }
 
 ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& origin,

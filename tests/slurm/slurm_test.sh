@@ -26,15 +26,16 @@ for f in results.csv aggregate.csv results.jsonl; do
 done
 echo "ok: 3 shards + merge equal one --jobs 1 sweep"
 
-# A failing task (theta = 1.3 at one grid point) fails its shard, and afterok
+# A failing task (80 vehicles on loops that may not grow) fails its shard, and afterok
 # keeps the merge from running; the other shard's results are kept.
 rm -f "$work/spool/jobs"
 "$src/tools/slurm_sweep.sh" "$src/configs/sweep_trust.yaml" 2 "$work/failing" -- "${args[@]}" \
-  --set 'sweep.grid={model.trust: [0.6, 1.3]}' --set sweep.replicates=1
+  --set 'sweep.grid={"scenario.avs,scenario.hvs": [[4, 4], [40, 40]]}' --set sweep.replicates=1 \
+  --set scenario.auto_length=false
 [[ $(cat "$work/spool/jobs") == $'1000 failed\n1001 skipped' ]] || fail "jobs: $(cat "$work/spool/jobs")"
 [[ ! -e $work/failing/results.csv ]] || fail "merged although a shard failed"
 grep -q '"status":"ok"' "$work/failing/shards/0/journal.jsonl" || fail "shard 0 lost its result"
-grep -q 'model.trust' "$work/failing/shards/1/journal.jsonl" || fail "shard 1 did not record its failure"
+grep -q 'loop_length' "$work/failing/shards/1/journal.jsonl" || fail "shard 1 did not record its failure"
 echo "ok: a failing shard keeps the merge from running"
 
 # A config that does not load is refused before anything is submitted.

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -175,6 +176,10 @@ struct ExperimentConfig {
   bool IsValid(std::string* why) const;
 };
 
+// The text of a config file. Throws ConfigError naming the path when it is a
+// directory, missing or unreadable.
+std::string ReadConfigFile(const std::string& path);
+
 // Loads a YAML experiment file, applies `overrides` ("key.path=VALUE", VALUE
 // parsed as YAML) and validates. Unknown keys, wrong types and out-of-range
 // values throw ConfigError naming the file (or the --set), the key and value.
@@ -183,6 +188,20 @@ ExperimentConfig LoadExperimentConfig(const std::string& path,
 // Same, from YAML text (`origin` names it in messages).
 ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& origin,
                                        const std::vector<std::string>& overrides = {});
+// A config text parsed once, to be loaded many times with different
+// overrides (a sweep's grid points): Load(o) equals
+// ParseExperimentConfig(yaml_text, origin, o), without re-parsing the text.
+class ExperimentTemplate {
+ public:
+  ExperimentTemplate(const std::string& yaml_text, const std::string& origin);
+  ~ExperimentTemplate();
+  ExperimentConfig Load(const std::vector<std::string>& overrides) const;
+
+ private:
+  struct Impl;
+  std::shared_ptr<const Impl> impl_;
+};
+
 // The resolved config as YAML text and as a JSON string (same schema).
 std::string ToYaml(const ExperimentConfig& config);
 std::string ToJson(const ExperimentConfig& config);

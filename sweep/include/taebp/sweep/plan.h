@@ -92,9 +92,11 @@ struct Journal {
   std::size_t lines = 0;         // well-formed lines read
   std::size_t valid_bytes = 0;   // length up to the last complete line
   bool partial_tail = false;     // the file ended in a half-written line
+  // Malformed complete lines, skipped: "origin:line: why" each.
+  std::vector<std::string> corrupt;
 };
 // Parses journal text. Lines of another sweep (hash) throw ConfigError naming
-// `origin`; malformed complete lines are skipped.
+// `origin`; malformed complete lines are skipped and listed in `corrupt`.
 Journal ParseJournal(const std::string& text, const Plan& plan, const std::string& origin);
 // Adds `entry` (a journal line's JSON) to `journal` with the same precedence;
 // returns whether it was stored (false: outside the plan, or a failure after
