@@ -16,10 +16,16 @@ args=(--set scenario.duration=60 --set sweep.replicates=2
 
 "$taebp" sweep "$src/configs/sweep_trust.yaml" "${args[@]}" --jobs 1 --quiet --out "$work/single"
 
-out=$("$src/tools/slurm_sweep.sh" "$src/configs/sweep_trust.yaml" 3 "$work/cluster" -- "${args[@]}")
+# Submitted from a scratch directory: no log may land there.
+mkdir -p "$work/cwd"
+out=$(cd "$work/cwd" && "$src/tools/slurm_sweep.sh" "$src/configs/sweep_trust.yaml" 3 "$work/cluster" -- "${args[@]}")
 echo "$out"
 [[ $out == submitted:* ]] || fail "no 'submitted:' line"
 [[ $(cat "$work/spool/jobs") == $'1000 ok\n1001 ok' ]] || fail "jobs: $(cat "$work/spool/jobs")"
+[[ -z $(ls -A "$work/cwd") ]] || fail "logs in the submit directory: $(ls -A "$work/cwd")"
+for f in shard-0.1000.out shard-1.1000.out shard-2.1000.out merge.1001.out; do
+  [[ -f $work/cluster/slurm/$f ]] || fail "no log $work/cluster/slurm/$f"
+done
 for i in 0 1 2; do [[ -s $work/cluster/shards/$i/journal.jsonl ]] || fail "shard $i did not run"; done
 for f in results.csv aggregate.csv results.jsonl; do
   cmp "$work/single/$f" "$work/cluster/$f" || fail "$f differs from the single run"
