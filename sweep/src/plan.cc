@@ -119,8 +119,7 @@ std::string EntryProblem(const Json& e) {
       if (!v.is_null() && !v.is_number()) return name + " is not a number";
       if (v.is_number_float() && !std::isfinite(v.get<double>())) return name + " is not finite";
     }
-    for (const char* count : {"encounters", "collisions", "dc", "nudges", "other_collisions",
-                              "teleports"}) {
+    for (const char* count : {"encounters", "collisions", "dc"}) {  // summed by AggregateCsv
       if (!it.value().contains(count) || it.value()[count].is_null()) continue;
       const Json& v = it.value()[count];
       const bool ok = v.is_number_unsigned()

@@ -208,6 +208,40 @@ TEST(SweepJournal, TornTailIgnoredOtherSweepRefusedOkWins) {
   EXPECT_THAT(agg, HasSubstr("\n1,0.8,ta_ebp,0,1,,"));
 }
 
+// Lines that parse as JSON but are not entries of the right shape are named
+// (origin:line) and skipped, never thrown as a JSON type error nor summed
+// into the tables (counts that are negative, fractional or beyond 2^53).
+TEST(SweepJournal, LinesOfTheWrongShapeAreNamedAndSkipped) {
+  const Plan p = Expand("sweep:\n  replicates: 2\n  grid:\n    model.trust: [0.2, 0.8]\n");
+  const std::string h = "\"hash\":\"" + p.hash + "\"";
+  const std::vector<std::string> bad = {
+      "not json",
+      "[1, 2]",
+      "{\"point\":0,\"replicate\":0,\"status\":\"ok\"}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":7}",
+      "{" + h + ",\"point\":\"0\",\"replicate\":0,\"status\":\"ok\",\"policies\":{}}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":\"ok\",\"policies\":[]}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":\"ok\",\"policies\":{\"ta_ebp\":{\"encounters\":-1}}}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":\"ok\",\"policies\":{\"ta_ebp\":{\"encounters\":1.5}}}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":\"ok\",\"policies\":{\"ta_ebp\":{\"dc\":1e300}}}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":\"ok\",\"policies\":{\"ta_ebp\":{\"wait_mean\":\"abc\"}}}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":\"ok\",\"error\":3,\"policies\":{}}",
+  };
+  std::string text;
+  for (const std::string& line : bad) text += line + "\n";
+  Journal j;
+  ASSERT_NO_THROW(j = ParseJournal(text, p, "dir/journal.jsonl"));
+  EXPECT_TRUE(j.entries.empty());
+  EXPECT_EQ(j.lines, 0u);
+  ASSERT_EQ(j.corrupt.size(), bad.size());
+  for (std::size_t i = 0; i < bad.size(); ++i)
+    EXPECT_THAT(j.corrupt[i], HasSubstr("dir/journal.jsonl:" + std::to_string(i + 1) + ": "));
+  EXPECT_THAT(j.corrupt[3], HasSubstr("\"status\""));
+  EXPECT_THAT(j.corrupt[6], HasSubstr("policies.ta_ebp.encounters"));
+  EXPECT_NO_THROW(ResultsCsv(p, j));
+  EXPECT_NO_THROW(AggregateCsv(p, j));
+}
+
 // AddEntry says whether it stored the entry (merge takes a task's outputs
 // from the shard whose entry is kept); CountTasks tallies ok/failed/missing.
 TEST(SweepJournal, AddEntryReportsWhatItKeptAndCountTasksTallies) {
