@@ -1,7 +1,7 @@
 # Sourced by tools/test, tools/run and tools/bench: installs the Debian packages
 # the project needs (only what is missing), then configures and builds into build/.
 # Environment: TAEBP_BUILD_DIR (default build), TAEBP_JOBS (default nproc),
-# CI=true turns warnings into errors.
+# TAEBP_CMAKE_ARGS (more cmake -D options), CI=true turns warnings into errors.
 
 TAEBP_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
@@ -53,7 +53,10 @@ taebp_build() {
   local build=${TAEBP_BUILD_DIR:-$TAEBP_ROOT/build}
   local werror=OFF
   [[ ${CI:-} == true ]] && werror=ON
-  cmake -S "$TAEBP_ROOT" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTAEBP_WERROR=$werror >/dev/null
+  # TAEBP_CMAKE_ARGS: more -D options (tools/test --sanitize: -DTAEBP_SANITIZE=ON).
+  # shellcheck disable=SC2086
+  cmake -S "$TAEBP_ROOT" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTAEBP_WERROR=$werror \
+    ${TAEBP_CMAKE_ARGS:-} >/dev/null
   cmake --build "$build" -j "${TAEBP_JOBS:-$(nproc)}"
 }
 
