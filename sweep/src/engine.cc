@@ -537,7 +537,7 @@ void WriteOutputs(const fs::path& out, const Plan& plan, const Journal& journal,
   WriteFilesAtomically(out.string(), {{"results.csv", ResultsCsv(plan, journal)},
                                       {"results.jsonl", ResultsJsonl(plan, journal)},
                                       {"aggregate.csv", AggregateCsv(plan, journal)},
-                                      {"sweep.json", header.dump(2) + "\n"}});
+                                      {"sweep.json", Dump(header, 2) + "\n"}});
 }
 
 std::string ShardName(const std::string& shard) {
@@ -669,7 +669,7 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
       }
       header = SweepHeader(plan, o.shard, SumoVersionOf(journal));
       if (!fs::exists(out / "sweep.json"))
-        WriteFilesAtomically(out.string(), {{"sweep.json", header.dump(2) + "\n"}});
+        WriteFilesAtomically(out.string(), {{"sweep.json", Dump(header, 2) + "\n"}});
       Json pending = Json::array();
       int lost = 0;
       for (const Task& t : Pending(scope, journal, out, &lost)) pending.push_back(t.index);
@@ -689,7 +689,7 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
       s["error"] = e.what();
       s["code"] = 1;
     }
-    setup = s.dump();
+    setup = Dump(s);
   }
   mpi.Bcast(&setup);
   const Json s = Json::parse(setup);
@@ -718,7 +718,7 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
   InstallSignalHandlers();
   Progress progress(show, static_cast<int>(scope.size()), already_ok);
   auto record = [&](const Json& e) {  // rank 0
-    journal_file->Append(e.dump());
+    journal_file->Append(Dump(e));
     AddEntry(&journal, plan, e);
     progress.Finished(IsOk(e));
     progress.Update();
@@ -764,7 +764,7 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
           if (tag == kTagStop) stop = true;
         return stop;
       };
-      auto send = [&](const Json& e) { mpi.Send(e.dump(), 0, kTagResult); };
+      auto send = [&](const Json& e) { mpi.Send(Dump(e), 0, kTagResult); };
       completed = RunTasks(plan, out, mine, jobs, mpi.rank(), worker, send, poll);
       mpi.Send(completed ? "ok" : "stopped", 0, kTagDone);
       return completed ? 0 : kExitInterrupted;
@@ -907,7 +907,7 @@ int RunMerge(const MergeOptions& o) {
     if (!HasTaskOutputs(here)) lost.push_back(here.string());
   }
   std::string lines;
-  for (const auto& [index, e] : journal.entries) lines += e.dump() + "\n";
+  for (const auto& [index, e] : journal.entries) lines += Dump(e) + "\n";
   Json header = SweepHeader(plan, "", SumoVersionOf(journal));
   header["merged_from"] = o.dirs;
   WriteFilesAtomically(out.string(), {{"journal.jsonl", lines}});

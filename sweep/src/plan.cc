@@ -58,7 +58,7 @@ std::string Cell(const Json& v) {
   }
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
   if (v.is_string()) return CsvQuote(v.get<std::string>());
-  return CsvQuote(v.dump());
+  return CsvQuote(Dump(v));
 }
 
 double Number(const Json& v) {
@@ -133,6 +133,10 @@ std::string EntryProblem(const Json& e) {
 }
 
 }  // namespace
+
+std::string Dump(const Json& j, int indent) {
+  return j.dump(indent, ' ', false, Json::error_handler_t::replace);
+}
 
 std::string CsvQuote(const std::string& s) {
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
@@ -533,7 +537,7 @@ std::string ResultsJsonl(const Plan& plan, const Journal& journal) {
     row["status"] = status;
     row["error"] = error;
     for (const auto& c : MetricColumns()) row[c] = metrics[c];
-    out += row.dump() + "\n";
+    out += Dump(row) + "\n";
   });
   return out;
 }

@@ -121,6 +121,35 @@ TEST(ConfigLoad, ToYamlRoundTripGivesIdenticalJson) {
   EXPECT_EQ(ToYaml(back), rich_yaml);
 }
 
+// Found by replaying configs/sweep_trust.yaml through the fuzz target: the
+// saved config wrote the double 1.0 as "1", so a grid [..., 0.9, 1.0] came
+// back as [..., 0.9, 1], another grid (another config hash). Doubles are
+// written with the shortest digits that read back exactly, and a fraction.
+TEST(ConfigLoad, SavedConfigKeepsNumbersAsTheyRead) {
+  const ExperimentConfig c = ParseExperimentConfig(
+      "scenario: {duration: 60.0, step_length: 0.1}\n"
+      "sweep: {replicates: 1, grid: {model.trust: [0.9, 1.0], scenario.seed: [1, 2]}}\n",
+      "numbers.yaml");
+  const std::string saved = ToYaml(c);
+  EXPECT_THAT(saved, HasSubstr("model.trust: [0.9, 1.0]"));
+  EXPECT_THAT(saved, HasSubstr("scenario.seed: [1, 2]"));
+  EXPECT_THAT(saved, HasSubstr("duration: 60.0\n"));
+  EXPECT_THAT(saved, HasSubstr("step_length: 0.1\n"));
+  EXPECT_EQ(ToJson(ParseExperimentConfig(saved, "saved.yaml")), ToJson(c)) << saved;
+  // An infinite value (even of a key the linear likelihood ignores) was
+  // accepted and saved as null, which does not load: refused.
+  for (const char* inf : {".inf", "-.inf", ".nan"}) {
+    EXPECT_THAT(ConfigErrorOf([&] {
+                  ParseExperimentConfig(std::string("model: {likelihood: {midpoint: ") + inf + "}}",
+                                        "inf.yaml");
+                }),
+                HasSubstr("key 'model.likelihood.midpoint' expects a finite number"))
+        << inf;
+  }
+  EXPECT_THAT(ConfigErrorOf([&] { ParseExperimentConfig("scenario: {duration: 1e999}", "big.yaml"); }),
+              HasSubstr("key 'scenario.duration' expects a number, got '1e999'"));
+}
+
 // The built-in default is the safe geometry (README "Geometry"): a nudge of up
 // to s_max from the stop line keeps the AV's nose out of a crossing HV's path.
 TEST(ConfigLoad, DefaultGeometryIsTheSafeOne) {
@@ -282,8 +311,83 @@ TEST(ConfigErrors, MissingFileNamesThePath) {
   EXPECT_THAT(pmsg, HasSubstr(path));
 }
 
+// Found by fuzzing (tools/fuzz, fuzz/regressions/config): bytes that are not
+// UTF-8 (a Latin-1 comment or path) used to load and then make every JSON
+// output throw nlohmann's type_error 316 after the simulation. YAML is UTF-8:
+// refused at load, naming the file and line (or the --set).
+TEST(ConfigErrors, TextThatIsNotUtf8IsRefusedNamingFileAndLine) {
+  const FileError latin1 = LoadError("# M\xfcller's experiment\nscenario: {avs: 2}\n");
+  EXPECT_THAT(latin1.message, HasSubstr(latin1.path + ":1: not UTF-8 text (byte 0xFC)"));
+  const FileError path = LoadError("scenario:\n  network: \"caf\xe9.net.xml\"\n");
+  EXPECT_THAT(path.message, HasSubstr(path.path + ":2: not UTF-8"));
+  for (const char* bad : {"\xc0\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80", "\xe2\x82"}) {
+    EXPECT_THAT(LoadError(std::string("policies: [") + bad + "]\n").message, HasSubstr("not UTF-8"))
+        << "overlong, surrogate, beyond U+10FFFF or truncated";
+  }
+  EXPECT_THAT(ConfigErrorOf([&] { LoadExperimentConfig(kPaper, {"scenario.network=\xff"}); }),
+              HasSubstr("not UTF-8"));
+  // Valid UTF-8 of every length is fine.
+  const ExperimentConfig c =
+      ParseExperimentConfig("# caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9a\x97\nscenario: {network: \"\xc3\xa9.net.xml\"}\n",
+                            "utf8.yaml");
+  EXPECT_EQ(c.scenario.network, "\xc3\xa9.net.xml");
+  EXPECT_NO_THROW(ToJson(c));
+}
+
+// yaml-cpp stops at 2000 levels of nesting; the message says so (it used to
+// say "bad file").
+TEST(ConfigErrors, DeepNestingIsAClearError) {
+  const std::string deep = "policies: " + std::string(3000, '[') + std::string(3000, ']') + "\n";
+  const FileError e = LoadError(deep);
+  EXPECT_THAT(e.message, HasSubstr(e.path + ":1: malformed YAML: nested more than"));
+  EXPECT_THAT(e.message, HasSubstr("levels deep"));
+  EXPECT_THAT(ConfigErrorOf([&] {
+                LoadExperimentConfig(kPaper, {"policies=" + std::string(3000, '[')});
+              }),
+              HasSubstr("levels deep"));
+}
+
 TEST(ConfigErrors, NonMapTopLevelIsRejected) {
   EXPECT_THAT(LoadError("- a\n- b\n").message, HasSubstr("top level"));
+}
+
+// Found by fuzzing (fuzz/regressions/config/set_on_a_list.txt): --set on a
+// config whose top level is not a map read parts[-1] (undefined behaviour,
+// flagged by UBSan) to name the parent key.
+TEST(ConfigErrors, SetOnAConfigThatIsNotAMapIsAnError) {
+  for (const std::string& text : {std::string("- a\n- b\n"), std::string("just text\n"),
+                                  std::string("3\n")}) {
+    EXPECT_THAT(ConfigErrorOf([&] { ParseExperimentConfig(text, "top.yaml", {"scenario.avs=1"}); }),
+                HasSubstr("--set scenario.avs=1: the config is not a map of keys"))
+        << text;
+  }
+}
+
+// Found by fuzzing (fuzz/regressions/problem/complex_key.yaml): a key that is
+// not a name (`? [1, 0]` or `? ` with no key) threw yaml-cpp's
+// TypedBadConversion ("bad conversion", exit 1) instead of a config error.
+TEST(ConfigErrors, KeysMustBeNames) {
+  for (const std::string& text :
+       {std::string("? [a, b]\n: 1\n"), std::string("scenario: {? [x]: 1}\n"),
+        std::string("model: {trust: {dist: uniform, ? {a: 1}: 2}}\n"),
+        std::string("? \n: 1\n"),
+        std::string("sweep: {replicates: 1, grid: {? [model.trust]: [0.5]}}\n")}) {
+    const FileError e = LoadError(text);
+    EXPECT_THAT(e.message, HasSubstr("must be a name")) << text;
+    EXPECT_THAT(e.message, HasSubstr(e.path + ":")) << text;
+  }
+  TempDir dir;
+  const std::string problem =
+      dir.Write("p.yaml",
+                "states: [a, b]\nactions: [x, y]\nprior: [0.5, 0.5]\n"
+                "receiver_utility: [[1, 0], [0, 1]]\nsender_utility: [[1, 0], [1, 0]]\n"
+                "trust: 1\n? [1, 0]\n: 2\n");
+  EXPECT_THAT(ConfigErrorOf([&] { LoadProblemConfig(problem); }), HasSubstr("must be a name"));
+  // Inside a grid value a complex key is only data: ToJson (the sweep's
+  // config hash) does not throw on it.
+  const ExperimentConfig c = ParseExperimentConfig(
+      "sweep: {replicates: 1, grid: {model.trust: [{? [a]: 1}]}}\n", "grid.yaml");
+  EXPECT_NO_THROW(ToJson(c));
 }
 
 // A directory, an empty file or a file of comments only is not a config: an

@@ -143,6 +143,23 @@ TEST(SweepGrid, OtherSpecErrors) {
   EXPECT_THAT(ErrorOf("sweep:\n  grid:\n    model.trust: 0.5\n"), HasSubstr("sweep.grid.model.trust"));
 }
 
+// Found by fuzzing (fuzz/regressions/sweep/latin1_comment.txt): a sweep
+// config with a Latin-1 comment expanded fine and then sweep.json could not
+// be written (nlohmann type_error 316). Refused up front, naming the line.
+TEST(SweepGrid, ConfigThatIsNotUtf8IsRefused) {
+  const std::string text = std::string("# tr\xff\xff values\n") + kBase +
+                           "sweep:\n  replicates: 1\n  grid:\n    model.trust: [0.2]\n";
+  try {
+    ExpandSweep(text, "latin1.yaml", {});
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("latin1.yaml:1: not UTF-8 text (byte 0xFF)"));
+  }
+  // Text the tables and sweep.json carry from elsewhere (a task's error
+  // message) is written with U+FFFD instead of throwing.
+  EXPECT_EQ(Dump(Json("a\xff")), "\"a\xef\xbf\xbd\"");
+}
+
 TEST(SweepGrid, SplitFlowSequenceRespectsNestingAndQuotes) {
   std::vector<std::string> items;
   ASSERT_TRUE(SplitFlowSequence("[0, [1, 2], {a: 1, b: [3, 4]}, 'x, y', \"q\\\",\"]", &items));

@@ -120,6 +120,10 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal);
 // sweep.json: the resolved base config, the plan's shape and provenance.
 Json SweepHeader(const Plan& plan, const std::string& shard, const std::string& sumo_version);
 
+// JSON text of `j` (indent < 0: one line) in which bytes that are not UTF-8
+// (a task's error message, a path) become U+FFFD instead of throwing.
+std::string Dump(const Json& j, int indent = -1);
+
 // A CSV cell, quoted when it holds a comma, quote or newline.
 std::string CsvQuote(const std::string& s);
 
