@@ -12,7 +12,7 @@ namespace taebp::sweep {
 namespace {
 
 constexpr const char* kFormat = "taebp-sweep/1";
-constexpr std::size_t kMaxPoints = 1000000;
+constexpr std::size_t kMaxPoints = 100000;  // each one is validated up front (~0.15 ms)
 constexpr std::size_t kMaxTasks = 10000000;
 
 std::string Trim(const std::string& s) {

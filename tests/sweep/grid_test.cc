@@ -160,6 +160,19 @@ TEST(SweepGrid, ConfigThatIsNotUtf8IsRefused) {
   EXPECT_EQ(Dump(Json("a\xff")), "\"a\xef\xbf\xbd\"");
 }
 
+// The plan's size is bounded before anything is allocated: at most 100 000
+// grid points (each point's config is checked up front) and 10 000 000 tasks
+// (sweep.replicates = 1e9 used to end in std::bad_alloc).
+TEST(SweepGrid, PointsAndTasksAreBounded) {
+  std::string values;
+  for (int i = 0; i < 400; ++i) values += (i ? ", " : "") + std::to_string(i);
+  EXPECT_THAT(ErrorOf("sweep:\n  replicates: 1\n  grid:\n    scenario.seed: [" + values +
+                      "]\n    scenario.min_gap: [" + values + "]\n"),
+              HasSubstr("sweep.grid has more than 100000 points"));
+  EXPECT_THAT(ErrorOf("sweep:\n  replicates: 1000000000\n  grid:\n    model.trust: [0.2, 0.8]\n"),
+              HasSubstr("sweep.replicates = 1000000000 times 2 grid points is more than 10000000 tasks"));
+}
+
 TEST(SweepGrid, SplitFlowSequenceRespectsNestingAndQuotes) {
   std::vector<std::string> items;
   ASSERT_TRUE(SplitFlowSequence("[0, [1, 2], {a: 1, b: [3, 4]}, 'x, y', \"q\\\",\"]", &items));
