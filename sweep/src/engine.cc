@@ -832,8 +832,10 @@ int RunMerge(const MergeOptions& o) {
         throw std::runtime_error("no config_hash or config_text");
       for (const char* k : {"config_path"})
         if (h.contains(k) && !h[k].is_string()) throw std::runtime_error(std::string(k) + " is not a string");
-      if (h.contains("replicates") && !h["replicates"].is_number_integer())
-        throw std::runtime_error("replicates is not an integer");
+      if (h.contains("replicates") &&
+          !(h["replicates"].is_number_integer() && h["replicates"].get<std::int64_t>() >= 1 &&
+            h["replicates"].get<std::int64_t>() <= 10000000))
+        throw std::runtime_error("replicates is not an integer in [1, 10000000]");
       if (h.contains("overrides") &&
           !(h["overrides"].is_array() &&
             std::all_of(h["overrides"].begin(), h["overrides"].end(),

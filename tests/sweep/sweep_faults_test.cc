@@ -229,6 +229,29 @@ TEST_F(SweepCli, MergeReportsLostTaskFoldersAndCorruptJournalLines) {
   EXPECT_TRUE(fs::exists(dir_ / "m/tasks/0-1/summary.json"));
 }
 
+// A shard's sweep.json whose fields have the wrong type or range is refused
+// naming the file (replicates = 2^32 + 1 used to wrap around to 1).
+TEST_F(SweepCli, MergeRefusesABrokenSweepJson) {
+  const fs::path cfg = Config("    model.trust: [0.5]\n", 1);
+  const fs::path s0 = dir_ / "s0";
+  ASSERT_EQ(Sweep(cfg, s0, "--set scenario.duration=10"), 0) << last_log_;
+  const std::string header = ReadFile(s0 / "sweep.json");
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"\"replicates\": 1", "\"replicates\": 4294967297"},
+           {"\"replicates\": 1", "\"replicates\": \"1\""},
+           {"\"overrides\": [", "\"overrides\": [7, "},
+           {"\"config_hash\": \"", "\"config_hash\": 1, \"x\": \""}}) {
+    std::string broken = header;
+    const auto at = broken.rfind(from);  // the top-level key: the last one
+    ASSERT_NE(at, std::string::npos) << from;
+    broken.replace(at, from.size(), to);
+    std::ofstream(s0 / "sweep.json", std::ios::binary) << broken;
+    EXPECT_EQ(Taebp("merge " + Quote((dir_ / "m").string()) + " " + Quote(s0.string())), 2)
+        << to << "\n" << last_log_;
+    EXPECT_THAT(last_log_, HasSubstr((s0 / "sweep.json").string() + ": unreadable")) << to;
+  }
+}
+
 // ------------------------------------------------------------------ a full disk
 
 // The output folder fills up while a sweep is extended (a 1 MiB tmpfs, root
