@@ -18,9 +18,12 @@
 #        taebp merge OUT OUT/shards/0 ... OUT/shards/(SHARDS-1)
 #      which writes OUT/results.csv, results.jsonl, aggregate.csv, journal.jsonl,
 #      sweep.json and OUT/tasks/ (the same files as one `taebp sweep --out OUT`).
+# The jobs' own logs go to OUT/slurm/ (shard-I.ARRAYID.out, merge.JOBID.out),
+# not to the directory you submit from.
 # If a shard fails (a task failed, time limit, node crash), afterok keeps the
-# merge from running: submit the same command again. Each shard resumes from its
-# journal (finished tasks are not re-run), so only the missing work is redone.
+# merge from running and Slurm cancels it (--kill-on-invalid-dep=yes): fix the
+# cause and submit the same command again. Each shard resumes from its journal
+# (finished tasks are not re-run), so only the missing work is redone.
 # `taebp merge` can also be run by hand at any time on the finished shards.
 #
 # Resources: the #SBATCH lines below are the defaults of the array tasks; set
@@ -36,6 +39,8 @@
 #SBATCH --mem-per-cpu=1G
 #SBATCH --time=02:00:00
 #SBATCH --output=slurm-%x-%A_%a.out
+# (--output above applies only when this file is submitted by hand: the
+# submit mode below sends every log to OUT/slurm/.)
 set -euo pipefail
 
 export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
@@ -81,7 +86,7 @@ command -v sbatch >/dev/null || { echo "slurm_sweep.sh: sbatch not found (not a 
 [[ -n $out ]] || out=results/$(basename "${config%.*}")
 config=$(realpath "$config")
 taebp=$(realpath "$taebp")
-mkdir -p "$out/shards"
+mkdir -p "$out/shards" "$out/slurm"
 out=$(realpath "$out")
 
 # Fail here rather than in every array task: the config and the grid must load.
@@ -91,10 +96,11 @@ common="ALL,TAEBP=$taebp,TAEBP_CONFIG=$config,TAEBP_OUT=$out,TAEBP_SHARDS=$shard
 cpus=()
 [[ -n ${TAEBP_CPUS:-} ]] && cpus=(--cpus-per-task="$TAEBP_CPUS")
 array_job=$(sbatch --parsable --array="0-$((shards - 1))" "${cpus[@]}" \
+  --output="$out/slurm/shard-%a.%A.out" \
   --export="$common,TAEBP_SLURM_MODE=shard" "$0" "${extra[@]}")
 array_job=${array_job%%;*}
-merge_job=$(sbatch --parsable --dependency="afterok:$array_job" --job-name=taebp-merge \
-  --cpus-per-task=1 --time=00:30:00 --output="$out/slurm-merge-%j.out" \
+merge_job=$(sbatch --parsable --dependency="afterok:$array_job" --kill-on-invalid-dep=yes \
+  --job-name=taebp-merge --cpus-per-task=1 --time=00:30:00 --output="$out/slurm/merge.%j.out" \
   --export="$common,TAEBP_SLURM_MODE=merge" "$0")
 merge_job=${merge_job%%;*}
 echo "submitted: shards job array $array_job (0-$((shards - 1))), merge job $merge_job -> $out"

@@ -150,6 +150,18 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   c.Positive("scenario.step_length", s.step_length);
   if (c.ok() && s.step_length > 1.0)
     c.Fail("scenario.step_length = " + Num(s.step_length) + " must be <= 1 s");
+  // SUMO counts time in whole milliseconds: it refuses a step below 1 ms and
+  // silently rounds any other step to a whole millisecond.
+  if (c.ok()) {
+    const double ms = s.step_length * 1000.0;
+    if (ms < 1.0 - 1e-9)
+      c.Fail("scenario.step_length = " + Num(s.step_length) +
+             " is below SUMO's smallest step, one millisecond (0.001 s)");
+    else if (std::abs(ms - std::round(ms)) > 1e-6 * ms)
+      c.Fail("scenario.step_length = " + Num(s.step_length) +
+             " is not a whole number of milliseconds (SUMO would run " +
+             Num(std::round(ms) / 1000.0) + " s steps)");
+  }
   c.Positive("scenario.duration", s.duration);
   if (c.ok() && s.duration < s.step_length)
     c.Fail("scenario.duration = " + Num(s.duration) + " is shorter than one step");

@@ -4,10 +4,14 @@
 #include "taebp/config/config.h"
 
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -107,6 +111,10 @@ class YamlReader {
   void RejectDuplicates(const YAML::Node& map, const std::string& prefix) const {
     std::map<std::string, int> seen;  // key -> line of its first occurrence
     for (const auto& kv : map) {
+      if (!kv.first.IsScalar())  // `? [a, b]: 1` or `? : 1`
+        Fail(prefix, kv.first,
+             "a key " + std::string(prefix.empty() ? "" : "in '" + prefix + "' ") +
+                 "must be a name, got " + Show(kv.first));
       const std::string name = kv.first.as<std::string>();
       const auto [it, fresh] = seen.emplace(name, kv.first.Mark().line + 1);
       if (!fresh)
@@ -145,8 +153,12 @@ class YamlReader {
     double v = 0;
     const std::string& s = node.Scalar();
     bool is_bool_word = s == "true" || s == "false" || s == "yes" || s == "no";
-    if (is_bool_word || !YAML::convert<double>::decode(node, v) || std::isnan(v))
+    if (is_bool_word || !YAML::convert<double>::decode(node, v))
       Fail(key, node, "key '" + key + "' expects a number, got " + Show(node));
+    // Infinite and NaN values mean nothing in a config, and JSON (summary.json,
+    // sweep.json) cannot carry them.
+    if (!std::isfinite(v))
+      Fail(key, node, "key '" + key + "' expects a finite number, got " + Show(node));
     *value = v;
   }
   void Read(const YAML::Node& node, const std::string& key, bool* value) {
@@ -269,7 +281,8 @@ class YamlReader {
 nlohmann::ordered_json YamlToJson(const YAML::Node& node) {
   if (node.IsMap()) {
     nlohmann::ordered_json j = nlohmann::ordered_json::object();
-    for (const auto& kv : node) j[kv.first.as<std::string>()] = YamlToJson(kv.second);
+    for (const auto& kv : node)
+      j[kv.first.IsScalar() ? kv.first.Scalar() : Show(kv.first)] = YamlToJson(kv.second);
     return j;
   }
   if (node.IsSequence()) {
@@ -348,6 +361,19 @@ class JsonWriter {
   nlohmann::ordered_json* out_;
 };
 
+// A double as YAML text that reads back as the same double and as a number
+// with a fraction (1.0, not 1: a sweep's grid keeps its values' text, so "1"
+// and "1.0" are different grids): the shortest round-trip digits.
+std::string YamlDouble(double v) {
+  if (std::isnan(v)) return ".nan";
+  if (std::isinf(v)) return v > 0 ? ".inf" : "-.inf";
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  std::string s(buf, r.ptr);
+  if (s.find_first_of(".eE") == std::string::npos) s += ".0";
+  return s;
+}
+
 void EmitJson(YAML::Emitter& out, const nlohmann::ordered_json& j) {
   if (j.is_object()) {
     out << YAML::BeginMap;
@@ -371,34 +397,168 @@ void EmitJson(YAML::Emitter& out, const nlohmann::ordered_json& j) {
   } else if (j.is_number_integer()) {
     out << j.get<long long>();
   } else {
-    out << YAML::Precision(17) << j.get<double>();
+    out << YamlDouble(j.get<double>());
   }
 }
 
+// The offset of the first byte of `s` that is not part of valid UTF-8
+// (RFC 3629: no overlong forms, no surrogates, at most U+10FFFF), or npos.
+std::size_t InvalidUtf8(const std::string& s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    std::size_t n = 0;
+    unsigned min = 0;
+    unsigned cp = 0;
+    if (c < 0x80) { ++i; continue; }
+    if (c >= 0xC2 && c <= 0xDF) { n = 1; cp = c & 0x1F; min = 0x80; }
+    else if (c >= 0xE0 && c <= 0xEF) { n = 2; cp = c & 0x0F; min = 0x800; }
+    else if (c >= 0xF0 && c <= 0xF4) { n = 3; cp = c & 0x07; min = 0x10000; }
+    else return i;
+    for (std::size_t k = 1; k <= n; ++k) {
+      if (i + k >= s.size()) return i;
+      const auto t = static_cast<unsigned char>(s[i + k]);
+      if ((t & 0xC0) != 0x80) return i;
+      cp = (cp << 6) | (t & 0x3F);
+    }
+    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return i;
+    i += n + 1;
+  }
+  return std::string::npos;
+}
+
+// YAML is UTF-8 text (and every file taebp writes is JSON or YAML, which
+// must be too): anything else is refused here, naming where.
+void RequireUtf8(const std::string& text, const std::string& origin, bool lines) {
+  const std::size_t bad = InvalidUtf8(text);
+  if (bad == std::string::npos) return;
+  std::string where = origin;
+  if (lines) {
+    const std::size_t line = 1 + static_cast<std::size_t>(
+                                     std::count(text.begin(), text.begin() + bad, '\n'));
+    where += ":" + std::to_string(line);
+  }
+  char byte[8];
+  std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(text[bad]));
+  throw ConfigError(where + ": not UTF-8 text (byte " + byte +
+                    "): save the file as UTF-8 (YAML is UTF-8)");
+}
+
 YAML::Node ParseYaml(const std::string& text, const std::string& origin) {
+  RequireUtf8(text, origin, true);
   try {
     return YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    throw ConfigError(origin + ":" + std::to_string(e.mark.line + 1) +
+                      ": malformed YAML: nested more than " + std::to_string(e.depth() - 1) +
+                      " levels deep");
   } catch (const YAML::ParserException& e) {
     throw ConfigError(origin + ":" + std::to_string(e.mark.line + 1) +
                       ": malformed YAML: " + e.msg);
   }
 }
 
-std::string ReadFile(const std::string& path) {
+std::string ReadFileText(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw ConfigError(path + ": is a directory, not a config file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path + ": cannot open the file (does it exist?)");
   std::ostringstream ss;
   ss << in.rdbuf();
+  if (in.bad()) throw ConfigError(path + ": cannot read the file");
   return ss.str();
+}
+
+// A file whose YAML document is empty (no text, only comments, `---` or `~`):
+// not a config. An explicit `{}` is.
+YAML::Node ParseFileYaml(const std::string& path) {
+  YAML::Node root = ParseYaml(ReadFileText(path), path);
+  if (!root.IsDefined() || root.IsNull())
+    throw ConfigError(path + ": the file is empty (no keys; `{}` means all defaults)");
+  return root;
+}
+
+// The key paths of the config sections: nested structs, into which a map
+// VALUE of --set is merged key by key (everything else is replaced).
+class SectionCollector {
+ public:
+  SectionCollector(std::set<std::string>* out, std::string prefix)
+      : out_(out), prefix_(std::move(prefix)) {}
+  template <typename T>
+  void Visit(const char* name, T* value) {
+    Collect(Join(prefix_, name), value);
+  }
+
+ private:
+  template <typename T>
+  void Collect(const std::string& key, std::optional<T>*) {
+    T inner{};
+    Collect(key, &inner);
+  }
+  template <typename T>
+  void Collect(const std::string& key, T* value) {
+    if constexpr (HasSerialize<T>::value) {
+      out_->insert(key);
+      SectionCollector sub(out_, key);
+      value->Serialize(&sub);
+    }
+  }
+  template <typename T, typename = void>
+  struct HasSerialize : std::false_type {};
+  template <typename T>
+  struct HasSerialize<T, std::void_t<decltype(std::declval<T&>().Serialize(
+                             static_cast<SectionCollector*>(nullptr)))>> : std::true_type {};
+
+  std::set<std::string>* out_;
+  std::string prefix_;
+};
+
+const std::set<std::string>& ExperimentSections() {
+  static const std::set<std::string> sections = [] {
+    std::set<std::string> s;
+    ExperimentConfig c;
+    SectionCollector collector(&s, "");
+    c.Serialize(&collector);
+    return s;
+  }();
+  return sections;
+}
+
+// node[name] = value, except that a map value for a config section that is
+// already a map is merged into it key by key (recursively for sub-sections).
+// `written` gets the key path of every value set.
+void Assign(YAML::Node node, const std::string& name, const std::string& key,
+            const YAML::Node& value, std::vector<std::string>* written) {
+  YAML::Node existing = node[name];
+  if (value.IsMap() && ExperimentSections().count(key) && existing.IsDefined() &&
+      existing.IsMap()) {
+    for (const auto& kv : value) {
+      if (!kv.first.IsScalar()) {  // the loader names it as an unknown key
+        existing[kv.first] = kv.second;
+        written->push_back(key);
+        continue;
+      }
+      const std::string sub = kv.first.Scalar();
+      Assign(existing, sub, key + "." + sub, kv.second, written);
+    }
+    return;
+  }
+  node[name] = value;
+  written->push_back(key);
 }
 
 // Sets root[a][b][c] = value for key "a.b.c", creating maps on the way.
 void SetPath(YAML::Node node, const std::vector<std::string>& parts, std::size_t i,
-             const YAML::Node& value, const std::string& text) {
+             const YAML::Node& value, const std::string& text, std::vector<std::string>* written) {
   if (!node.IsMap() && !node.IsNull())
-    throw ConfigError("--set " + text + ": '" + parts[i - 1] + "' is not a map");
+    throw ConfigError("--set " + text + ": " +
+                      (i == 0 ? std::string("the config is not a map of keys")
+                              : "'" + parts[i - 1] + "' is not a map"));
   if (i + 1 == parts.size()) {
-    node[parts[i]] = value;
+    std::string key;
+    for (const std::string& p : parts) key = Join(key, p);
+    Assign(node, parts[i], key, value, written);
     return;
   }
   YAML::Node child = node[parts[i]];
@@ -406,10 +566,12 @@ void SetPath(YAML::Node node, const std::vector<std::string>& parts, std::size_t
     node[parts[i]] = YAML::Node(YAML::NodeType::Map);
     child = node[parts[i]];
   }
-  SetPath(child, parts, i + 1, value, text);
+  SetPath(child, parts, i + 1, value, text, written);
 }
 
 void ApplyOverride(YAML::Node& root, const std::string& text, Origins* origins) {
+  if (InvalidUtf8(text) != std::string::npos)
+    throw ConfigError("--set " + text + ": not UTF-8 text");
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
     throw ConfigError("--set " + text + ": expected KEY=VALUE (e.g. scenario.avs=4)");
@@ -424,12 +586,16 @@ void ApplyOverride(YAML::Node& root, const std::string& text, Origins* origins) 
   YAML::Node value;
   try {
     value = value_text.empty() ? YAML::Node(YAML::NodeType::Null) : YAML::Load(value_text);
+  } catch (const YAML::DeepRecursion& e) {
+    throw ConfigError("--set " + text + ": value is not valid YAML: nested more than " +
+                      std::to_string(e.depth() - 1) + " levels deep");
   } catch (const YAML::ParserException& e) {
     throw ConfigError("--set " + text + ": value is not valid YAML: " + e.msg);
   }
   if (!root.IsDefined() || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
-  SetPath(root, parts, 0, value, text);
-  origins->AddOverride(key, text);
+  std::vector<std::string> written;
+  SetPath(root, parts, 0, value, text, &written);
+  for (const std::string& k : written) origins->AddOverride(k, text);
 }
 
 template <typename T>
@@ -449,9 +615,8 @@ T ReadRoot(const YAML::Node& root, const Origins& origins, const std::string& or
 
 }  // namespace
 
-ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& origin,
-                                       const std::vector<std::string>& overrides) {
-  YAML::Node root = ParseYaml(yaml_text, origin);
+static ExperimentConfig ParseExperimentRoot(YAML::Node root, const std::string& origin,
+                                     const std::vector<std::string>& overrides) {
   Origins origins(origin);
   for (const std::string& o : overrides) ApplyOverride(root, o, &origins);
   ExperimentConfig config = ReadRoot<ExperimentConfig>(root, origins, origin, false);
@@ -463,9 +628,41 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
   return config;
 }
 
+std::string ReadConfigFile(const std::string& path) { return ReadFileText(path); }
+
+struct ExperimentTemplate::Impl {
+  std::string text;
+  YAML::Node root;
+  std::string origin;
+};
+
+ExperimentTemplate::ExperimentTemplate(const std::string& yaml_text, const std::string& origin) {
+  auto impl = std::make_shared<Impl>();
+  impl->text = yaml_text;
+  impl->root = ParseYaml(yaml_text, origin);
+  impl->origin = origin;
+  impl_ = std::move(impl);
+}
+
+ExperimentTemplate::~ExperimentTemplate() = default;
+
+ExperimentConfig ExperimentTemplate::Load(const std::vector<std::string>& overrides) const {
+  try {
+    return ParseExperimentRoot(YAML::Clone(impl_->root), impl_->origin, overrides);
+  } catch (const ConfigError&) {
+    // YAML::Clone drops the line numbers: the message from a fresh parse.
+    return ParseExperimentRoot(ParseYaml(impl_->text, impl_->origin), impl_->origin, overrides);
+  }
+}
+
+ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& origin,
+                                       const std::vector<std::string>& overrides) {
+  return ParseExperimentRoot(ParseYaml(yaml_text, origin), origin, overrides);
+}
+
 ExperimentConfig LoadExperimentConfig(const std::string& path,
                                       const std::vector<std::string>& overrides) {
-  return ParseExperimentConfig(ReadFile(path), path, overrides);
+  return ParseExperimentRoot(ParseFileYaml(path), path, overrides);
 }
 
 std::string ToJson(const ExperimentConfig& config) {
@@ -482,11 +679,15 @@ std::string ToYaml(const ExperimentConfig& config) {
 }
 
 ProblemConfig LoadProblemConfig(const std::string& path) {
-  return ParseProblemConfig(ReadFile(path), path);
+  YAML::Node root = ParseFileYaml(path);
+  Origins origins(path);
+  return ReadRoot<ProblemConfig>(root, origins, path, true);
 }
 
 ProblemConfig ParseProblemConfig(const std::string& yaml_text, const std::string& origin) {
   YAML::Node root = ParseYaml(yaml_text, origin);
+  if (!root.IsDefined() || root.IsNull())
+    throw ConfigError(origin + ": the problem is empty (no keys)");
   Origins origins(origin);
   return ReadRoot<ProblemConfig>(root, origins, origin, true);
 }

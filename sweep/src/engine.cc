@@ -8,6 +8,7 @@
 
 #include "taebp/sweep/plan.h"
 #include "taebp/config/config.h"
+#include "taebp/report/output_dir.h"
 #include "taebp/report/report.h"
 #include "taebp/persuasion/persuasion.h"
 
@@ -42,6 +43,20 @@
 #include <mpi.h>
 #endif
 
+// A sanitizer build (tools/test --sanitize) ignores what OpenMPI allocates in
+// MPI_Init and never frees, and runs an MPI rank's leak check just before
+// MPI_Finalize: OpenMPI's plug-ins are unloaded there and its libevent thread
+// leaks with "<unknown module>" frames that tools/sanitizers/lsan.supp cannot
+// name. Everything the sweep allocated is checked all the same.
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/lsan_interface.h>
+#define TAEBP_THIRD_PARTY_ALLOCATIONS __lsan::ScopedDisabler lsan_disabled
+#define TAEBP_LEAK_CHECK_NOW() __lsan_do_leak_check()
+#else
+#define TAEBP_THIRD_PARTY_ALLOCATIONS
+#define TAEBP_LEAK_CHECK_NOW()
+#endif
+
 namespace taebp::sweep {
 namespace {
 
@@ -54,6 +69,7 @@ constexpr int kExitInterrupted = 130;
 volatile std::sig_atomic_t g_signal = 0;
 extern "C" void OnSignal(int sig) { g_signal = sig; }
 int g_journal_fd = -1;  // closed in forked workers
+int g_lock_fd = -1;     // the output folder's lock: closed in forked workers
 
 // SIGINT/SIGTERM set g_signal; SIGCHLD is blocked and waited for (WaitForChild).
 void InstallSignalHandlers() {
@@ -145,6 +161,7 @@ class Mpi {
   explicit Mpi(bool use) {
 #ifdef TAEBP_HAVE_MPI
     if (!use) return;
+    TAEBP_THIRD_PARTY_ALLOCATIONS;
     MPI_Init(nullptr, nullptr);
     active_ = true;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
@@ -155,7 +172,9 @@ class Mpi {
   }
   ~Mpi() {
 #ifdef TAEBP_HAVE_MPI
-    if (active_) MPI_Finalize();
+    if (!active_) return;
+    TAEBP_LEAK_CHECK_NOW();
+    MPI_Finalize();
 #endif
   }
   Mpi(const Mpi&) = delete;
@@ -218,20 +237,14 @@ class Mpi {
 };
 
 // ------------------------------------------------------------------ journal file
-// journal.jsonl, opened O_APPEND and locked (flock) for the whole invocation:
-// a second driver on the same directory is refused, and the lock goes away
-// with the process however it ends.
+// journal.jsonl, opened O_APPEND. The folder's FolderLock (not this file,
+// which `merge` replaces) keeps a second command out.
 class JournalFile {
  public:
   explicit JournalFile(const fs::path& path) : path_(path) {
     fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
     if (fd_ < 0)
-      throw ConfigError(path.string() + ": cannot open the journal: " + std::strerror(errno));
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      ::close(fd_);
-      throw ConfigError(path.string() +
-                        ": another taebp sweep or merge is running on this directory");
-    }
+      throw std::runtime_error(path.string() + ": cannot open the journal: " + std::strerror(errno));
   }
   ~JournalFile() {
     if (fd_ >= 0) ::close(fd_);
@@ -383,7 +396,8 @@ pid_t Launch(const Plan& plan, const Task& task, const fs::path& dir, const RunF
     sigset_t none;
     sigemptyset(&none);
     ::sigprocmask(SIG_SETMASK, &none, nullptr);
-    if (g_journal_fd >= 0) ::close(g_journal_fd);  // its lock stays with the driver
+    if (g_journal_fd >= 0) ::close(g_journal_fd);
+    if (g_lock_fd >= 0) ::close(g_lock_fd);  // the folder's lock stays with the driver
     const int null_fd = ::open("/dev/null", O_RDWR);
     const int log_fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (null_fd >= 0) {
@@ -566,35 +580,69 @@ void WriteOutputs(const fs::path& out, const Plan& plan, const Journal& journal,
   WriteFilesAtomically(out.string(), {{"results.csv", ResultsCsv(plan, journal)},
                                       {"results.jsonl", ResultsJsonl(plan, journal)},
                                       {"aggregate.csv", AggregateCsv(plan, journal)},
-                                      {"sweep.json", header.dump(2) + "\n"}});
+                                      {"sweep.json", Dump(header, 2) + "\n"}});
 }
 
-// Refuses a directory that holds another sweep.
-void CheckHeader(const fs::path& dir, const std::string& hash) {
+std::string ShardName(const std::string& shard) {
+  return shard.empty() ? "the unsharded sweep" : "shard " + shard;
+}
+
+// Refuses a directory that holds another sweep or, for `sweep` (check_shard),
+// another shard of this one: a folder belongs to one (sweep, shard).
+void CheckHeader(const fs::path& dir, const std::string& hash, bool check_shard = false,
+                 const std::string& shard = "") {
   const fs::path p = dir / "sweep.json";
   if (!fs::exists(p)) return;
   Json h;
   try {
     h = Json::parse(ReadText(p));
+    if (!h.is_object()) throw std::runtime_error("not a JSON object");
   } catch (const std::exception& e) {
     throw ConfigError(p.string() + ": unreadable (" + e.what() + "); remove it or use another --out");
   }
-  const std::string other = h.value("config_hash", "");
+  const std::string other =
+      h.contains("config_hash") && h["config_hash"].is_string() ? h["config_hash"].get<std::string>() : "";
   if (other != hash)
     throw ConfigError(p.string() + ": " + dir.string() + " holds a different sweep (config hash " +
                       other + ", this one " + hash +
                       "): the config, its grid or the --set overrides differ; use another --out "
                       "or remove that directory");
+  if (!check_shard) return;
+  const std::string held = h.contains("shard") && h["shard"].is_string() ? h["shard"].get<std::string>() : "";
+  if (held != shard)
+    throw ConfigError(p.string() + ": " + dir.string() + " holds " + ShardName(held) +
+                      " of this sweep, and this is " + ShardName(shard) +
+                      ": use another --out (shards go to their own folders; `taebp merge` "
+                      "joins them)");
 }
 
-// The tasks of `scope` (a shard's tasks) still to run: no ok entry yet.
-std::vector<Task> Pending(const std::vector<Task>& scope, const Journal& j) {
-  std::vector<Task> out;
+// The files a finished task leaves in its folder.
+bool HasTaskOutputs(const fs::path& task_dir) {
+  std::error_code ec;
+  return fs::is_regular_file(task_dir / "summary.json", ec);
+}
+
+void WarnCorrupt(const Journal& journal, const char* who) {
+  for (const std::string& c : journal.corrupt)
+    std::fprintf(stderr, "taebp %s: warning: skipping a corrupt journal line: %s\n", who, c.c_str());
+}
+
+// The tasks of `scope` (a shard's tasks) still to run: no ok entry yet, or
+// an ok entry whose task folder lost its outputs (`lost` counts those).
+std::vector<Task> Pending(const std::vector<Task>& scope, const Journal& j, const fs::path& out,
+                          int* lost) {
+  std::vector<Task> pending;
+  *lost = 0;
   for (const Task& t : scope) {
     const auto it = j.entries.find(t.index);
-    if (it == j.entries.end() || !IsOk(it->second)) out.push_back(t);
+    if (it == j.entries.end() || !IsOk(it->second)) {
+      pending.push_back(t);
+    } else if (!HasTaskOutputs(TaskDir(out, t))) {
+      pending.push_back(t);
+      ++*lost;
+    }
   }
-  return out;
+  return pending;
 }
 
 }  // namespace
@@ -608,7 +656,7 @@ bool HaveMpi() {
 }
 
 int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
-  const Plan plan = ExpandSweep(ReadText(o.config), o.config, o.overrides);
+  const Plan plan = ExpandSweep(ReadConfigFile(o.config), o.config, o.overrides);
   int shard_index = 0, shard_count = 1;
   ParseShard(o.shard, &shard_index, &shard_count);
   std::vector<Task> scope;  // this shard's tasks
@@ -637,7 +685,9 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
   const bool root = mpi.rank() == 0;
   const bool show = root && !o.quiet;
 
-  // Rank 0 prepares the directory and decides what is left to do.
+  // Rank 0 prepares the directory and decides what is left to do; it holds
+  // the folder's lock until the sweep ends.
+  std::unique_ptr<FolderLock> lock;
   std::unique_ptr<JournalFile> journal_file;
   Journal journal;
   Json header;
@@ -645,11 +695,15 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
   if (root) {
     Json s;
     try {
+      CheckOutputDir(out.string());
+      fs::create_directories(out);
+      lock = std::make_unique<FolderLock>(out.string());
+      CheckHeader(out, plan.hash, true, o.shard);
       fs::create_directories(out / "tasks");
-      CheckHeader(out, plan.hash);
       journal_file = std::make_unique<JournalFile>(out / "journal.jsonl");
       const std::string text = journal_file->ReadAll();
       journal = ParseJournal(text, plan, (out / "journal.jsonl").string());
+      if (show) WarnCorrupt(journal, "sweep");
       if (journal.partial_tail) {
         if (show)
           std::fprintf(stderr, "taebp sweep: dropping a half-written last line of %s\n",
@@ -658,24 +712,34 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
       }
       header = SweepHeader(plan, o.shard, SumoVersionOf(journal));
       if (!fs::exists(out / "sweep.json"))
-        WriteFilesAtomically(out.string(), {{"sweep.json", header.dump(2) + "\n"}});
+        WriteFilesAtomically(out.string(), {{"sweep.json", Dump(header, 2) + "\n"}});
       Json pending = Json::array();
-      for (const Task& t : Pending(scope, journal)) pending.push_back(t.index);
+      int lost = 0;
+      for (const Task& t : Pending(scope, journal, out, &lost)) pending.push_back(t.index);
+      if (lost > 0 && show)
+        std::fprintf(stderr,
+                     "taebp sweep: %d finished task(s) lost their outputs in %s/tasks: running "
+                     "them again\n",
+                     lost, out.c_str());
       s["pending"] = pending;
     } catch (const ConfigError& e) {
       s["error"] = e.what();
       s["code"] = 2;
+    } catch (const OutputError& e) {
+      s["error"] = e.what();
+      s["code"] = 4;
     } catch (const std::exception& e) {
       s["error"] = e.what();
       s["code"] = 1;
     }
-    setup = s.dump();
+    setup = Dump(s);
   }
   mpi.Bcast(&setup);
   const Json s = Json::parse(setup);
   if (s.contains("error")) {
-    if (!root) return s.value("code", 1);
+    if (!root) return s.value("code", 1) == 4 ? 2 : s.value("code", 1);
     if (s.value("code", 1) == 2) throw ConfigError(s["error"].get<std::string>());
+    if (s.value("code", 1) == 4) throw OutputError(s["error"].get<std::string>());
     throw std::runtime_error(s["error"].get<std::string>());
   }
   std::vector<Task> mine;
@@ -693,10 +757,11 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
   // Forked workers only without MPI: MPI's threads make fork-without-exec unsafe.
   const RunFunction worker = mpi.active() || o.exec ? RunFunction() : run_function;
   if (journal_file) g_journal_fd = journal_file->fd();
+  if (lock) g_lock_fd = lock->fd();
   InstallSignalHandlers();
   Progress progress(show, static_cast<int>(scope.size()), already_ok);
   auto record = [&](const Json& e) {  // rank 0
-    journal_file->Append(e.dump());
+    journal_file->Append(Dump(e));
     AddEntry(&journal, plan, e);
     progress.Finished(IsOk(e));
     progress.Update();
@@ -742,7 +807,7 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
           if (tag == kTagStop) stop = true;
         return stop;
       };
-      auto send = [&](const Json& e) { mpi.Send(e.dump(), 0, kTagResult); };
+      auto send = [&](const Json& e) { mpi.Send(Dump(e), 0, kTagResult); };
       completed = RunTasks(plan, out, mine, jobs, mpi.rank(), worker, send, poll);
       mpi.Send(completed ? "ok" : "stopped", 0, kTagDone);
       return completed ? 0 : kExitInterrupted;
@@ -782,6 +847,21 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
 // ------------------------------------------------------------------ merge
 int RunMerge(const MergeOptions& o) {
   if (o.dirs.empty()) throw ConfigError("taebp merge: no shard directories given");
+  // OUT is locked for the whole merge, and so is every shard folder (a shard's
+  // sweep still running there is refused rather than merged half-done).
+  const fs::path out(o.out);
+  CheckOutputDir(out.string(), "OUT");
+  fs::create_directories(out);
+  FolderLock lock(out.string());
+  std::vector<std::unique_ptr<FolderLock>> shard_locks;
+  for (const std::string& d : o.dirs) {
+    std::error_code ec;
+    if (!fs::is_directory(d, ec))
+      throw ConfigError(d + ": not a folder (is it the --out of a taebp sweep --shard?)");
+    if (fs::equivalent(out, d, ec)) continue;
+    shard_locks.push_back(std::make_unique<FolderLock>(d, /*required=*/false));
+  }
+
   std::vector<Json> headers;
   for (const std::string& d : o.dirs) {
     const fs::path p = fs::path(d) / "sweep.json";
@@ -789,14 +869,29 @@ int RunMerge(const MergeOptions& o) {
       throw ConfigError(p.string() + ": missing (is " + d + " the --out of a taebp sweep?)");
     try {
       headers.push_back(Json::parse(ReadText(p)));
+      const Json& h = headers.back();
+      if (!h.is_object() || !h.contains("config_hash") || !h["config_hash"].is_string() ||
+          !h.contains("config_text") || !h["config_text"].is_string())
+        throw std::runtime_error("no config_hash or config_text");
+      for (const char* k : {"config_path"})
+        if (h.contains(k) && !h[k].is_string()) throw std::runtime_error(std::string(k) + " is not a string");
+      if (h.contains("replicates") &&
+          !(h["replicates"].is_number_integer() && h["replicates"].get<std::int64_t>() >= 1 &&
+            h["replicates"].get<std::int64_t>() <= 10000000))
+        throw std::runtime_error("replicates is not an integer in [1, 10000000]");
+      if (h.contains("overrides") &&
+          !(h["overrides"].is_array() &&
+            std::all_of(h["overrides"].begin(), h["overrides"].end(),
+                        [](const Json& v) { return v.is_string(); })))
+        throw std::runtime_error("overrides is not a list of strings");
     } catch (const std::exception& e) {
       throw ConfigError(p.string() + ": unreadable: " + e.what());
     }
-    const std::string h = headers.back().value("config_hash", "");
-    if (h != headers.front().value("config_hash", ""))
+    const std::string h = headers.back()["config_hash"].get<std::string>();
+    if (h != headers.front()["config_hash"].get<std::string>())
       throw ConfigError(p.string() + ": " + d + " holds a different sweep (config hash " + h +
                         ") than " + o.dirs.front() + " (" +
-                        headers.front().value("config_hash", "") + ")");
+                        headers.front()["config_hash"].get<std::string>() + ")");
   }
   const Json& first = headers.front();
   int replicates = 0;
@@ -804,8 +899,9 @@ int RunMerge(const MergeOptions& o) {
   std::vector<std::string> overrides = first.value("overrides", std::vector<std::string>{});
   if (replicates != first.value("replicates", 1))
     overrides.push_back("sweep.replicates=" + std::to_string(replicates));
-  Plan plan = ExpandSweep(first.value("config_text", ""), first.value("config_path", ""), overrides);
-  const std::string hash = first.value("config_hash", "");
+  const std::string origin = first.value("config_path", (fs::path(o.dirs.front()) / "sweep.json").string());
+  Plan plan = ExpandSweep(first["config_text"].get<std::string>(), origin, overrides);
+  const std::string hash = first["config_hash"].get<std::string>();
   if (plan.hash != hash) {
     std::fprintf(stderr,
                  "taebp merge: warning: this taebp computes config hash %s for the sweep "
@@ -814,44 +910,69 @@ int RunMerge(const MergeOptions& o) {
     plan.hash = hash;
   }
 
-  const fs::path out(o.out);
-  fs::create_directories(out);
   CheckHeader(out, plan.hash);
-  JournalFile lock(out / "journal.jsonl");
-  Journal journal = ParseJournal(lock.ReadAll(), plan, (out / "journal.jsonl").string());
+  const fs::path journal_path = out / "journal.jsonl";
+  Journal journal;
+  if (fs::exists(journal_path)) {
+    journal = ParseJournal(ReadText(journal_path), plan, journal_path.string());
+    if (!o.quiet) WarnCorrupt(journal, "merge");
+  }
   std::map<int, fs::path> source;  // task index -> shard dir holding its outputs
   for (const std::string& d : o.dirs) {
-    if (fs::exists(out) && fs::exists(d) && fs::equivalent(out, d)) continue;
+    std::error_code ec;
+    if (fs::equivalent(out, d, ec)) continue;
     const fs::path jp = fs::path(d) / "journal.jsonl";
     if (!fs::exists(jp)) continue;
     const Journal shard = ParseJournal(ReadText(jp), plan, jp.string());
+    if (!o.quiet) WarnCorrupt(shard, "merge");
     for (const auto& [index, e] : shard.entries) {
       // The task's outputs come from the shard whose entry the journal keeps.
       if (AddEntry(&journal, plan, e)) source[index] = d;
     }
   }
-  // Per-task outputs next to the merged tables.
+  // Per-task outputs next to the merged tables. An ok task whose folder is
+  // missing in its shard is reported (its row is in the tables, its files
+  // are not): running that shard's sweep again redoes it.
+  std::vector<std::string> lost;
   for (const auto& [index, dir] : source) {
     const Task& t = plan.tasks[static_cast<std::size_t>(index)];
     const fs::path from = TaskDir(dir, t), to = TaskDir(out, t);
-    if (!fs::exists(from)) continue;
+    if (!HasTaskOutputs(from)) {
+      if (IsOk(journal.entries.at(index))) lost.push_back(from.string());
+      continue;
+    }
     std::error_code ec;
     fs::remove_all(to, ec);
     fs::create_directories(to.parent_path());
     fs::copy(from, to, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
   }
+  for (const auto& [index, e] : journal.entries) {  // already in OUT: check it is there
+    if (source.count(index) || !IsOk(e)) continue;
+    const fs::path here = TaskDir(out, plan.tasks[static_cast<std::size_t>(index)]);
+    if (!HasTaskOutputs(here)) lost.push_back(here.string());
+  }
   std::string lines;
-  for (const auto& [index, e] : journal.entries) lines += e.dump() + "\n";
+  for (const auto& [index, e] : journal.entries) lines += Dump(e) + "\n";
   Json header = SweepHeader(plan, "", SumoVersionOf(journal));
   header["merged_from"] = o.dirs;
   WriteFilesAtomically(out.string(), {{"journal.jsonl", lines}});
   WriteOutputs(out, plan, journal, header);
 
   const auto [ok, failed, missing] = CountTasks(plan.tasks, journal);
+  for (const std::string& l : lost)
+    std::fprintf(stderr, "taebp merge: error: a finished task's outputs are missing: %s/summary.json\n",
+                 l.c_str());
+  if (!lost.empty())
+    std::fprintf(stderr,
+                 "taebp merge: %zu task folder(s) missing: run the shards' `taebp sweep` again "
+                 "(it redoes tasks whose folders are gone), then merge again\n",
+                 lost.size());
   if (!o.quiet)
-    std::fprintf(stderr, "taebp merge: %zu shard dirs, %d of %zu tasks ok, %d failed, %d missing; results in %s\n",
-                 o.dirs.size(), ok, plan.tasks.size(), failed, missing, out.c_str());
-  return failed || missing ? kExitFailed : 0;
+    std::fprintf(stderr,
+                 "taebp merge: %zu shard dirs, %d of %zu tasks ok (%zu without their task "
+                 "folder), %d failed, %d missing; results in %s\n",
+                 o.dirs.size(), ok, plan.tasks.size(), lost.size(), failed, missing, out.c_str());
+  return failed || missing || !lost.empty() ? kExitFailed : 0;
 }
 
 }  // namespace taebp::sweep

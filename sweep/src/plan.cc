@@ -12,7 +12,8 @@ namespace taebp::sweep {
 namespace {
 
 constexpr const char* kFormat = "taebp-sweep/1";
-constexpr std::size_t kMaxPoints = 1000000;
+constexpr std::size_t kMaxPoints = 100000;  // each one is validated up front (~0.15 ms)
+constexpr std::size_t kMaxTasks = 10000000;
 
 std::string Trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r\n");
@@ -57,7 +58,7 @@ std::string Cell(const Json& v) {
   }
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
   if (v.is_string()) return CsvQuote(v.get<std::string>());
-  return CsvQuote(v.dump());
+  return CsvQuote(Dump(v));
 }
 
 double Number(const Json& v) {
@@ -94,7 +95,48 @@ void ForEachRow(const Plan& plan, const Journal& journal, F&& emit) {
   }
 }
 
+// Why a journal line (a JSON object of this sweep) cannot be a task's entry,
+// or "" when it can: the fields the tables read, with their types.
+std::string EntryProblem(const Json& e) {
+  constexpr double kMaxCount = 9007199254740992.0;  // 2^53: exact in a double
+  for (const char* k : {"point", "replicate"}) {
+    if (!e.contains(k) || !e[k].is_number_integer())
+      return std::string("\"") + k + "\" is missing or not an integer";
+  }
+  if (!e.contains("status") || !e["status"].is_string() ||
+      (e["status"] != "ok" && e["status"] != "failed"))
+    return "\"status\" is missing or not \"ok\" or \"failed\"";
+  for (const char* k : {"error", "sumo_version"})
+    if (e.contains(k) && !e[k].is_string()) return std::string("\"") + k + "\" is not a string";
+  if (!e.contains("policies")) return IsOk(e) ? "\"policies\" is missing" : "";
+  const Json& policies = e["policies"];
+  if (!policies.is_object()) return "\"policies\" is not an object";
+  for (auto it = policies.begin(); it != policies.end(); ++it) {
+    if (!it.value().is_object()) return "\"policies." + it.key() + "\" is not an object";
+    for (auto m = it.value().begin(); m != it.value().end(); ++m) {
+      const Json& v = m.value();
+      const std::string name = "\"policies." + it.key() + "." + m.key() + "\"";
+      if (!v.is_null() && !v.is_number()) return name + " is not a number";
+      if (v.is_number_float() && !std::isfinite(v.get<double>())) return name + " is not finite";
+    }
+    for (const char* count : {"encounters", "collisions", "dc"}) {  // summed by AggregateCsv
+      if (!it.value().contains(count) || it.value()[count].is_null()) continue;
+      const Json& v = it.value()[count];
+      const bool ok = v.is_number_unsigned()
+                          ? v.get<std::uint64_t>() <= static_cast<std::uint64_t>(kMaxCount)
+                          : v.is_number_integer() && v.get<std::int64_t>() >= 0;
+      if (!ok)
+        return "\"policies." + it.key() + "." + count + "\" is not a count (an integer in [0, 2^53])";
+    }
+  }
+  return "";
+}
+
 }  // namespace
+
+std::string Dump(const Json& j, int indent) {
+  return j.dump(indent, ' ', false, Json::error_handler_t::replace);
+}
 
 std::string CsvQuote(const std::string& s) {
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
@@ -237,13 +279,17 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
     plan.axes.push_back(std::move(axis));
   }
 
-  // Only a grid over these keys can change a point's policies or seed; other
-  // points keep the base ones without loading the config again (a large grid
-  // would otherwise load it once per point before the first task).
-  const bool points_may_differ =
-      std::any_of(plan.columns.begin(), plan.columns.end(), [](const std::string& k) {
-        return k == "policies" || k == "scenario" || k == "scenario.seed";
-      });
+  if (total * static_cast<std::size_t>(plan.replicates) > kMaxTasks)
+    throw ConfigError(config_path + ": sweep.replicates = " + std::to_string(plan.replicates) +
+                      " times " + std::to_string(total) + " grid points is more than " +
+                      std::to_string(kMaxTasks) + " tasks");
+
+  // Every point's config is loaded and checked here, before any task runs: a
+  // misspelt grid key or a bad value is refused up front, naming the point.
+  // The text is parsed once (ExperimentTemplate).
+  const ExperimentTemplate config_template(config_text, config_path);
+  std::size_t invalid = 0;
+  std::string first_error;
   for (std::size_t idx = 0; idx < total; ++idx) {
     Point point;
     point.index = static_cast<int>(idx);
@@ -256,17 +302,24 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
     for (std::size_t a = 0; a < plan.axes.size(); ++a)
       for (std::size_t k = 0; k < plan.axes[a].keys.size(); ++k)
         point.values.push_back(plan.axes[a].values[pick[a]][k]);
-    // The point's own policies and seed (a grid may sweep either); an invalid
-    // point keeps the base ones and fails in its worker with the loader's error.
+    // The point's own policies and seed (a grid may sweep either).
     point.policies = plan.base.policies;
     std::uint64_t seed = plan.base.scenario.seed;
-    if (points_may_differ) {
-      try {
-        const ExperimentConfig c =
-            ParseExperimentConfig(config_text, config_path, plan.PointOverrides(point));
-        point.policies = c.policies;
-        seed = c.scenario.seed;
-      } catch (const ConfigError&) {
+    try {
+      // Without its sweep: section (the same for every point, checked with
+      // the base config; re-reading a large grid per point would be slow).
+      std::vector<std::string> point_overrides = plan.PointOverrides(point);
+      point_overrides.push_back("sweep=~");
+      const ExperimentConfig c = config_template.Load(point_overrides);
+      point.policies = c.policies;
+      seed = c.scenario.seed;
+    } catch (const ConfigError& e) {
+      if (invalid++ == 0) {
+        std::string values;
+        for (std::size_t k = 0; k < plan.columns.size(); ++k)
+          values += (k ? ", " : "") + plan.columns[k] + "=" + point.values[k];
+        first_error = config_path + ": sweep.grid point " + std::to_string(idx) + " (" + values +
+                      ") is not a valid config: " + e.what();
       }
     }
     for (int r = 0; r < plan.replicates; ++r) {
@@ -279,6 +332,11 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
     }
     plan.points.push_back(std::move(point));
   }
+  if (invalid > 0)
+    throw ConfigError(first_error + (invalid > 1 ? " (and " + std::to_string(invalid - 1) +
+                                                       " more invalid grid points)"
+                                                 : std::string()) +
+                      "; nothing was run");
   return plan;
 }
 
@@ -387,7 +445,9 @@ Json JournalEntry(const Plan& plan, const Task& task, const std::string& status,
   return e;
 }
 
-bool IsOk(const Json& entry) { return entry.value("status", "") == "ok"; }
+bool IsOk(const Json& entry) {
+  return entry.is_object() && entry.contains("status") && entry["status"] == "ok";
+}
 
 Tally CountTasks(const std::vector<Task>& tasks, const Journal& journal) {
   Tally t;
@@ -430,20 +490,30 @@ Journal ParseJournal(const std::string& text, const Plan& plan, const std::strin
     start = end + 1;
     ++line_no;
     if (Trim(line).empty()) continue;
+    const std::string where = origin + ":" + std::to_string(line_no);
     Json e;
     try {
       e = Json::parse(line);
-    } catch (const std::exception&) {
-      continue;  // a torn line from an older crash; the task simply runs again
+    } catch (const std::exception& ex) {
+      // A torn or damaged line: its task simply runs again.
+      j.corrupt.push_back(where + ": not valid JSON (" + ex.what() + ")");
+      continue;
     }
-    if (!e.is_object()) continue;
-    const std::string hash = e.value("hash", "");
+    if (!e.is_object() || !e.contains("hash") || !e["hash"].is_string()) {
+      j.corrupt.push_back(where + ": not a journal entry (no \"hash\")");
+      continue;
+    }
+    const std::string hash = e["hash"].get<std::string>();
     if (hash != plan.hash)
       throw ConfigError(origin + ":" + std::to_string(line_no) +
                         ": the journal belongs to a different sweep (config hash " + hash +
                         ", this sweep " + plan.hash +
                         "): the config, its grid or the --set overrides differ; "
                         "use another --out or remove that directory");
+    if (const std::string why = EntryProblem(e); !why.empty()) {
+      j.corrupt.push_back(where + ": " + why);
+      continue;
+    }
     ++j.lines;
     AddEntry(&j, plan, e);
   }
@@ -484,7 +554,7 @@ std::string ResultsJsonl(const Plan& plan, const Journal& journal) {
     row["status"] = status;
     row["error"] = error;
     for (const auto& c : MetricColumns()) row[c] = metrics[c];
-    out += row.dump() + "\n";
+    out += Dump(row) + "\n";
   });
   return out;
 }

@@ -121,6 +121,44 @@ TEST(ConfigLoad, ToYamlRoundTripGivesIdenticalJson) {
   EXPECT_EQ(ToYaml(back), rich_yaml);
 }
 
+// Found by replaying configs/sweep_trust.yaml through the fuzz target: the
+// saved config wrote the double 1.0 as "1", so a grid [..., 0.9, 1.0] came
+// back as [..., 0.9, 1], another grid (another config hash). Doubles are
+// written with the shortest digits that read back exactly, and a fraction.
+TEST(ConfigLoad, SavedConfigKeepsNumbersAsTheyRead) {
+  const ExperimentConfig c = ParseExperimentConfig(
+      "scenario: {duration: 60.0, step_length: 0.1}\n"
+      "sweep: {replicates: 1, grid: {model.trust: [0.9, 1.0], scenario.seed: [1, 2]}}\n",
+      "numbers.yaml");
+  const std::string saved = ToYaml(c);
+  EXPECT_THAT(saved, HasSubstr("model.trust: [0.9, 1.0]"));
+  EXPECT_THAT(saved, HasSubstr("scenario.seed: [1, 2]"));
+  EXPECT_THAT(saved, HasSubstr("duration: 60.0\n"));
+  EXPECT_THAT(saved, HasSubstr("step_length: 0.1\n"));
+  EXPECT_EQ(ToJson(ParseExperimentConfig(saved, "saved.yaml")), ToJson(c)) << saved;
+  // An infinite value (even of a key the linear likelihood ignores) was
+  // accepted and saved as null, which does not load: refused.
+  for (const char* inf : {".inf", "-.inf", ".nan"}) {
+    EXPECT_THAT(ConfigErrorOf([&] {
+                  ParseExperimentConfig(std::string("model: {likelihood: {midpoint: ") + inf + "}}",
+                                        "inf.yaml");
+                }),
+                HasSubstr("key 'model.likelihood.midpoint' expects a finite number"))
+        << inf;
+  }
+  EXPECT_THAT(ConfigErrorOf([&] { ParseExperimentConfig("scenario: {duration: 1e999}", "big.yaml"); }),
+              HasSubstr("key 'scenario.duration' expects a number, got '1e999'"));
+}
+
+// The built-in default is the safe geometry (README "Geometry"): a nudge of up
+// to s_max from the stop line keeps the AV's nose out of a crossing HV's path.
+TEST(ConfigLoad, DefaultGeometryIsTheSafeOne) {
+  const ExperimentConfig d;
+  EXPECT_EQ(d.scenario.stop_distance, 3.0);
+  EXPECT_GE(d.scenario.stop_distance, d.model.likelihood.s_max + d.scenario.vehicle_width / 2);
+  EXPECT_EQ(ParseExperimentConfig("scenario: {avs: 2}", "t.yaml").scenario.stop_distance, 3.0);
+}
+
 TEST(ConfigLoad, EmptyTextGivesTheDefaults) {
   EXPECT_EQ(ToJson(ParseExperimentConfig("", "empty.yaml")), ToJson(ExperimentConfig{}));
   EXPECT_EQ(ToJson(ParseExperimentConfig("{}", "empty.yaml")), ToJson(ExperimentConfig{}));
@@ -294,8 +332,132 @@ TEST(ConfigErrors, MissingFileNamesThePath) {
   EXPECT_THAT(pmsg, HasSubstr(path));
 }
 
+// Found by fuzzing (tools/fuzz, fuzz/regressions/config): bytes that are not
+// UTF-8 (a Latin-1 comment or path) used to load and then make every JSON
+// output throw nlohmann's type_error 316 after the simulation. YAML is UTF-8:
+// refused at load, naming the file and line (or the --set).
+TEST(ConfigErrors, TextThatIsNotUtf8IsRefusedNamingFileAndLine) {
+  const FileError latin1 = LoadError("# M\xfcller's experiment\nscenario: {avs: 2}\n");
+  EXPECT_THAT(latin1.message, HasSubstr(latin1.path + ":1: not UTF-8 text (byte 0xFC)"));
+  const FileError path = LoadError("scenario:\n  network: \"caf\xe9.net.xml\"\n");
+  EXPECT_THAT(path.message, HasSubstr(path.path + ":2: not UTF-8"));
+  for (const char* bad : {"\xc0\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80", "\xe2\x82"}) {
+    EXPECT_THAT(LoadError(std::string("policies: [") + bad + "]\n").message, HasSubstr("not UTF-8"))
+        << "overlong, surrogate, beyond U+10FFFF or truncated";
+  }
+  EXPECT_THAT(ConfigErrorOf([&] { LoadExperimentConfig(kPaper, {"scenario.network=\xff"}); }),
+              HasSubstr("not UTF-8"));
+  // Valid UTF-8 of every length is fine.
+  const ExperimentConfig c =
+      ParseExperimentConfig("# caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9a\x97\nscenario: {network: \"\xc3\xa9.net.xml\"}\n",
+                            "utf8.yaml");
+  EXPECT_EQ(c.scenario.network, "\xc3\xa9.net.xml");
+  EXPECT_NO_THROW(ToJson(c));
+}
+
+// yaml-cpp stops at 2000 levels of nesting; the message says so (it used to
+// say "bad file").
+TEST(ConfigErrors, DeepNestingIsAClearError) {
+  const std::string deep = "policies: " + std::string(3000, '[') + std::string(3000, ']') + "\n";
+  const FileError e = LoadError(deep);
+  EXPECT_THAT(e.message, HasSubstr(e.path + ":1: malformed YAML: nested more than"));
+  EXPECT_THAT(e.message, HasSubstr("levels deep"));
+  EXPECT_THAT(ConfigErrorOf([&] {
+                LoadExperimentConfig(kPaper, {"policies=" + std::string(3000, '[')});
+              }),
+              HasSubstr("levels deep"));
+}
+
 TEST(ConfigErrors, NonMapTopLevelIsRejected) {
   EXPECT_THAT(LoadError("- a\n- b\n").message, HasSubstr("top level"));
+}
+
+// Found by fuzzing (fuzz/regressions/config/set_on_a_list.txt): --set on a
+// config whose top level is not a map read parts[-1] (undefined behaviour,
+// flagged by UBSan) to name the parent key.
+TEST(ConfigErrors, SetOnAConfigThatIsNotAMapIsAnError) {
+  for (const std::string& text : {std::string("- a\n- b\n"), std::string("just text\n"),
+                                  std::string("3\n")}) {
+    EXPECT_THAT(ConfigErrorOf([&] { ParseExperimentConfig(text, "top.yaml", {"scenario.avs=1"}); }),
+                HasSubstr("--set scenario.avs=1: the config is not a map of keys"))
+        << text;
+  }
+}
+
+// Found by fuzzing (fuzz/regressions/problem/complex_key.yaml): a key that is
+// not a name (`? [1, 0]` or `? ` with no key) threw yaml-cpp's
+// TypedBadConversion ("bad conversion", exit 1) instead of a config error.
+TEST(ConfigErrors, KeysMustBeNames) {
+  for (const std::string& text :
+       {std::string("? [a, b]\n: 1\n"), std::string("scenario: {? [x]: 1}\n"),
+        std::string("model: {trust: {dist: uniform, ? {a: 1}: 2}}\n"),
+        std::string("? \n: 1\n"),
+        std::string("sweep: {replicates: 1, grid: {? [model.trust]: [0.5]}}\n")}) {
+    const FileError e = LoadError(text);
+    EXPECT_THAT(e.message, HasSubstr("must be a name")) << text;
+    EXPECT_THAT(e.message, HasSubstr(e.path + ":")) << text;
+  }
+  TempDir dir;
+  const std::string problem =
+      dir.Write("p.yaml",
+                "states: [a, b]\nactions: [x, y]\nprior: [0.5, 0.5]\n"
+                "receiver_utility: [[1, 0], [0, 1]]\nsender_utility: [[1, 0], [1, 0]]\n"
+                "trust: 1\n? [1, 0]\n: 2\n");
+  EXPECT_THAT(ConfigErrorOf([&] { LoadProblemConfig(problem); }), HasSubstr("must be a name"));
+  // Inside a grid value a complex key is only data: ToJson (the sweep's
+  // config hash) does not throw on it.
+  const ExperimentConfig c = ParseExperimentConfig(
+      "sweep: {replicates: 1, grid: {model.trust: [{? [a]: 1}]}}\n", "grid.yaml");
+  EXPECT_NO_THROW(ToJson(c));
+}
+
+// A directory, an empty file or a file of comments only is not a config: an
+// error naming the path (it used to run with the built-in defaults), for the
+// experiment loader and the problem loader alike.
+TEST(ConfigErrors, DirectoryOrEmptyFileIsAnErrorNamingThePath) {
+  TempDir dir;
+  const std::string folder = (dir.path() / "configs").string();
+  fs::create_directories(folder);
+  const std::string dmsg = ConfigErrorOf([&] { LoadExperimentConfig(folder); });
+  EXPECT_THAT(dmsg, HasSubstr(folder));
+  EXPECT_THAT(dmsg, HasSubstr("is a directory"));
+  EXPECT_THAT(ConfigErrorOf([&] { LoadProblemConfig(folder); }), HasSubstr("is a directory"));
+  for (const std::string& text : {std::string(""), std::string("# only a comment\n\n"),
+                                  std::string("---\n"), std::string("~\n")}) {
+    SCOPED_TRACE("text '" + text + "'");
+    const std::string path = dir.Write("empty.yaml", text);
+    const std::string msg = ConfigErrorOf([&] { LoadExperimentConfig(path); });
+    EXPECT_THAT(msg, HasSubstr(path));
+    EXPECT_THAT(msg, HasSubstr("empty"));
+    // --set overrides do not turn an empty file into a config either.
+    EXPECT_THAT(ConfigErrorOf([&] { LoadExperimentConfig(path, {"scenario.avs=2"}); }),
+                HasSubstr(path + ": the file is empty"));
+    EXPECT_THAT(ConfigErrorOf([&] { LoadProblemConfig(path); }),
+                HasSubstr(path + ": the file is empty"));
+  }
+  // An explicit empty map is a deliberate "all defaults".
+  const std::string braces = dir.Write("braces.yaml", "{}\n");
+  EXPECT_EQ(ToJson(LoadExperimentConfig(braces)), ToJson(ExperimentConfig{}));
+}
+
+// SUMO counts time in whole milliseconds: it refuses a step below 0.001 s
+// ("the minimum step-length is 0.001") and rounds any other step to a whole
+// millisecond (0.0015 runs as 0.002 s), which would desynchronise the
+// controller's clock. Both are config errors naming the key and the value.
+TEST(ConfigErrors, StepLengthIsAWholeNumberOfMillisecondsOfAtLeastOne) {
+  for (const char* bad : {"1e-9", "0.0005", "0.0009999", "0.0015", "0.1234"}) {
+    SCOPED_TRACE(bad);
+    const std::string msg = ConfigErrorOf(
+        [&] { LoadExperimentConfig(kPaper, {std::string("scenario.step_length=") + bad}); });
+    EXPECT_THAT(msg, HasSubstr("scenario.step_length = "));
+    EXPECT_THAT(msg, HasSubstr("millisecond"));
+  }
+  EXPECT_THAT(ConfigErrorOf([&] { LoadExperimentConfig(kPaper, {"scenario.step_length=1e-9"}); }),
+              HasSubstr("scenario.step_length = 1e-09"));
+  for (const char* good : {"0.001", "0.002", "0.05", "0.1", "0.25", "1"}) {
+    SCOPED_TRACE(good);
+    EXPECT_NO_THROW(LoadExperimentConfig(kPaper, {std::string("scenario.step_length=") + good}));
+  }
 }
 
 // ------------------------------------------------------------------ --set
@@ -350,6 +512,50 @@ TEST(ConfigOverrides, ErrorsNameTheSetNotTheFile) {
     // The error is about this --set, not the valid one before it.
     EXPECT_THAT(msg, Not(HasSubstr("scenario.duration=60"))) << c.set;
   }
+}
+
+// A map value for a section (scenario, model, model.likelihood, sweep) is
+// merged into it key by key: `--set 'scenario={avs: 1}'` changes avs and keeps
+// every other scenario key of the file (it used to replace the section, so the
+// omitted keys fell back to the built-in defaults). Values that are maps
+// themselves (a trust distribution, sweep.grid) still replace.
+TEST(ConfigOverrides, MapValueMergesIntoASection) {
+  const ExperimentConfig file = LoadExperimentConfig(kPaper);
+  const ExperimentConfig c = LoadExperimentConfig(
+      kPaper, {"scenario={avs: 1, duration: 60}", "model={likelihood: {s_max: 1.5}}"});
+  ExperimentConfig expected = file;
+  expected.scenario.avs = 1;
+  expected.scenario.duration = 60;
+  expected.model.likelihood.s_max = 1.5;
+  EXPECT_EQ(ToJson(c), ToJson(expected));
+
+  TempDir dir;
+  const std::string path = dir.Write(
+      "exp.yaml",
+      "scenario: {hvs: 3, stop_distance: 3.5}\n"
+      "model: {trust: {dist: uniform, low: 0.2, high: 0.4}, likelihood: {type: logistic}}\n"
+      "sweep: {replicates: 3, grid: {model.prior_go: [0.1, 0.2], scenario.avs: [1, 2]}}\n");
+  const ExperimentConfig m = LoadExperimentConfig(
+      path, {"model={trust: {dist: beta, alpha: 2, beta: 5}}", "sweep={grid: {model.trust: [0.5]}}"});
+  EXPECT_EQ(m.model.trust.dist, "beta");  // a distribution replaces the old one
+  EXPECT_EQ(m.model.trust.alpha, 2.0);
+  EXPECT_EQ(m.model.likelihood.type, "logistic");  // kept from the file
+  ASSERT_TRUE(m.sweep.has_value());
+  EXPECT_EQ(m.sweep->replicates, 3);  // kept from the file
+  ASSERT_EQ(m.sweep->grid.size(), 1u);  // the grid is one value: replaced
+  EXPECT_EQ(m.sweep->grid[0].first, "model.trust");
+
+  // A bad key inside the merged map names the --set; a bad file key the file.
+  const std::string set_error =
+      ConfigErrorOf([&] { LoadExperimentConfig(path, {"scenario={avs: 1, avss: 2}"}); });
+  EXPECT_THAT(set_error, HasSubstr("--set scenario={avs: 1, avss: 2}"));
+  EXPECT_THAT(set_error, HasSubstr("scenario.avss"));
+  const std::string bad_file = dir.Write("bad.yaml", "scenario:\n  hvs: 3\n  min_gap: -1\n");
+  const std::string file_error =
+      ConfigErrorOf([&] { LoadExperimentConfig(bad_file, {"scenario={avs: 1}"}); });
+  EXPECT_THAT(file_error, HasSubstr(bad_file));
+  EXPECT_THAT(file_error, HasSubstr("scenario.min_gap = -1"));
+  EXPECT_THAT(file_error, Not(HasSubstr("--set")));
 }
 
 TEST(ConfigOverrides, FileErrorsStillNameTheFileWhenOverridesAreGiven) {

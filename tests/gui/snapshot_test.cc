@@ -138,6 +138,35 @@ TEST(Snapshot, BadArgumentsAreClearErrors) {
   EXPECT_FALSE(fs::exists(png));
 }
 
+// Only PNG is written: another extension is refused before anything runs
+// (sumo-gui used to leave a 0-byte file), and a failing run leaves an earlier
+// picture at --out as it was, never an empty file.
+TEST(Snapshot, OnlyPngAndNeverAnEmptyOrHalfWrittenFile) {
+  REQUIRE_GUI();
+  TempDir tmp;
+  for (const std::string name : {"x.txt", "x", "x.PNG.bak", "x.jpg"}) {
+    const fs::path out = tmp.path() / name;
+    const Result r =
+        Shell("env -u DISPLAY " + kCli + " snapshot " + kPaper + " --out " + out.string(),
+              tmp.path() / "log.txt");
+    EXPECT_EQ(r.code, 2) << name << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr(out.string())) << name;
+    EXPECT_THAT(r.output, HasSubstr(".png")) << name;
+    EXPECT_FALSE(fs::exists(out)) << name;
+  }
+  const fs::path png = tmp.path() / "earlier.png";
+  std::ofstream(png, std::ios::binary) << "an earlier picture";
+  const std::string garbage = (tmp.path() / "garbage.net.xml").string();
+  std::ofstream(garbage) << "<<< not a network\n";
+  const Result r = Shell("env -u DISPLAY " + kCli + " snapshot " + kPaper + " --out " +
+                             png.string() + " --at 5 --set scenario.network=" + garbage,
+                         tmp.path() / "log.txt");
+  EXPECT_EQ(r.code, 3) << r.output;
+  EXPECT_EQ(ReadFile(png), "an earlier picture");
+  for (const auto& e : fs::directory_iterator(tmp.path()))
+    EXPECT_GT(fs::file_size(e.path()), 0u) << e.path() << " is empty";
+}
+
 TEST(Snapshot, MissingProgramsAreNamed) {
   if (!OnPath("sumo-gui")) GTEST_FAIL() << "sumo-gui is missing (Debian package sumo)";
   TempDir tmp;

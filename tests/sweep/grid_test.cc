@@ -143,6 +143,36 @@ TEST(SweepGrid, OtherSpecErrors) {
   EXPECT_THAT(ErrorOf("sweep:\n  grid:\n    model.trust: 0.5\n"), HasSubstr("sweep.grid.model.trust"));
 }
 
+// Found by fuzzing (fuzz/regressions/sweep/latin1_comment.txt): a sweep
+// config with a Latin-1 comment expanded fine and then sweep.json could not
+// be written (nlohmann type_error 316). Refused up front, naming the line.
+TEST(SweepGrid, ConfigThatIsNotUtf8IsRefused) {
+  const std::string text = std::string("# tr\xff\xff values\n") + kBase +
+                           "sweep:\n  replicates: 1\n  grid:\n    model.trust: [0.2]\n";
+  try {
+    ExpandSweep(text, "latin1.yaml", {});
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("latin1.yaml:1: not UTF-8 text (byte 0xFF)"));
+  }
+  // Text the tables and sweep.json carry from elsewhere (a task's error
+  // message) is written with U+FFFD instead of throwing.
+  EXPECT_EQ(Dump(Json("a\xff")), "\"a\xef\xbf\xbd\"");
+}
+
+// The plan's size is bounded before anything is allocated: at most 100 000
+// grid points (each point's config is checked up front) and 10 000 000 tasks
+// (sweep.replicates = 1e9 used to end in std::bad_alloc).
+TEST(SweepGrid, PointsAndTasksAreBounded) {
+  std::string values;
+  for (int i = 0; i < 400; ++i) values += (i ? ", " : "") + std::to_string(i);
+  EXPECT_THAT(ErrorOf("sweep:\n  replicates: 1\n  grid:\n    scenario.seed: [" + values +
+                      "]\n    scenario.min_gap: [" + values + "]\n"),
+              HasSubstr("sweep.grid has more than 100000 points"));
+  EXPECT_THAT(ErrorOf("sweep:\n  replicates: 1000000000\n  grid:\n    model.trust: [0.2, 0.8]\n"),
+              HasSubstr("sweep.replicates = 1000000000 times 2 grid points is more than 10000000 tasks"));
+}
+
 TEST(SweepGrid, SplitFlowSequenceRespectsNestingAndQuotes) {
   std::vector<std::string> items;
   ASSERT_TRUE(SplitFlowSequence("[0, [1, 2], {a: 1, b: [3, 4]}, 'x, y', \"q\\\",\"]", &items));
@@ -206,6 +236,40 @@ TEST(SweepJournal, TornTailIgnoredOtherSweepRefusedOkWins) {
   const std::string agg = AggregateCsv(p, both);
   EXPECT_THAT(agg, HasSubstr("\n0,0.2,no_trust,1,0,10,0.2,"));
   EXPECT_THAT(agg, HasSubstr("\n1,0.8,ta_ebp,0,1,,"));
+}
+
+// Lines that parse as JSON but are not entries of the right shape are named
+// (origin:line) and skipped, never thrown as a JSON type error nor summed
+// into the tables (counts that are negative, fractional or beyond 2^53).
+TEST(SweepJournal, LinesOfTheWrongShapeAreNamedAndSkipped) {
+  const Plan p = Expand("sweep:\n  replicates: 2\n  grid:\n    model.trust: [0.2, 0.8]\n");
+  const std::string h = "\"hash\":\"" + p.hash + "\"";
+  const std::vector<std::string> bad = {
+      "not json",
+      "[1, 2]",
+      "{\"point\":0,\"replicate\":0,\"status\":\"ok\"}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":7}",
+      "{" + h + ",\"point\":\"0\",\"replicate\":0,\"status\":\"ok\",\"policies\":{}}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":\"ok\",\"policies\":[]}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":\"ok\",\"policies\":{\"ta_ebp\":{\"encounters\":-1}}}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":\"ok\",\"policies\":{\"ta_ebp\":{\"encounters\":1.5}}}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":\"ok\",\"policies\":{\"ta_ebp\":{\"dc\":1e300}}}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":\"ok\",\"policies\":{\"ta_ebp\":{\"wait_mean\":\"abc\"}}}",
+      "{" + h + ",\"point\":0,\"replicate\":0,\"status\":\"ok\",\"error\":3,\"policies\":{}}",
+  };
+  std::string text;
+  for (const std::string& line : bad) text += line + "\n";
+  Journal j;
+  ASSERT_NO_THROW(j = ParseJournal(text, p, "dir/journal.jsonl"));
+  EXPECT_TRUE(j.entries.empty());
+  EXPECT_EQ(j.lines, 0u);
+  ASSERT_EQ(j.corrupt.size(), bad.size());
+  for (std::size_t i = 0; i < bad.size(); ++i)
+    EXPECT_THAT(j.corrupt[i], HasSubstr("dir/journal.jsonl:" + std::to_string(i + 1) + ": "));
+  EXPECT_THAT(j.corrupt[3], HasSubstr("\"status\""));
+  EXPECT_THAT(j.corrupt[6], HasSubstr("policies.ta_ebp.encounters"));
+  EXPECT_NO_THROW(ResultsCsv(p, j));
+  EXPECT_NO_THROW(AggregateCsv(p, j));
 }
 
 // AddEntry says whether it stored the entry (merge takes a task's outputs

@@ -1,6 +1,8 @@
 // `taebp sweep` / `taebp merge` driven as a user would (build/taebp): failing
 // points, resume after kill -9, shards + merge, --jobs and MPI ranks all give
 // byte-identical tables.
+#include "sweep_fixture.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -23,92 +25,29 @@
 
 namespace {
 
-namespace fs = std::filesystem;
+using taebp::test::Quote;
+using taebp::test::ReadFile;
+using taebp::test::SweepCli;
 using ::testing::HasSubstr;
+namespace fs = std::filesystem;
 
-std::string ReadFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string Quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-class SweepCli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    char tmpl[] = "/tmp/taebp_sweep_test_XXXXXX";
-    ASSERT_NE(::mkdtemp(tmpl), nullptr);
-    dir_ = tmpl;
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
-
-  // A small sweep: 2 x 2 points (one zipped axis) x 2 seeds, two policies.
-  fs::path Config(const std::string& grid = "", int replicates = 2) {
-    const fs::path p = dir_ / "sweep.yaml";
-    std::ofstream(p) << "scenario: {avs: 4, hvs: 4, stop_distance: 3.0, duration: 90, seed: 5}\n"
-                        "model: {trust: 0.6}\n"
-                        "policies: [no_trust, ta_ebp]\n"
-                        "sweep:\n  replicates: " << replicates << "\n  grid:\n"
-                     << (grid.empty() ? "    model.trust: [0.3, 0.9]\n"
-                                        "    \"scenario.avs,scenario.hvs\": [[2, 6], [6, 2]]\n"
-                                      : grid);
-    return p;
-  }
-
-  // Runs a shell command line; its output goes to dir/log.txt.
-  int Shell(const std::string& cmd) {
-    const fs::path log = dir_ / "log.txt";
-    const int st = std::system((cmd + " >" + Quote(log.string()) + " 2>&1").c_str());
-    last_log_ = ReadFile(log);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-  }
-  int Taebp(const std::string& args) { return Shell(Quote(TAEBP_CLI) + " " + args); }
-  int Sweep(const fs::path& config, const fs::path& out, const std::string& extra = "") {
-    return Taebp("sweep " + Quote(config.string()) + " --out " + Quote(out.string()) +
-                 " --quiet " + extra);
-  }
-
-  void ExpectSameTables(const fs::path& a, const fs::path& b) {
-    for (const char* f : {"results.csv", "results.jsonl", "aggregate.csv"}) {
-      ASSERT_TRUE(fs::exists(a / f)) << a / f;
-      ASSERT_TRUE(fs::exists(b / f)) << b / f;
-      EXPECT_EQ(ReadFile(a / f), ReadFile(b / f)) << f << " differs between " << a << " and " << b;
-    }
-  }
-
-  std::vector<nlohmann::json> Journal(const fs::path& out) {
-    std::vector<nlohmann::json> lines;
-    std::istringstream in(ReadFile(out / "journal.jsonl"));
-    for (std::string line; std::getline(in, line);) lines.push_back(nlohmann::json::parse(line));
-    return lines;
-  }
-
-  fs::path dir_;
-  std::string last_log_;
-};
-
+// A point whose config is valid but cannot run (too many vehicles for loops
+// that may not grow: found when the scenario is built) fails in its task; the
+// other points complete.
 TEST_F(SweepCli, FailingPointIsRecordedOthersCompleteExitCodeNonZero) {
-  const fs::path cfg = Config("    model.trust: [0.5, 1.5]\n", 1);
+  const fs::path cfg = Config("    \"scenario.avs,scenario.hvs\": [[4, 4], [40, 40]]\n", 1);
   const fs::path out = dir_ / "out";
-  EXPECT_EQ(Sweep(cfg, out, "--jobs 2"), 1) << last_log_;
+  EXPECT_EQ(Sweep(cfg, out, "--jobs 2 --set scenario.auto_length=false"), 1) << last_log_;
   const std::string csv = ReadFile(out / "results.csv");
-  EXPECT_THAT(csv, HasSubstr("\n0,0,5,0.5,no_trust,ok,,"));
-  EXPECT_THAT(csv, HasSubstr("\n0,0,5,0.5,ta_ebp,ok,,"));
-  EXPECT_THAT(csv, HasSubstr("\n1,0,5,1.5,ta_ebp,failed,"));
-  EXPECT_THAT(csv, HasSubstr("model.trust = 1.5 is outside [0, 1]"));
-  EXPECT_THAT(ReadFile(out / "aggregate.csv"), HasSubstr("\n1,1.5,no_trust,0,1,"));
+  EXPECT_THAT(csv, HasSubstr("\n0,0,5,4,4,no_trust,ok,,"));
+  EXPECT_THAT(csv, HasSubstr("\n0,0,5,4,4,ta_ebp,ok,,"));
+  EXPECT_THAT(csv, HasSubstr("\n1,0,5,40,40,ta_ebp,failed,"));
+  EXPECT_THAT(csv, HasSubstr("scenario.loop_length = 80 m is too short for 80 vehicles"));
+  EXPECT_THAT(ReadFile(out / "aggregate.csv"), HasSubstr("\n1,40,40,no_trust,0,1,"));
   const auto journal = Journal(out);
   ASSERT_EQ(journal.size(), 2u);
   // A re-run retries only the failed task (and fails again).
-  EXPECT_EQ(Sweep(cfg, out), 1);
+  EXPECT_EQ(Sweep(cfg, out, "--set scenario.auto_length=false"), 1);
   EXPECT_EQ(Journal(out).size(), 3u);
   EXPECT_EQ(Journal(out).back()["point"], 1);
   EXPECT_TRUE(fs::exists(out / "tasks/0-0/summary.json"));

@@ -5,10 +5,12 @@
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/persuasion.h"
+#include "taebp/report/output_dir.h"
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -203,6 +205,16 @@ int Snapshot::Run(int argc, char** argv) {
   if (!(std::isfinite(o.at) && o.at > 0))
     throw persuasion::InvalidArgument("--at " + Seconds(o.at) +
                                       ": the time must be a positive number of seconds");
+  {
+    std::string ext = fs::path(o.out).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (ext != ".png")
+      throw persuasion::InvalidArgument("--out " + o.out +
+                                        ": the picture must be a .png file (sumo-gui picks the "
+                                        "format from the name and writes nothing else here)");
+    const fs::path parent = fs::absolute(o.out).parent_path();
+    CheckOutputDir(parent.string(), "--out " + o.out + ": its folder");
+  }
   RequireSumoGui();
   // Config and policy errors before any re-execution.
   ExperimentConfig config = LoadExperimentConfig(o.config_path, o.overrides);
@@ -238,40 +250,52 @@ int Snapshot::Run(int argc, char** argv) {
 
   const fs::path out = fs::absolute(o.out);
   if (out.has_parent_path()) fs::create_directories(out.parent_path());
+  // sumo-gui writes a temporary picture next to --out, renamed over it once
+  // complete: a failing run leaves an earlier picture as it was and never an
+  // empty or partial file.
+  const fs::path tmp = out.parent_path() / ("." + out.stem().string() + ".taebp-" +
+                                            std::to_string(::getpid()) + ".png");
   std::error_code ec;
-  fs::remove(out, ec);  // so that a file afterwards is this run's
-  // sumo-gui's picture; the legend is composed from it into `out`.
-  const fs::path shot =
-      o.no_legend ? out : out.parent_path() / (".sumo-gui." + std::to_string(getpid()) + ".png");
+  // sumo-gui's picture goes to `tmp`; with the legend, the composed picture
+  // goes to a second temporary name; either is renamed over --out.
+  const fs::path composed = out.parent_path() / ("." + out.stem().string() + ".taebp-legend-" +
+                                                 std::to_string(::getpid()) + ".png");
+  fs::remove(tmp, ec);
+  PolicyRun run;
+  try {
+    sumo::SetBackend(sumo::Backend::kLibtraciGui,
+                     {"--window-size", kSnapshotWindow, "--delay", "0"});
+    RunOptions ro;
+    ro.colour_states = true;
+    ro.after_start = FrameTrack;
+    ro.before_close = [&] {
+      sumo::gui::Screenshot(tmp.string());
+      sumo::Step();  // sumo-gui writes the picture during this step
+    };
+    run = RunPolicy(config, policy, scenario, ro);
+    sumo::SetBackend(sumo::Backend::kLibsumo);
 
-  sumo::SetBackend(sumo::Backend::kLibtraciGui,
-                   {"--window-size", kSnapshotWindow, "--delay", "0"});
-  RunOptions ro;
-  ro.colour_states = true;
-  ro.after_start = FrameTrack;
-  ro.before_close = [&] {
-    sumo::gui::Screenshot(shot.string());
-    sumo::Step();  // sumo-gui writes the picture during this step
-  };
-  const PolicyRun run = RunPolicy(config, policy, scenario, ro);
-  sumo::SetBackend(sumo::Backend::kLibsumo);
-
-  // sumo-gui has written the file by the end of the step; allow a moment for
-  // the file system all the same.
-  for (int i = 0; i < 50 && !(fs::exists(shot) && fs::file_size(shot) > 0); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  if (!fs::exists(shot) || fs::file_size(shot) == 0)
-    throw GuiError("sumo-gui did not write " + shot.string());
-  if (!o.no_legend) {
-    const std::string title = o.config_path + " · " + PolicyTitle(name) + " · seed " +
-                              std::to_string(config.scenario.seed);
-    try {
-      AddLegend(shot, out, title, o.at);
-    } catch (...) {
-      fs::remove(shot, ec);
-      throw;
+    // sumo-gui has written the file by the end of the step; allow a moment
+    // for the file system all the same.
+    auto written = [&] {
+      return fs::exists(tmp, ec) && fs::file_size(tmp, ec) > 0 && PngSize(tmp.string()).first > 0;
+    };
+    for (int i = 0; i < 50 && !written(); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (!written()) throw GuiError("sumo-gui did not write a PNG picture to " + tmp.string());
+    if (o.no_legend) {
+      fs::rename(tmp, out);
+    } else {
+      const std::string title = o.config_path + " · " + PolicyTitle(name) + " · seed " +
+                                std::to_string(config.scenario.seed);
+      AddLegend(tmp, composed, title, o.at);
+      fs::remove(tmp, ec);
+      fs::rename(composed, out);
     }
-    fs::remove(shot, ec);
+  } catch (...) {
+    fs::remove(tmp, ec);
+    fs::remove(composed, ec);
+    throw;
   }
   const auto [w, h] = PngSize(out.string());
   std::fprintf(stderr, "taebp: snapshot of %s at t = %s s (%zu encounters so far): %s", name.c_str(),

@@ -1,6 +1,7 @@
 // taebp: the command-line program. Subcommands: theory, solve, run, sweep, merge, snapshot.
 #include "taebp/config/config.h"
 #include "taebp/controller/experiment.h"
+#include "taebp/report/output_dir.h"
 #include "taebp/report/report.h"
 #include "taebp/runner/runner.h"
 #include "taebp/runner/theory.h"
@@ -177,6 +178,7 @@ int Solve(const std::string& path, bool json) {
 int RunExperimentCommand(const std::string& config_path, const std::vector<std::string>& overrides,
                          std::string out_dir, bool quiet, const taebp::RunOptions& run_options = {}) {
   if (out_dir.empty()) out_dir = taebp::DefaultOutDir(config_path);
+  taebp::CheckOutputDir(out_dir);  // before the first simulation step
   taebp::ExperimentObserver observer;
   observer.warning = [](const std::string& w) {
     std::fprintf(stderr, "taebp: warning: %s\n", w.c_str());
@@ -206,6 +208,9 @@ int ReportErrors(F&& body) {
   } catch (const per::InvalidArgument& e) {
     std::cerr << "taebp: invalid argument: " << e.what() << "\n";
     return kExitConfig;
+  } catch (const taebp::OutputError& e) {
+    std::cerr << "taebp: " << e.what() << "\n";
+    return kExitConfig;
   } catch (const taebp::SumoError& e) {
     std::cerr << "taebp: " << e.what() << "\n";
     return kExitSumo;
@@ -213,6 +218,33 @@ int ReportErrors(F&& body) {
     std::cerr << "taebp: error: " << e.what() << "\n";
     return 1;
   }
+}
+
+// Parses the command line. Exit codes as the README documents: --help and
+// --version 0, any argument error 2 (CLI11's own codes are 100+), with the
+// name of an unknown subcommand (CLI11 only says one is required).
+std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv) {
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string name = argv[1];
+    std::string known;
+    bool found = false;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+      found = found || sub->check_name(name);
+    }
+    if (!found) {
+      std::cerr << "taebp: unknown subcommand '" << name << "' (one of: " << known
+                << ")\nRun with --help for more information.\n";
+      return kExitConfig;
+    }
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints --help, --version or the error
+    return code == 0 ? 0 : kExitConfig;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -271,7 +303,7 @@ int main(int argc, char** argv) {
       });
   taebp::gui::Snapshot snapshot(app);
 
-  CLI11_PARSE(app, argc, argv);
+  if (const std::optional<int> code = ParseCommandLine(app, argc, argv)) return *code;
   return ReportErrors([&] {
     if (*theory) return Theory(th);
     if (*solve) return Solve(problem, solve_json);

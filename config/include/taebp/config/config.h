@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -95,7 +96,7 @@ struct ScenarioConfig {
   int hvs = 8;                  // number of human-driven vehicles (red)
   double cruise_speed = 4.0;    // m/s
   double min_gap = 2.0;         // m, SUMO minGap
-  double stop_distance = 3.0;   // m from the vehicle's front to the centre when held (figure-8)
+  double stop_distance = 3.0;   // m from the front to the centre when held (>= s_max + width/2: README "Geometry")
   double step_length = 0.1;     // s
   double duration = 3600.0;     // simulated seconds per policy
   std::uint64_t seed = 1;       // run seed (SUMO --seed and the controller's RNG)
@@ -293,6 +294,10 @@ struct ExperimentConfig {
   bool IsValid(std::string* why) const;
 };
 
+// The text of a config file. Throws ConfigError naming the path when it is a
+// directory, missing or unreadable.
+std::string ReadConfigFile(const std::string& path);
+
 // Loads a YAML experiment file, applies `overrides` ("key.path=VALUE", VALUE
 // parsed as YAML) and validates. Unknown keys, wrong types and out-of-range
 // values throw ConfigError naming the file (or the --set), the key and value.
@@ -301,6 +306,20 @@ ExperimentConfig LoadExperimentConfig(const std::string& path,
 // Same, from YAML text (`origin` names it in messages).
 ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& origin,
                                        const std::vector<std::string>& overrides = {});
+// A config text parsed once, to be loaded many times with different
+// overrides (a sweep's grid points): Load(o) equals
+// ParseExperimentConfig(yaml_text, origin, o), without re-parsing the text.
+class ExperimentTemplate {
+ public:
+  ExperimentTemplate(const std::string& yaml_text, const std::string& origin);
+  ~ExperimentTemplate();
+  ExperimentConfig Load(const std::vector<std::string>& overrides) const;
+
+ private:
+  struct Impl;
+  std::shared_ptr<const Impl> impl_;
+};
+
 // The resolved config as YAML text and as a JSON string (same schema).
 std::string ToYaml(const ExperimentConfig& config);
 std::string ToJson(const ExperimentConfig& config);

@@ -92,9 +92,11 @@ struct Journal {
   std::size_t lines = 0;         // well-formed lines read
   std::size_t valid_bytes = 0;   // length up to the last complete line
   bool partial_tail = false;     // the file ended in a half-written line
+  // Malformed complete lines, skipped: "origin:line: why" each.
+  std::vector<std::string> corrupt;
 };
 // Parses journal text. Lines of another sweep (hash) throw ConfigError naming
-// `origin`; malformed complete lines are skipped.
+// `origin`; malformed complete lines are skipped and listed in `corrupt`.
 Journal ParseJournal(const std::string& text, const Plan& plan, const std::string& origin);
 // Adds `entry` (a journal line's JSON) to `journal` with the same precedence;
 // returns whether it was stored (false: outside the plan, or a failure after
@@ -117,6 +119,10 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal);
 
 // sweep.json: the resolved base config, the plan's shape and provenance.
 Json SweepHeader(const Plan& plan, const std::string& shard, const std::string& sumo_version);
+
+// JSON text of `j` (indent < 0: one line) in which bytes that are not UTF-8
+// (a task's error message, a path) become U+FFFD instead of throwing.
+std::string Dump(const Json& j, int indent = -1);
 
 // A CSV cell, quoted when it holds a comma, quote or newline.
 std::string CsvQuote(const std::string& s);
