@@ -20,11 +20,17 @@ namespace fs = std::filesystem;
 std::vector<std::pair<std::string, std::string>> ExperimentResult::Files() const {
   nlohmann::ordered_json timing;
   timing["wall_seconds_total"] = wall_seconds;
-  return {{"summary.json", SummaryJson(runs, provenance)},
-          {"encounters.csv", EncountersCsv(runs)},
-          {"junctions.csv", JunctionsCsv(runs)},
-          {"config.yaml", ToYaml(config)},
-          {"timing.json", timing.dump(2) + "\n"}};
+  std::vector<std::pair<std::string, std::string>> files = {
+      {"summary.json", SummaryJson(runs, provenance)},
+      {"encounters.csv", EncountersCsv(runs)},
+      {"junctions.csv", JunctionsCsv(runs)},
+      {"config.yaml", ToYaml(config)},
+      {"timing.json", timing.dump(2) + "\n"}};
+  if (BeyondPaper(runs)) {  // dynamic / learned trust, noise: the time series
+    files.emplace_back("timeseries.csv", TimeseriesCsv(runs));
+    files.emplace_back("hv_trust.csv", HvTrustCsv(runs));
+  }
+  return files;
 }
 
 std::string ExperimentResult::Table() const {
