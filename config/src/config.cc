@@ -285,9 +285,73 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   if (c.ok() && l.s_max >= s.stop_distance + 50.0)
     c.Fail("model.likelihood.s_max = " + Num(l.s_max) + " is not a nudge (> 50 m past the stop)");
 
+  // Beyond the paper: dynamic trust, perception noise, learned trust.
+  if (m.trust_dynamics) {
+    const TrustDynamicsConfig& d = *m.trust_dynamics;
+    c.Positive("model.trust_dynamics.strength", d.strength);
+    c.NonNegative("model.trust_dynamics.success_weight", d.success_weight);
+    c.NonNegative("model.trust_dynamics.failure_weight", d.failure_weight);
+    c.Closed01("model.trust_dynamics.forgetting", d.forgetting);
+    const TrustQualityConfig& q = d.quality;
+    c.Closed01("model.trust_dynamics.quality.nudge_go", q.nudge_go);
+    c.Closed01("model.trust_dynamics.quality.nudge_stop", q.nudge_stop);
+    c.Closed01("model.trust_dynamics.quality.still_stop", q.still_stop);
+    c.Closed01("model.trust_dynamics.quality.still_go", q.still_go);
+    c.Closed01("model.trust_dynamics.quality.collision", q.collision);
+    // Each HV's initial state is Beta(mean * strength, (1 - mean) * strength):
+    // its drawn trust must lie strictly inside (0, 1).
+    const TrustSpec& t = m.trust;
+    auto inside = [&](const std::string& key, double v) {
+      if (c.ok() && !(v > 0.0 && v < 1.0))
+        c.Fail(key + " = " + Num(v) +
+               " must lie strictly inside (0, 1) with model.trust_dynamics (the HV's trust is the "
+               "mean of a Beta distribution)");
+    };
+    if (t.dist == "fixed") inside("model.trust", t.value);
+    if (t.dist == "discrete")
+      for (double v : t.values) inside("model.trust.values", v);
+    if (t.dist == "uniform") {
+      inside("model.trust.low", t.low);
+      inside("model.trust.high", t.high);
+    }
+  }
+  if (m.noise) {
+    const NoiseConfig& n = *m.noise;
+    if (n.kind != "none" && n.kind != "gaussian" && n.kind != "uniform")
+      c.Fail("model.noise.kind = '" + n.kind + "' is not one of: none, gaussian, uniform");
+    if (n.kind != "none") c.Positive("model.noise.scale", n.scale);
+    if (!std::isfinite(n.bias))
+      c.Fail("model.noise.bias = " + Num(n.bias) + " must be a finite number of metres");
+    c.Open01("model.noise.delta", n.delta);
+    if (n.design != "aware" && n.design != "paper")
+      c.Fail("model.noise.design = '" + n.design + "' is not one of: aware, paper");
+  }
+  const bool learned =
+      std::find(policies.begin(), policies.end(), "ta_ebp_learned") != policies.end();
+  if (m.learning) {
+    const LearningConfig& l = *m.learning;
+    c.Open01("model.learning.delta", l.delta);
+    if (!(std::isfinite(l.decay) && l.decay > 0))
+      c.Fail("model.learning.decay = " + Num(l.decay) +
+             " must be > 0 and finite (model.learning.constant_level: true for a constant level)");
+    if (l.prior) {
+      std::string why_prior;
+      if (!l.prior->IsValid("model.learning.prior", &why_prior)) c.Fail(why_prior);
+    }
+  }
+  if (learned && c.ok() && !(m.prior_go < 2.0 / (2.0 + m.collision_penalty)))
+    c.Fail("model.prior_go = " + Num(m.prior_go) +
+           " is at or above p* = 2/(2 + model.collision_penalty) = " +
+           Num(2.0 / (2.0 + m.collision_penalty)) +
+           ": every HV drives if clear without persuasion, so ta_ebp_learned has nothing to "
+           "learn");
+  if (!(std::isfinite(outputs.interval) && outputs.interval >= 1.0))
+    c.Fail("outputs.interval = " + Num(outputs.interval) +
+           " must be >= 1 s (the time series are sampled once a simulated second)");
+
   if (policies.empty())
     c.Fail("policies is empty: list at least one of sumo_native, no_ebp, no_trust, ta_ebp, "
-           "full_reveal");
+           "full_reveal, population_mean, ta_ebp_learned");
   std::set<std::string> seen;
   for (const std::string& p : policies) {
     if (p != kSumoNative) {
@@ -295,7 +359,8 @@ bool ExperimentConfig::IsValid(std::string* why) const {
         persuasion::ParsePolicy(p);  // the one list of persuasion policy names
       } catch (const persuasion::InvalidArgument&) {
         c.Fail("policies: '" + p +
-               "' is not one of sumo_native, no_ebp, no_trust, ta_ebp, full_reveal");
+               "' is not one of sumo_native, no_ebp, no_trust, ta_ebp, full_reveal, "
+               "population_mean, ta_ebp_learned");
       }
     }
     if (!seen.insert(p).second) c.Fail("policies: '" + p + "' is listed twice");
@@ -311,6 +376,13 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     }
   }
   return c.ok();
+}
+
+bool ExperimentConfig::BeyondPaper() const {
+  if (model.trust_dynamics || model.noise || model.learning) return true;
+  for (const std::string& p : policies)
+    if (p == "population_mean" || p == "ta_ebp_learned") return true;
+  return false;
 }
 
 }  // namespace taebp

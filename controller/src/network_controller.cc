@@ -3,6 +3,7 @@
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/junction/conflict_geometry.h"
 #include "taebp/junction/design.h"
+#include "taebp/junction/hv_population.h"
 #include "taebp/junction/intersection.h"
 #include "taebp/junction/junction_logic.h"
 
@@ -74,8 +75,6 @@ struct Veh {
   bool alive = false;
   VehicleKind kind = VehicleKind::kHV;
   double trust = 0;
-  persuasion::CommittedScheme scheme;
-  persuasion::PredictedOutcome theory;
   double length = 5, min_gap = 2;
   std::vector<int> route;  // edge indices
   int route_pos = 0;       // route index already counted
@@ -147,10 +146,10 @@ struct NetworkController::Impl : junction::EncounterModel {
     out.policy = policy ? persuasion::ToString(*policy) : kSumoNative;
     out.scenario_kind = sc.kind;
     if (policy) {
-      const ModelConfig& m = config.model;
-      out.scheme = persuasion::CommitScheme(*policy, params, DesignTrust(m, *policy, m.trust.Mean()),
-                                            *model);
-      out.theory = ExpectedOutcome(m, *policy);
+      // Each HV's trust, the AV's design for it, its reading (hv_population.h).
+      population = std::make_unique<HvPopulation>(config, *policy);
+      out.scheme = population->PopulationScheme();
+      out.theory = population->Theory();
     }
     dt = sc.step_length;
     sample_every = std::max(1L, std::lround(1.0 / dt));
@@ -410,10 +409,10 @@ struct NetworkController::Impl : junction::EncounterModel {
   AvDraw Draw(int av, int hv) override {
     ++vehs[av].open_encounters;
     ++vehs[hv].open_encounters;
-    return DrawAv(vehs[hv].scheme, params.prior_go, rng);
+    return DrawAv(population->Commit(vehs[av].id, vehs[hv].id), params.prior_go, rng);
   }
-  HvReading Read(int /*av*/, int hv, double observed) override {
-    const HvReading r = ReadNudge(vehs[hv].scheme, params, vehs[hv].trust, *model, observed);
+  HvReading Read(int av, int hv, double observed) override {
+    const HvReading r = population->Read(vehs[av].id, vehs[hv].id, observed);
     SetPaint(hv, r.drives_if_clear ? Paint::kDc : Paint::kDr);
     return r;
   }
@@ -452,11 +451,7 @@ struct NetworkController::Impl : junction::EncounterModel {
     if (!av) {
       const TrustSpec& t = cfg.model.trust;
       v.trust = t.IsFixed() ? t.value : t.Draw(HashUniform(sc.seed, id, kSaltTrust));
-      if (policy) {
-        const double hat = DesignTrust(cfg.model, *policy, v.trust);
-        v.scheme = persuasion::CommitScheme(*policy, params, hat, *model);
-        v.theory = persuasion::PredictOutcome(v.scheme, params, v.trust, *model);
-      }
+      if (policy) population->Add(id, v.trust);
       if (out.hv_trust.size() < kTrustListMax) out.hv_trust.push_back(v.trust);
     }
     v.length = sumo::Length(id);
@@ -494,6 +489,7 @@ struct NetworkController::Impl : junction::EncounterModel {
     Veh& v = vehs[h];
     CountProgress(h, static_cast<int>(v.route.size()) - 1);
     v.alive = false;
+    if (population && v.kind == VehicleKind::kHV) population->Remove(id);
     if (v.state == State::kCrossing) Clear(h);  // left the network inside a junction
     if (v.approach >= 0 && approaches[v.approach].head == h) approaches[v.approach].head = -1;
     if (now >= sc.warmup) ++out.network.arrived;
@@ -734,8 +730,11 @@ struct NetworkController::Impl : junction::EncounterModel {
   }
 
   void Record(const JunctionRt& j, const junction::EncounterOutcome& e) {
-    if (e.time < sc.warmup) return;
     EncounterRecord r;
+    // The HV's trust (before), the theory, and the updates of trust and beliefs.
+    population->Finish(vehs[e.av].id, vehs[e.hv].id, e.draw, e.reading, e.collision,
+                       e.time >= sc.warmup, &r);
+    if (e.time < sc.warmup) return;
     r.time = e.time;
     r.junction = j.info.id;
     r.av = vehs[e.av].id;
@@ -749,14 +748,11 @@ struct NetworkController::Impl : junction::EncounterModel {
     r.intent_go = e.draw.intent_go;
     r.commanded = e.draw.nudge_distance;
     r.observed = e.reading.observed;
-    r.hv_trust = vehs[e.hv].trust;
     r.posterior = e.reading.posterior;
     r.hv_dc = e.reading.drives_if_clear;
     r.av_first = e.draw.goes_first;
     r.collision = e.collision;
     r.decided_at = e.decided_at;
-    r.theory_dc = vehs[e.hv].theory.dc_rate;
-    r.theory_collision = vehs[e.hv].theory.collision_rate;
     out.encounters.push_back(r);
   }
 
@@ -848,6 +844,7 @@ struct NetworkController::Impl : junction::EncounterModel {
       ++ap.stats.samples;
     }
     CheckStalls();
+    if (population) population->Sample(now);
     if (now < sc.warmup) return;
     if (scenario.kind == "network") {
       out.network.vehicles_max =
@@ -868,6 +865,7 @@ struct NetworkController::Impl : junction::EncounterModel {
   std::unique_ptr<persuasion::LikelihoodModel> model;
   persuasion::AvHvParams params;
   std::mt19937_64 rng;
+  std::unique_ptr<HvPopulation> population;  // policy runs only
   PolicyRun out;
   double dt = 0.1;
   long sample_every = 10;
@@ -956,6 +954,12 @@ PolicyRun NetworkController::Finish() {
   for (const auto& [id, h] : s.index) s.CountProgress(h, sumo::RouteIndex(id));
   s.out.simulated_seconds = s.now;
   s.out.measured_seconds = std::max(0.0, s.now - s.sc.warmup);
+  if (s.population) {
+    s.out.beyond = s.population->Results(s.now);
+    s.out.theory = s.population->Theory();
+  } else {
+    s.out.beyond.on = s.cfg.BeyondPaper();  // sumo_native: the same columns as the others
+  }
   for (JunctionRt& j : s.junctions) {
     for (std::size_t k = 0; k < j.approaches.size(); ++k)
       j.run.approaches[k] = s.approaches[j.approaches[k]].stats;

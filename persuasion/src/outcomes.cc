@@ -18,16 +18,28 @@ const char* ToString(Policy policy) {
       return "ta_ebp";
     case Policy::kFullReveal:
       return "full_reveal";
+    case Policy::kPopulationMean:
+      return "population_mean";
+    case Policy::kTaEbpLearned:
+      return "ta_ebp_learned";
   }
   return "unknown";
 }
 
+const std::vector<Policy>& AllPolicies() {
+  static const std::vector<Policy> all = {Policy::kNoEbp,      Policy::kNoTrust,
+                                          Policy::kTaEbp,      Policy::kFullReveal,
+                                          Policy::kPopulationMean, Policy::kTaEbpLearned};
+  return all;
+}
+
 Policy ParsePolicy(const std::string& name) {
-  for (Policy policy : {Policy::kNoEbp, Policy::kNoTrust, Policy::kTaEbp, Policy::kFullReveal}) {
+  for (Policy policy : AllPolicies()) {
     if (name == ToString(policy)) return policy;
   }
   throw InvalidArgument("policy '" + name +
-                        "' is unknown (expected no_ebp, no_trust, ta_ebp or full_reveal)");
+                        "' is unknown (expected no_ebp, no_trust, ta_ebp, full_reveal, "
+                        "population_mean or ta_ebp_learned)");
 }
 
 namespace {
@@ -60,6 +72,8 @@ CommittedScheme CommitScheme(Policy policy, const AvHvParams& params, double the
       // Classic Bayesian persuasion: assumes a fully trusting HV.
       return FromDesign(DesignTaebp(params, 1.0, model));
     case Policy::kTaEbp:
+    case Policy::kPopulationMean:  // theta_hat: the population's mean trust
+    case Policy::kTaEbpLearned:    // theta_hat: the learned lower bound
       return FromDesign(DesignTaebp(params, theta_hat, model));
     case Policy::kFullReveal: {
       // Nudge s_max iff Go: pi(s_max|Go) = 1, pi(s_max|Stop) = 0.

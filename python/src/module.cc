@@ -157,7 +157,8 @@ PYBIND11_MODULE(_taebp, m) {
     return py::make_tuple(out.json.dump(), out.optimal);
   });
 
-  m.def("encounter_columns", [] { return taebp::EncounterCsvColumns(); });
+  m.def("encounter_columns", [](bool beyond) { return taebp::EncounterCsvColumns(beyond); },
+        py::arg("beyond") = false);
 
   // One experiment; the GIL is released while SUMO runs. Returns the result
   // files (name -> text), the printed table and the warnings.

@@ -231,9 +231,11 @@ def to_pandas(obj):
                     % type(obj).__name__)
 
 
-def encounter_columns():
-    """The columns of encounters.csv, in order."""
-    return list(_taebp.encounter_columns())
+def encounter_columns(beyond=False):
+    """The columns of encounters.csv, in order; ``beyond=True``: those of a run
+    beyond the paper (dynamic / learned trust, noise, population_mean), which
+    add columns after the paper's."""
+    return list(_taebp.encounter_columns(bool(beyond)))
 
 
 def _flatten(prefix, value, out):
@@ -254,12 +256,18 @@ class RunResult:
     table       the Table I printout of ``taebp run``
     warnings    the run's warnings (also in summary.json's provenance)
     files       every result file's exact text (name -> text)
-    out         the directory written, or None"""
+    out         the directory written, or None
+    timeseries  timeseries.csv as a Table (runs beyond the paper), else None
+    hv_trust    hv_trust.csv as a Table (runs beyond the paper), else None"""
 
     def __init__(self, files, table=None, warnings=None, out=None):
         self.files = dict(files)
         self.summary = json.loads(self.files["summary.json"])
         self.encounters = Table.from_csv(self.files["encounters.csv"], "encounters.csv")
+        self.timeseries = (Table.from_csv(self.files["timeseries.csv"], "timeseries.csv")
+                           if "timeseries.csv" in self.files else None)
+        self.hv_trust = (Table.from_csv(self.files["hv_trust.csv"], "hv_trust.csv")
+                         if "hv_trust.csv" in self.files else None)
         self.config = self.files.get("config.yaml", "")
         self.warnings = list(warnings if warnings is not None
                              else self.summary.get("provenance", {}).get("warnings", []))
@@ -272,15 +280,20 @@ class RunResult:
 
     def to_pandas(self):
         """{"encounters": one row per encounter, "policies": one row per policy
-        with summary.json's metrics flattened (e.g. theory.dc_rate)}."""
+        with summary.json's metrics flattened (e.g. theory.dc_rate)}, plus
+        "timeseries" and "hv_trust" for runs beyond the paper."""
         pd = _pandas()
         rows = []
         for name, metrics in self.summary.get("policies", {}).items():
             flat = {"policy": name}
             _flatten("", metrics, flat)
             rows.append(flat)
-        return {"encounters": self.encounters.to_pandas(),
-                "policies": pd.DataFrame(rows)}
+        out = {"encounters": self.encounters.to_pandas(),
+               "policies": pd.DataFrame(rows)}
+        for name in ("timeseries", "hv_trust"):
+            if getattr(self, name) is not None:
+                out[name] = getattr(self, name).to_pandas()
+        return out
 
     def __repr__(self):
         return "<taebp.RunResult %s: %d encounters>" % (", ".join(self.policies),
@@ -311,7 +324,8 @@ def run(config, overrides=(), out=None, progress=False):
 def load_run(out_dir):
     """The RunResult of a directory that ``taebp run --out`` (or run(out=...)) wrote."""
     files = {}
-    for name in ("summary.json", "encounters.csv", "config.yaml", "timing.json"):
+    for name in ("summary.json", "encounters.csv", "junctions.csv", "config.yaml",
+                 "timing.json", "timeseries.csv", "hv_trust.csv"):
         path = os.path.join(out_dir, name)
         if os.path.isfile(path):
             with open(path, encoding="utf-8") as f:

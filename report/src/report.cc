@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -136,6 +137,120 @@ json NetworkJson(const PolicyRun& r) {
   return j;
 }
 
+json Value(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+// Encounters from `from` on (the last hour's window).
+struct Window {
+  double from = 0;
+  long n = 0, dc = 0, collisions = 0;
+  double theory_dc = 0, oracle_dc = 0, theory_collisions = 0;
+};
+Window LastHour(const PolicyRun& r) {
+  Window w;
+  const double start = r.simulated_seconds - r.measured_seconds;
+  w.from = std::max(start, r.simulated_seconds - 3600.0);
+  for (const EncounterRecord& e : r.encounters) {
+    if (e.time < w.from) continue;
+    ++w.n;
+    w.dc += e.hv_dc;
+    w.collisions += e.collision;
+    w.theory_dc += e.theory_dc;
+    w.theory_collisions += e.theory_collision;
+    w.oracle_dc += e.beyond.oracle_dc;
+  }
+  return w;
+}
+
+// The sections of a run beyond the paper (README "Outputs").
+void BeyondJson(const PolicyRun& r, json* out) {
+  json& j = *out;
+  const BeyondRun& b = r.beyond;
+  const Stats s = Compute(r);
+  double oracle_dc = 0, oracle_c = 0, lost = 0, coll = 0, regret = 0;
+  long failures = 0;
+  for (const EncounterRecord& e : r.encounters) {
+    oracle_dc += e.beyond.oracle_dc;
+    oracle_c += e.beyond.oracle_collision;
+    lost += e.beyond.oracle_dc - e.theory_dc;
+    coll += e.theory_collision - e.beyond.oracle_collision;
+    regret += e.beyond.regret;
+    failures += e.commanded > 0 && !e.hv_dc;
+  }
+  const double n = static_cast<double>(s.n);
+  j["trust"] = {{"hvs", b.hvs},
+                {"initial_mean", Value(b.initial_mean_trust)},
+                {"final_mean", Value(b.final_mean_trust)}};
+  j["oracle"] = {{"dc_rate", s.n ? oracle_dc / n : 0.0},
+                 {"collision_rate", s.n ? oracle_c / n : 0.0},
+                 {"expected", {{"dc_rate", b.oracle.dc_rate},
+                               {"collision_rate", b.oracle.collision_rate}}}};
+  j["regret"] = {{"total", regret},
+                 {"dc_lost", lost},
+                 {"collisions", coll},
+                 {"per_encounter", s.n ? regret / n : 0.0}};
+  const Window w = LastHour(r);
+  const Interval wd = Wilson95(w.dc, w.n), wc = Wilson95(w.collisions, w.n);
+  j["last_hour"] = {{"from", w.from},
+                    {"encounters", w.n},
+                    {"dc", w.dc},
+                    {"dc_rate", Rate(w.dc, w.n)},
+                    {"dc_rate_ci95", {wd.low, wd.high}},
+                    {"collisions", w.collisions},
+                    {"collision_rate", Rate(w.collisions, w.n)},
+                    {"collision_rate_ci95", {wc.low, wc.high}},
+                    {"theory_dc_rate", w.n ? w.theory_dc / w.n : 0.0},
+                    {"theory_collision_rate", w.n ? w.theory_collisions / w.n : 0.0},
+                    {"oracle_dc_rate", w.n ? w.oracle_dc / w.n : 0.0}};
+  j["failures"] = {{"nudged_then_dr", failures}};
+  if (b.long_run) {
+    json eq = json::array();
+    for (const TrustEquilibriumRecord& e : b.equilibria)
+      eq.push_back({{"theta", e.theta}, {"kind", e.kind}, {"stable", e.stable}});
+    json attractors = json::array();
+    for (const TrustEquilibriumRecord& e : b.equilibria)
+      if (e.stable) attractors.push_back(e.theta);
+    j["trust_dynamics"] = {{"design_rule", b.design_rule},
+                           {"equilibria", eq},
+                           {"attractors", attractors},
+                           {"expected_long_run_mean", Value(b.expected_long_run_mean)},
+                           {"long_run_theory", {{"dc_rate", Value(b.long_run_dc)},
+                                                {"collision_rate", Value(b.long_run_collision)}}},
+                           {"final_mean_field", Value(b.final_mean_field)}};
+  } else {
+    j["trust_dynamics"] = nullptr;
+  }
+  if (b.learning) {
+    double expected = 0;
+    for (const EncounterRecord& e : r.encounters)
+      if (e.commanded > 0 && std::isfinite(e.beyond.failure_probability))
+        expected += e.beyond.failure_probability;
+    j["learning"] = {{"hvs_met", b.hvs_met},
+                     {"observations", b.observations},
+                     {"contradictions", b.contradictions},
+                     {"probes", b.probes},
+                     {"failures", failures},
+                     {"expected_failures", expected},
+                     {"final_mean_abs_error", Value(b.final_mean_abs_error)}};
+  } else {
+    j["learning"] = nullptr;
+  }
+  if (b.noise) {
+    j["noise"] = {{"kind", b.noise_kind},
+                  {"scale", b.noise_scale},
+                  {"bias", b.noise_bias},
+                  {"delta", b.noise_delta},
+                  {"design", b.noise_design},
+                  {"population_design", {{"status", b.noise_status},
+                                         {"nudge", b.noise_nudge},
+                                         {"b", b.noise_b},
+                                         {"credible", b.noise_credible},
+                                         {"density_ratio", b.noise_density_ratio},
+                                         {"persuasion_probability", b.noise_persuasion}}}};
+  } else {
+    j["noise"] = nullptr;
+  }
+}
+
 }  // namespace
 
 std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
@@ -259,6 +374,7 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
     for (const JunctionRun& jr : r.junctions) junctions.push_back(JunctionJson(r, jr));
     j["junctions"] = junctions;
     if (r.scenario_kind == "network") j["network"] = NetworkJson(r);
+    if (r.beyond.on && r.policy != "sumo_native") BeyondJson(r, &j);
     pol[r.policy] = j;
   }
   return root.dump(2) + "\n";
@@ -302,6 +418,50 @@ const std::vector<EncounterColumn>& EncounterColumns() {
   return cols;
 }
 
+std::string Opt(double v) { return std::isfinite(v) ? FormatDouble(v) : std::string(); }
+
+// The columns a run beyond the paper adds after those (README "Outputs").
+const std::vector<EncounterColumn>& BeyondColumns() {
+  static const std::vector<EncounterColumn> cols = {
+      {"design_trust", [](const PolicyRun&, const EncounterRecord& e) {
+         return Opt(e.beyond.design_trust); }},
+      {"scheme_b", [](const PolicyRun&, const EncounterRecord& e) {
+         return FormatDouble(e.beyond.scheme_b); }},
+      {"hv_reading", [](const PolicyRun&, const EncounterRecord& e) {
+         return FormatDouble(e.beyond.reading); }},
+      {"hv_trust_after", [](const PolicyRun&, const EncounterRecord& e) {
+         return FormatDouble(e.beyond.trust_after); }},
+      {"outcome", [](const PolicyRun&, const EncounterRecord& e) { return e.beyond.outcome; }},
+      {"quality", [](const PolicyRun&, const EncounterRecord& e) { return Opt(e.beyond.quality); }},
+      {"theory_dc", [](const PolicyRun&, const EncounterRecord& e) {
+         return FormatDouble(e.theory_dc); }},
+      {"theory_collision", [](const PolicyRun&, const EncounterRecord& e) {
+         return FormatDouble(e.theory_collision); }},
+      {"oracle_dc", [](const PolicyRun&, const EncounterRecord& e) {
+         return FormatDouble(e.beyond.oracle_dc); }},
+      {"oracle_collision", [](const PolicyRun&, const EncounterRecord& e) {
+         return FormatDouble(e.beyond.oracle_collision); }},
+      {"regret", [](const PolicyRun&, const EncounterRecord& e) {
+         return FormatDouble(e.beyond.regret); }},
+      {"learn_mode", [](const PolicyRun&, const EncounterRecord& e) { return e.beyond.mode; }},
+      {"risk_level", [](const PolicyRun&, const EncounterRecord& e) {
+         return Opt(e.beyond.risk_level); }},
+      {"failure_probability", [](const PolicyRun&, const EncounterRecord& e) {
+         return Opt(e.beyond.failure_probability); }},
+      {"belief_lower", [](const PolicyRun&, const EncounterRecord& e) {
+         return Opt(e.beyond.belief_lower); }},
+      {"belief_upper", [](const PolicyRun&, const EncounterRecord& e) {
+         return Opt(e.beyond.belief_upper); }},
+      {"observation", [](const PolicyRun&, const EncounterRecord& e) {
+         return e.beyond.observation; }},
+  };
+  return cols;
+}
+
+bool AnyBeyond(const std::vector<PolicyRun>& runs) {
+  return std::any_of(runs.begin(), runs.end(), [](const PolicyRun& r) { return r.beyond.on; });
+}
+
 }  // namespace
 
 std::string CsvCell(const std::string& s) {
@@ -314,14 +474,20 @@ std::string CsvCell(const std::string& s) {
   return out + "\"";
 }
 
-std::vector<std::string> EncounterCsvColumns() {
+std::vector<std::string> EncounterCsvColumns(bool beyond) {
   std::vector<std::string> names;
   for (const EncounterColumn& c : EncounterColumns()) names.emplace_back(c.name);
+  if (beyond)
+    for (const EncounterColumn& c : BeyondColumns()) names.emplace_back(c.name);
   return names;
 }
 
+bool BeyondPaper(const std::vector<PolicyRun>& runs) { return AnyBeyond(runs); }
+
 std::string EncountersCsv(const std::vector<PolicyRun>& runs) {
-  const auto& cols = EncounterColumns();
+  std::vector<EncounterColumn> cols = EncounterColumns();
+  if (AnyBeyond(runs))
+    cols.insert(cols.end(), BeyondColumns().begin(), BeyondColumns().end());
   std::string out;
   for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + std::string(cols[i].name);
   out += '\n';
@@ -329,6 +495,56 @@ std::string EncountersCsv(const std::vector<PolicyRun>& runs) {
     for (const EncounterRecord& e : r.encounters) {
       for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + CsvCell(cols[i].cell(r, e));
       out += '\n';
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> TimeseriesCsvColumns() {
+  return {"policy",    "time",       "hvs",       "mean_trust",       "mean_field_trust",
+          "encounters", "dc",        "collisions", "nudges",          "failures",
+          "theory_dc", "theory_collisions", "oracle_dc", "oracle_collisions", "regret",
+          "expected_failures"};
+}
+
+std::string TimeseriesCsv(const std::vector<PolicyRun>& runs) {
+  std::string out;
+  const auto cols = TimeseriesCsvColumns();
+  for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + cols[i];
+  out += '\n';
+  for (const PolicyRun& r : runs) {
+    for (const TimeSample& t : r.beyond.series) {
+      out += CsvCell(r.policy) + ',' + FormatDouble(t.time) + ',' + std::to_string(t.hvs) + ',' +
+             Opt(t.mean_trust) + ',' + Opt(t.mean_field_trust) + ',' +
+             std::to_string(t.encounters) + ',' + std::to_string(t.dc) + ',' +
+             std::to_string(t.collisions) + ',' + std::to_string(t.nudges) + ',' +
+             std::to_string(t.failures) + ',' + FormatDouble(t.theory_dc) + ',' +
+             FormatDouble(t.theory_collisions) + ',' + FormatDouble(t.oracle_dc) + ',' +
+             FormatDouble(t.oracle_collisions) + ',' + FormatDouble(t.regret) + ',' +
+             FormatDouble(t.expected_failures) + '\n';
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> HvTrustCsvColumns() {
+  return {"policy",       "time",         "hv",          "trust",        "encounters",
+          "belief_lower", "belief_upper", "belief_mean", "design_trust", "observations",
+          "contradictions"};
+}
+
+std::string HvTrustCsv(const std::vector<PolicyRun>& runs) {
+  std::string out;
+  const auto cols = HvTrustCsvColumns();
+  for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + cols[i];
+  out += '\n';
+  for (const PolicyRun& r : runs) {
+    for (const HvSample& h : r.beyond.hv_series) {
+      out += CsvCell(r.policy) + ',' + FormatDouble(h.time) + ',' + CsvCell(h.hv) + ',' +
+             FormatDouble(h.trust) + ',' + std::to_string(h.encounters) + ',' +
+             Opt(h.belief_lower) + ',' + Opt(h.belief_upper) + ',' + Opt(h.belief_mean) + ',' +
+             Opt(h.design_trust) + ',' + std::to_string(h.observations) + ',' +
+             std::to_string(h.contradictions) + '\n';
     }
   }
   return out;
@@ -417,7 +633,45 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       return std::string(buf);
     });
   }
+  if (AnyBeyond(runs)) {
+    auto row = [&](const char* label, auto cell) {
+      out << std::setw(w0) << label;
+      for (const PolicyRun& r : runs) out << std::setw(w) << cell(r);
+      out << "\n";
+    };
+    row("Last hour DC rate", [](const PolicyRun& r) {
+      if (r.policy == "sumo_native") return std::string("-");
+      const Window win = LastHour(r);
+      const Interval ci = Wilson95(win.dc, win.n);
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%.3f [%.3f,%.3f] or %.3f", Rate(win.dc, win.n), ci.low,
+                    ci.high, win.n ? win.oracle_dc / win.n : 0.0);
+      return std::string(buf);
+    });
+    row("Regret / encounter", [](const PolicyRun& r) {
+      if (r.policy == "sumo_native" || r.encounters.empty()) return std::string("-");
+      double regret = 0;
+      for (const EncounterRecord& e : r.encounters) regret += e.beyond.regret;
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.4f (total %.1f)", regret / r.encounters.size(), regret);
+      return std::string(buf);
+    });
+    row("Mean trust start/end", [](const PolicyRun& r) {
+      if (r.policy == "sumo_native") return std::string("-");
+      char buf[96];
+      if (r.beyond.long_run)
+        std::snprintf(buf, sizeof buf, "%.3f / %.3f (long run %.3f)", r.beyond.initial_mean_trust,
+                      r.beyond.final_mean_trust, r.beyond.expected_long_run_mean);
+      else
+        std::snprintf(buf, sizeof buf, "%.3f / %.3f", r.beyond.initial_mean_trust,
+                      r.beyond.final_mean_trust);
+      return std::string(buf);
+    });
+  }
   out << "(rate [95% Wilson interval] th = library theory for the same parameters)\n";
+  if (AnyBeyond(runs))
+    out << "(or = the oracle, TA-EBP for each HV's exact trust, on the same encounters; regret "
+           "= DC lost + r x collisions against it)\n";
   if (flagged) out << "! the theory lies outside the measured rate's 95% interval\n";
   for (const std::string& warning : warnings) out << "warning: " << warning << "\n";
 }

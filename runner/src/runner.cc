@@ -32,6 +32,10 @@ std::vector<std::pair<std::string, std::string>> ExperimentResult::Files() const
     if (!r.sumo_summary_xml.empty())
       files.emplace_back("summary-" + r.policy + ".xml", r.sumo_summary_xml);
   }
+  if (BeyondPaper(runs)) {  // dynamic / learned trust, noise: the time series
+    files.emplace_back("timeseries.csv", TimeseriesCsv(runs));
+    files.emplace_back("hv_trust.csv", HvTrustCsv(runs));
+  }
   return files;
 }
 

@@ -2,6 +2,7 @@
 
 #include "taebp/junction/design.h"
 #include "taebp/persuasion/lp.h"
+#include "taebp/persuasion/noise.h"
 
 #include <cmath>
 
@@ -22,6 +23,20 @@ void TheoryRequest::Validate() const {
   Params().Validate();
   if (!(trust >= 0 && trust <= 1))
     throw per::InvalidArgument("--trust theta = " + std::to_string(trust) + " is outside [0, 1]");
+  if (noise != "none" || noise_bias != 0.0) {
+    Noise().Validate();
+    if (!(noise_delta > 0 && noise_delta < 1))
+      throw per::InvalidArgument("--noise-delta = " + std::to_string(noise_delta) +
+                                 " is outside (0, 1)");
+  }
+}
+
+per::PerceptionNoise TheoryRequest::Noise() const {
+  per::PerceptionNoise n;
+  n.kind = per::ParseNoiseKind(noise);
+  n.scale = noise_scale;
+  n.bias = noise_bias;
+  return n;
 }
 
 per::AvHvParams TheoryRequest::Params() const { return per::AvHvParams{prior, penalty}; }
@@ -76,6 +91,39 @@ ordered_json TheoryJson(const TheoryRequest& o) {
   j["dc_rate"] = predicted.dc_rate;
   j["collision_rate"] = predicted.collision_rate;
   j["policies"] = policies;
+  if (o.noise != "none" || o.noise_bias != 0.0) {
+    const per::PerceptionNoise noise = o.Noise();
+    const per::NoiseAwareDesign nd =
+        per::DesignUnderNoise(params, theta_hat, *model, noise, o.noise_delta);
+    const per::PredictedOutcome aware =
+        per::PredictOutcomeUnderNoise(nd.scheme, params, o.trust, *model, noise);
+    ordered_json n;
+    n["kind"] = o.noise;
+    n["scale"] = o.noise_scale;
+    n["bias"] = o.noise_bias;
+    n["delta"] = o.noise_delta;
+    n["collision_bound"] = o.noise_delta * o.prior;
+    n["aware"] = {{"status", per::ToString(nd.status)},
+                  {"nudge", nd.nudge},
+                  {"b", nd.b},
+                  {"credible", nd.credible},
+                  {"density_ratio", nd.density_ratio},
+                  {"persuasion_probability", nd.persuasion_probability},
+                  {"dc_rate", aware.dc_rate},
+                  {"collision_rate", aware.collision_rate},
+                  {"nudge_rate", aware.nudge_rate}};
+    ordered_json under;
+    for (per::Policy p : {per::Policy::kNoEbp, per::Policy::kNoTrust, per::Policy::kTaEbp,
+                          per::Policy::kFullReveal}) {
+      const per::PredictedOutcome out = per::PredictOutcomeUnderNoise(
+          per::CommitScheme(p, params, theta_hat, *model), params, o.trust, *model, noise);
+      under[per::ToString(p)] = {{"dc_rate", out.dc_rate},
+                                 {"collision_rate", out.collision_rate},
+                                 {"nudge_rate", out.nudge_rate}};
+    }
+    n["policies"] = under;
+    j["noise"] = n;
+  }
   return j;
 }
 

@@ -537,8 +537,28 @@ std::string SumoVersionOf(const Journal& journal) {
 // task's point, replicate, seed and swept values in front. Streamed (a large
 // grid's rows need not fit in memory) into a temporary file renamed into place.
 void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal& journal) {
-  std::string task_header;
-  for (const std::string& c : EncounterCsvColumns()) task_header += (task_header.empty() ? "" : ",") + c;
+  auto join = [](const std::vector<std::string>& cols) {
+    std::string h;
+    for (const std::string& c : cols) h += (h.empty() ? "" : ",") + c;
+    return h;
+  };
+  // A task of a run beyond the paper has the extra columns (EncounterCsvColumns(true));
+  // when any has, the pooled file has them and the other tasks' rows get empty cells.
+  const std::string paper_header = join(EncounterCsvColumns(false));
+  const std::string beyond_header = join(EncounterCsvColumns(true));
+  const std::string padding(EncounterCsvColumns(true).size() - EncounterCsvColumns(false).size(), ',');
+  bool any_beyond = false;
+  for (const Task& t : plan.tasks) {
+    const auto it = journal.entries.find(t.index);
+    if (it == journal.entries.end() || !IsOk(it->second)) continue;
+    std::ifstream in(TaskDir(out, t) / "encounters.csv", std::ios::binary);
+    std::string line;
+    if (in && std::getline(in, line) && line == beyond_header) {
+      any_beyond = true;
+      break;
+    }
+  }
+  const std::string task_header = any_beyond ? beyond_header : paper_header;
   const fs::path tmp = out / ("encounters.csv.tmp." + std::to_string(::getpid()));
   std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
   if (!f) throw std::runtime_error("cannot write " + tmp.string());
@@ -551,7 +571,9 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
     const fs::path file = TaskDir(out, t) / "encounters.csv";
     std::ifstream in(file, std::ios::binary);
     std::string line;
-    if (!in || !std::getline(in, line) || line != task_header) {
+    const bool read = in && std::getline(in, line);
+    const bool pad = any_beyond && read && line == paper_header;
+    if (!read || (line != task_header && !pad)) {
       std::fprintf(stderr, "taebp sweep: warning: %s %s; its encounters are not in %s\n",
                    file.c_str(), in ? "has other columns (another taebp version?)" : "is missing",
                    (out / "encounters.csv").c_str());
@@ -562,7 +584,7 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
     for (const std::string& v : plan.points[static_cast<std::size_t>(t.point)].values)
       prefix += ',' + CsvQuote(v);
     while (std::getline(in, line))
-      if (!line.empty()) f << prefix << ',' << line << '\n';
+      if (!line.empty()) f << prefix << ',' << line << (pad ? padding : std::string()) << '\n';
   }
   f.flush();
   if (!f) {

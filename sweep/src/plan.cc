@@ -351,7 +351,12 @@ const std::vector<std::string>& MetricColumns() {
       "longest_gap_without_crossing",
       // kind: network (empty for the figure-8)
       "served_flow", "time_loss_mean", "waiting_time_mean", "waiting_to_depart_end",
-      "nudges_unrealised"};
+      "nudges_unrealised",
+      // runs beyond the paper (empty otherwise): trust, regret, the last hour
+      "initial_mean_trust", "final_mean_trust", "expected_long_run_trust", "final_mean_field_trust",
+      "oracle_dc_rate", "regret", "regret_per_encounter", "failures", "expected_failures",
+      "last_hour_encounters", "last_hour_dc", "last_hour_collisions", "last_hour_dc_rate",
+      "last_hour_collision_rate", "last_hour_oracle_dc_rate"};
   return cols;
 }
 
@@ -423,6 +428,22 @@ Json MetricsFromSummary(const Json& s, const std::vector<std::string>& policies)
     m["waiting_time_mean"] = opt({"network", "waiting_time_mean"});
     m["waiting_to_depart_end"] = opt({"network", "waiting_to_depart", "end"});
     m["nudges_unrealised"] = opt({"nudges_unrealised"});
+    // Beyond the paper (dynamic / learned trust, noise): absent for the paper's runs.
+    m["initial_mean_trust"] = opt({"trust", "initial_mean"});
+    m["final_mean_trust"] = opt({"trust", "final_mean"});
+    m["expected_long_run_trust"] = opt({"trust_dynamics", "expected_long_run_mean"});
+    m["final_mean_field_trust"] = opt({"trust_dynamics", "final_mean_field"});
+    m["oracle_dc_rate"] = opt({"oracle", "dc_rate"});
+    m["regret"] = opt({"regret", "total"});
+    m["regret_per_encounter"] = opt({"regret", "per_encounter"});
+    m["failures"] = opt({"failures", "nudged_then_dr"});
+    m["expected_failures"] = opt({"learning", "expected_failures"});
+    m["last_hour_encounters"] = opt({"last_hour", "encounters"});
+    m["last_hour_dc"] = opt({"last_hour", "dc"});
+    m["last_hour_collisions"] = opt({"last_hour", "collisions"});
+    m["last_hour_dc_rate"] = opt({"last_hour", "dc_rate"});
+    m["last_hour_collision_rate"] = opt({"last_hour", "collision_rate"});
+    m["last_hour_oracle_dc_rate"] = opt({"last_hour", "oracle_dc_rate"});
     out[p] = m;
   }
   return out;
@@ -570,6 +591,12 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
     double th_c_w = 0, th_d_w = 0, th_c = 0, th_d = 0, thg_c_w = 0, thg_d_w = 0;
     std::vector<double> tp_av, tp_hv, tp_all, wait;
     std::vector<double> served, loss, waiting, pending;  // kind: network
+    // Beyond the paper.
+    std::vector<double> final_trust, long_run, regret_per_encounter;
+    double oracle_dc_w = 0;  // sum of encounters x oracle DC rate
+    bool beyond = false;
+    long lh_n = 0, lh_dc = 0, lh_collisions = 0;
+    double lh_oracle_w = 0;
   };
   // (point, policy) in point order, then the point's policy order.
   std::map<int, std::map<std::string, Acc>> acc;
@@ -613,6 +640,21 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       a.waiting.push_back(Number(m["waiting_time_mean"]));
       a.pending.push_back(Number(m["waiting_to_depart_end"]));
     }
+    if (m["final_mean_trust"].is_number() || m["regret"].is_number()) {
+      a.beyond = true;
+      if (m["final_mean_trust"].is_number()) a.final_trust.push_back(Number(m["final_mean_trust"]));
+      if (m["expected_long_run_trust"].is_number())
+        a.long_run.push_back(Number(m["expected_long_run_trust"]));
+      if (m["regret_per_encounter"].is_number() && n > 0)
+        a.regret_per_encounter.push_back(Number(m["regret_per_encounter"]));
+      if (m["oracle_dc_rate"].is_number()) a.oracle_dc_w += n * Number(m["oracle_dc_rate"]);
+      const long ln = m["last_hour_encounters"].is_number() ? m["last_hour_encounters"].get<long>() : 0;
+      a.lh_n += ln;
+      a.lh_dc += m["last_hour_dc"].is_number() ? m["last_hour_dc"].get<long>() : 0;
+      a.lh_collisions += m["last_hour_collisions"].is_number() ? m["last_hour_collisions"].get<long>() : 0;
+      if (m["last_hour_oracle_dc_rate"].is_number())
+        a.lh_oracle_w += ln * Number(m["last_hour_oracle_dc_rate"]);
+    }
   });
   auto mean = [](const std::vector<double>& v) {
     if (v.empty()) return std::nan("");
@@ -636,7 +678,11 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
          "collision_rate_hi,dc_rate,dc_rate_lo,dc_rate_hi,theory_collision_rate,theory_dc_rate,"
          "theory_given_hvs_collision_rate,theory_given_hvs_dc_rate,throughput_av,throughput_hv,"
          "throughput_all,wait_mean,throughput_all_sd,wait_mean_sd,served_flow,served_flow_sd,"
-         "time_loss_mean,time_loss_mean_sd,waiting_time_mean,waiting_to_depart_end\n";
+         "time_loss_mean,time_loss_mean_sd,waiting_time_mean,waiting_to_depart_end,"
+         "final_mean_trust,final_mean_trust_sd,expected_long_run_trust,oracle_dc_rate,"
+         "regret_per_encounter,regret_per_encounter_sd,last_hour_encounters,last_hour_dc_rate,"
+         "last_hour_dc_rate_lo,last_hour_dc_rate_hi,last_hour_collision_rate,"
+         "last_hour_collision_rate_lo,last_hour_collision_rate_hi,last_hour_oracle_dc_rate\n";
   for (const auto& [point_index, by_policy] : acc) {
     const Point& p = plan.points[static_cast<std::size_t>(point_index)];
     for (const std::string& policy : p.policies) {
@@ -647,7 +693,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       for (const auto& v : p.values) out << ',' << CsvQuote(v);
       out << ',' << CsvQuote(policy) << ',' << a.ok << ',' << a.failed;
       if (a.ok == 0) {
-        out << std::string(23, ',') << '\n';  // one empty cell per metric column
+        out << std::string(23 + 14, ',') << '\n';  // one empty cell per metric column
         continue;
       }
       out << ',' << a.enc;
@@ -669,7 +715,26 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
           << num(mean(a.tp_all)) << ',' << num(mean(a.wait)) << ',' << num(sd(a.tp_all)) << ','
           << num(sd(a.wait)) << ',' << num(mean(a.served)) << ',' << num(sd(a.served)) << ','
           << num(mean(a.loss)) << ',' << num(sd(a.loss)) << ',' << num(mean(a.waiting)) << ','
-          << num(mean(a.pending)) << '\n';
+          << num(mean(a.pending));
+      if (!a.beyond) {
+        out << std::string(14, ',') << '\n';
+        continue;
+      }
+      out << ',' << num(mean(a.final_trust)) << ',' << num(sd(a.final_trust)) << ','
+          << num(mean(a.long_run)) << ',' << num(a.enc > 0 ? a.oracle_dc_w / n : std::nan(""))
+          << ',' << num(mean(a.regret_per_encounter)) << ',' << num(sd(a.regret_per_encounter))
+          << ',' << a.lh_n;
+      if (a.lh_n > 0) {
+        const double ln = static_cast<double>(a.lh_n);
+        const Interval ci_d = Wilson95(a.lh_dc, a.lh_n);
+        const Interval ci_c = Wilson95(a.lh_collisions, a.lh_n);
+        out << ',' << num(a.lh_dc / ln) << ',' << num(ci_d.low) << ',' << num(ci_d.high) << ','
+            << num(a.lh_collisions / ln) << ',' << num(ci_c.low) << ',' << num(ci_c.high) << ','
+            << num(a.lh_oracle_w / ln);
+      } else {
+        out << ",,,,,,,";
+      }
+      out << '\n';
     }
   }
   return out.str();

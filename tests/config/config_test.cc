@@ -660,5 +660,89 @@ TEST(ProblemConfig, ShippedProblemsLoad) {
   if (loaded == 0) GTEST_FAIL() << "no problem files in " << kProblems;
 }
 
+// ------------------------------------------------------------------ beyond the paper
+
+TEST(ConfigBeyond, ShippedStudiesLoadAndThePaperIsNotBeyond) {
+  EXPECT_FALSE(LoadExperimentConfig(kPaper).BeyondPaper());
+  for (const char* name : {"learned_trust", "dynamic_trust", "noise"}) {
+    SCOPED_TRACE(name);
+    const ExperimentConfig c =
+        LoadExperimentConfig(std::string(TAEBP_SOURCE_DIR) + "/configs/" + name + ".yaml");
+    EXPECT_TRUE(c.BeyondPaper());
+  }
+  EXPECT_TRUE(ParseExperimentConfig("policies: [population_mean]", "t.yaml").BeyondPaper());
+  EXPECT_TRUE(ParseExperimentConfig("model: {noise: {kind: none}}", "t.yaml").BeyondPaper());
+}
+
+TEST(ConfigBeyond, DefaultsOfEachSection) {
+  const ExperimentConfig c = ParseExperimentConfig(
+      "model: {trust_dynamics: {}, noise: {}, learning: {}}\npolicies: [ta_ebp_learned]\n", "t.yaml");
+  ASSERT_TRUE(c.model.trust_dynamics && c.model.noise && c.model.learning);
+  EXPECT_EQ(c.model.trust_dynamics->strength, 10.0);
+  EXPECT_EQ(c.model.trust_dynamics->quality.nudge_stop, 0.0);
+  EXPECT_EQ(c.model.trust_dynamics->quality.still_stop, 1.0);
+  EXPECT_EQ(c.model.noise->kind, "gaussian");
+  EXPECT_EQ(c.model.noise->design, "aware");
+  EXPECT_EQ(c.model.noise->delta, 0.01);
+  EXPECT_EQ(c.model.learning->delta, 0.01);
+  EXPECT_FALSE(c.model.learning->prior.has_value());
+  EXPECT_EQ(c.outputs.interval, 60.0);
+  // Round trip through the one schema, the learning prior included.
+  const ExperimentConfig rich = ParseExperimentConfig(
+      "model:\n  trust_dynamics: {strength: 4, failure_weight: 6, forgetting: 0.01,\n"
+      "                   quality: {nudge_stop: 0.25}}\n"
+      "  noise: {kind: uniform, scale: 0.3, bias: -0.05, delta: 0.02, design: paper}\n"
+      "  learning: {delta: 0.05, decay: 0.75, constant_level: true, probe: false,\n"
+      "             prior: {dist: discrete, values: [0.3, 0.8], weights: [1, 2]}}\n"
+      "outputs: {interval: 120, per_hv: false}\n",
+      "rich.yaml");
+  EXPECT_EQ(ToJson(ParseExperimentConfig(ToYaml(rich), "back.yaml")), ToJson(rich));
+  EXPECT_EQ(rich.model.learning->prior->values, (std::vector<double>{0.3, 0.8}));
+}
+
+TEST(ConfigBeyond, BadValuesNameTheKeyAndTheValue) {
+  struct Case {
+    const char* yaml;
+    std::vector<const char*> expect;
+  };
+  const std::vector<Case> cases = {
+      {"model: {trust_dynamics: {strength: 0}}", {"model.trust_dynamics.strength", "0", "> 0"}},
+      {"model: {trust_dynamics: {failure_weight: -1}}",
+       {"model.trust_dynamics.failure_weight", "-1"}},
+      {"model: {trust_dynamics: {forgetting: 1.5}}", {"model.trust_dynamics.forgetting", "1.5"}},
+      {"model: {trust_dynamics: {quality: {nudge_stop: 2}}}",
+       {"model.trust_dynamics.quality.nudge_stop", "2"}},
+      {"model: {trust: 1, trust_dynamics: {}}", {"model.trust", "1", "strictly inside (0, 1)"}},
+      {"model: {trust: {dist: uniform, low: 0, high: 0.5}, trust_dynamics: {}}",
+       {"model.trust.low", "0"}},
+      {"model: {noise: {kind: laplace}}", {"model.noise.kind", "laplace", "gaussian"}},
+      {"model: {noise: {scale: -0.1}}", {"model.noise.scale", "-0.1"}},
+      {"model: {noise: {delta: 1}}", {"model.noise.delta", "1"}},
+      {"model: {noise: {design: smart}}", {"model.noise.design", "smart", "aware, paper"}},
+      {"model: {learning: {delta: 0}}", {"model.learning.delta", "0"}},
+      {"model: {learning: {decay: -2}}", {"model.learning.decay", "-2"}},
+      {"model: {learning: {prior: {dist: beta, alpha: 0, beta: 1}}}",
+       {"model.learning.prior.alpha", "0"}},
+      {"model: {prior_go: 0.5}\npolicies: [ta_ebp_learned]", {"model.prior_go", "0.5", "p*"}},
+      {"outputs: {interval: 0.5}", {"outputs.interval", "0.5"}},
+      {"policies: [ta_ebp_learnt]", {"ta_ebp_learnt", "ta_ebp_learned", "population_mean"}},
+  };
+  for (const Case& k : cases) {
+    SCOPED_TRACE(k.yaml);
+    const FileError e = LoadError(k.yaml);
+    EXPECT_THAT(e.message, HasSubstr(e.path));
+    for (const char* part : k.expect) EXPECT_THAT(e.message, HasSubstr(part));
+  }
+  // Unknown keys inside the new sections, with the line.
+  const FileError unknown = LoadError("model:\n  noise:\n    kind: gaussian\n    sigma: 0.1\n");
+  EXPECT_THAT(unknown.message, HasSubstr("model.noise.sigma"));
+  EXPECT_THAT(unknown.message, HasSubstr(unknown.path + ":4"));
+  EXPECT_THAT(LoadError("model: {trust_dynamics: {quality: {near_miss: 0}}}").message,
+              HasSubstr("model.trust_dynamics.quality.near_miss"));
+  // And from --set.
+  EXPECT_THAT(LoadError("model: {}", {"model.noise.scale=-3"}).message,
+              HasSubstr("--set model.noise.scale=-3"));
+}
+
 }  // namespace
 }  // namespace taebp

@@ -76,6 +76,27 @@ int Theory(const TheoryOptions& o) {
               << it.value()["dc_rate"].get<double>() << it.value()["collision_rate"].get<double>()
               << "\n";
   }
+  if (j.contains("noise")) {
+    const ordered_json& n = j["noise"];
+    const ordered_json& a = n["aware"];
+    std::cout << "\nWith perception noise (" << o.noise << ", scale " << o.noise_scale
+              << " m, bias " << o.noise_bias << " m) on the HV's reading:\n"
+              << "  noise-aware nudge s_delta        " << a["nudge"].get<double>() << " m   ("
+              << a["status"].get<std::string>() << ", P(DC | nudge) "
+              << a["persuasion_probability"].get<double>() << " >= 1 - delta = "
+              << 1.0 - o.noise_delta << ")\n"
+              << "  its b                            " << a["b"].get<double>() << "\n"
+              << "  policy        DC rate       collision rate\n"
+              << "  " << std::left << std::setw(14) << "ta_ebp_aware" << std::setw(14)
+              << a["dc_rate"].get<double>() << a["collision_rate"].get<double>()
+              << "   (bound delta * lambda = " << n["collision_bound"].get<double>() << ")\n";
+    const ordered_json& under = n["policies"];
+    for (auto it = under.begin(); it != under.end(); ++it) {
+      std::cout << "  " << std::left << std::setw(14) << it.key() << std::setw(14)
+                << it.value()["dc_rate"].get<double>()
+                << it.value()["collision_rate"].get<double>() << "\n";
+    }
+  }
   return 0;
 }
 
@@ -270,6 +291,17 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   theory->add_option("--steepness", th.steepness, "logistic model: steepness k > 0")->capture_default_str();
   theory->add_option("--midpoint", th.midpoint, "logistic model: midpoint m in [0, s_max]")->capture_default_str();
+  theory->add_option("--noise", th.noise,
+                     "perception noise on the HV's reading: none, gaussian or uniform")
+      ->capture_default_str();
+  theory->add_option("--noise-scale", th.noise_scale,
+                     "noise scale (m): Gaussian sigma or uniform half-width")
+      ->capture_default_str();
+  theory->add_option("--noise-bias", th.noise_bias, "bias added to every reading (m)")
+      ->capture_default_str();
+  theory->add_option("--noise-delta", th.noise_delta,
+                     "the noise-aware design's failure budget delta in (0, 1)")
+      ->capture_default_str();
   theory->add_flag("--json", th.json, "print one JSON object instead of a table");
 
   std::string problem;

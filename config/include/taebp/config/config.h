@@ -220,6 +220,92 @@ struct TrustSpec {
   std::string ToString() const;  // compact, for tables and file names
 };
 
+// model.trust_dynamics: each HV's trust is a Beta(alpha, beta) state whose
+// mean it uses, updated after every AV-HV encounter it is in (Guo & Yang;
+// persuasion/trust_dynamics.h). alpha0 + beta0 = strength with the mean the
+// HV's drawn model.trust. q per outcome (what the HV saw: did the AV nudge,
+// did it then go, did they collide) is the quality mapping; SUMO's collision
+// flag decides `collision`. No near misses are defined (the HV cannot tell a
+// close call in SUMO from a clean encounter).
+struct TrustQualityConfig {
+  double nudge_go = 1.0;    // nudged, then went: the nudge meant Go
+  double nudge_stop = 0.0;  // nudged, then yielded: a false alarm
+  double still_stop = 1.0;  // stood still, then yielded
+  double still_go = 0.0;    // stood still, then went: an unannounced Go
+  double collision = 0.0;   // SUMO reported a collision between the two
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("nudge_go", &nudge_go);
+    a->Visit("nudge_stop", &nudge_stop);
+    a->Visit("still_stop", &still_stop);
+    a->Visit("still_go", &still_go);
+    a->Visit("collision", &collision);
+  }
+};
+struct TrustDynamicsConfig {
+  double strength = 10.0;       // alpha0 + beta0: encounters' worth of initial evidence
+  double success_weight = 1.0;  // w_s: alpha += w_s q
+  double failure_weight = 1.0;  // w_f: beta += w_f (1 - q)
+  double forgetting = 0.0;      // rho in [0, 1]: decay toward (alpha0, beta0) per encounter
+  TrustQualityConfig quality;
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("strength", &strength);
+    a->Visit("success_weight", &success_weight);
+    a->Visit("failure_weight", &failure_weight);
+    a->Visit("forgetting", &forgetting);
+    a->Visit("quality", &quality);
+  }
+};
+
+// model.noise: the HV reads SUMO's displacement plus noise and a bias
+// (persuasion/noise.h). The nudge SUMO realises is unchanged (and still
+// checked against its tolerance). design: aware = the AV's TA-EBP designs
+// (ta_ebp, population_mean, ta_ebp_learned) nudge s* - bias - F^-1(delta) so
+// that the noisy reading still persuades with probability >= 1 - delta;
+// paper = they keep the paper's s* (to measure what noise does to it).
+struct NoiseConfig {
+  std::string kind = "gaussian";  // none | gaussian | uniform
+  double scale = 0.05;            // m: Gaussian sigma, or the uniform half-width
+  double bias = 0.0;              // m, added to every reading
+  double delta = 0.01;            // the noise-aware design's failure budget, in (0, 1)
+  std::string design = "aware";   // aware | paper
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("kind", &kind);
+    a->Visit("scale", &scale);
+    a->Visit("bias", &bias);
+    a->Visit("delta", &delta);
+    a->Visit("design", &design);
+  }
+};
+
+// model.learning: the policy ta_ebp_learned (persuasion/trust_learning.h).
+// The AVs share a posterior over each HV's trust (by HV id), start from
+// `prior` (default: model.trust, the population's distribution) and design
+// TA-EBP for the lower credible bound at risk level
+// eps_m = min(delta, decay / (m + 1)) after m observed responses of that HV
+// (constant_level: eps = delta for ever).
+struct LearningConfig {
+  double delta = 0.01;  // in (0, 1): P(a nudge fails to persuade) per encounter
+  double decay = 1.0;   // c > 0 (regret O(log T) needs c > 1/2)
+  bool constant_level = false;  // eps = delta for ever (regret linear in T)
+  bool probe = true;    // test the strongest nudge with probability eps / P(theta < theta*)
+  std::optional<TrustSpec> prior;  // the population prior; unset: model.trust
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("delta", &delta);
+    a->Visit("decay", &decay);
+    a->Visit("constant_level", &constant_level);
+    a->Visit("probe", &probe);
+    a->Visit("prior", &prior);
+  }
+};
+
 struct ModelConfig {
   double prior_go = 0.2;           // lambda
   double collision_penalty = 3.0;  // r
@@ -231,6 +317,10 @@ struct ModelConfig {
   std::string trust_knowledge;
   std::optional<double> assumed_trust;  // theta_hat for trust_knowledge = assumed
   LikelihoodConfig likelihood;
+  // Beyond the paper (unset: the paper's static, exactly seen, known trust).
+  std::optional<TrustDynamicsConfig> trust_dynamics;
+  std::optional<NoiseConfig> noise;
+  std::optional<LearningConfig> learning;
 
   template <typename Archive>
   void Serialize(Archive* a) {
@@ -240,6 +330,9 @@ struct ModelConfig {
     a->Visit("trust_knowledge", &trust_knowledge);
     a->Visit("assumed_trust", &assumed_trust);
     a->Visit("likelihood", &likelihood);
+    a->Visit("trust_dynamics", &trust_dynamics);
+    a->Visit("noise", &noise);
+    a->Visit("learning", &learning);
   }
   // trust_knowledge with the default resolved.
   std::string Knowledge() const {
@@ -276,11 +369,26 @@ inline constexpr double kMaxSteps = 1e9;
 // The baseline policy without a controller: SUMO's own junction logic.
 inline constexpr const char* kSumoNative = "sumo_native";
 
+// outputs: the time series written by runs beyond the paper (timeseries.csv,
+// hv_trust.csv), sampled every `interval` simulated seconds (>= 1: the
+// controller samples once a simulated second).
+struct OutputConfig {
+  double interval = 60.0;  // s
+  bool per_hv = true;      // hv_trust.csv: a row per HV in the network per sample
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("interval", &interval);
+    a->Visit("per_hv", &per_hv);
+  }
+};
+
 struct ExperimentConfig {
   ScenarioConfig scenario;
   ModelConfig model;
   std::vector<std::string> policies = {"no_ebp", "no_trust", "ta_ebp"};
   std::optional<SweepConfig> sweep;  // only `taebp sweep` uses it
+  OutputConfig outputs;
 
   template <typename Archive>
   void Serialize(Archive* a) {
@@ -288,10 +396,16 @@ struct ExperimentConfig {
     a->Visit("model", &model);
     a->Visit("policies", &policies);
     a->Visit("sweep", &sweep);
+    a->Visit("outputs", &outputs);
   }
 
   // Range checks; on failure returns false and a message naming the key and value.
   bool IsValid(std::string* why) const;
+  // True when the run goes beyond the paper's setting: dynamic trust, noise,
+  // learning, or a policy only defined here (population_mean,
+  // ta_ebp_learned). Such runs write the extra encounter columns, summary
+  // sections and time series; the paper's runs write exactly what they did.
+  bool BeyondPaper() const;
 };
 
 // The text of a config file. Throws ConfigError naming the path when it is a

@@ -29,13 +29,23 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace taebp::persuasion {
 
-enum class Policy { kNoEbp, kNoTrust, kTaEbp, kFullReveal };
+// The paper's policies (no_ebp, no_trust, ta_ebp), full revelation, and two
+// TA-EBP variants that differ only in which trust theta_hat the AV designs
+// for: population_mean (the mean trust of the HV population, one design for
+// every HV) and ta_ebp_learned (a safe lower bound of the HV's trust learned
+// from its responses; trust_learning.h). For both, CommitScheme is TA-EBP's
+// design for the theta_hat the caller passes.
+enum class Policy { kNoEbp, kNoTrust, kTaEbp, kFullReveal, kPopulationMean, kTaEbpLearned };
 const char* ToString(Policy policy);
-// Accepts "no_ebp", "no_trust", "ta_ebp", "full_reveal"; throws otherwise.
+// Accepts "no_ebp", "no_trust", "ta_ebp", "full_reveal", "population_mean",
+// "ta_ebp_learned"; throws otherwise.
 Policy ParsePolicy(const std::string& name);
+// The names above, in that order (messages, validation).
+const std::vector<Policy>& AllPolicies();
 
 // What the AV commits to for one policy.
 struct CommittedScheme {

@@ -34,8 +34,20 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
 // encounters.csv text: the header (EncounterCsvColumns) on the first line, then
 // one row per AV-HV encounter, policy first. No comment lines: provenance is in
 // summary.json.
+// Runs beyond the paper (PolicyRun::beyond.on) add the columns of
+// EncounterCsvColumns(true) after the paper's.
 std::string EncountersCsv(const std::vector<PolicyRun>& runs);
-std::vector<std::string> EncounterCsvColumns();
+std::vector<std::string> EncounterCsvColumns(bool beyond = false);
+// Whether any run is beyond the paper (then the files below are written too).
+bool BeyondPaper(const std::vector<PolicyRun>& runs);
+// timeseries.csv: one row per (policy, sample time): the HVs in the network,
+// their mean trust (and its mean-field prediction), cumulative counts, theory,
+// oracle and regret. hv_trust.csv: one row per (policy, sample, HV): its
+// trust and the fleet's belief about it. Header first, no comment lines.
+std::string TimeseriesCsv(const std::vector<PolicyRun>& runs);
+std::vector<std::string> TimeseriesCsvColumns();
+std::string HvTrustCsv(const std::vector<PolicyRun>& runs);
+std::vector<std::string> HvTrustCsvColumns();
 // junctions.csv text: one row per (policy, controlled junction): crossings,
 // throughput, waits, queues, encounters and rates with the theory.
 std::string JunctionsCsv(const std::vector<PolicyRun>& runs);

@@ -4,10 +4,33 @@
 
 #include "taebp/persuasion/outcomes.h"
 
+#include <limits>
 #include <string>
 #include <vector>
 
 namespace taebp {
+
+inline constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();  // an empty cell
+
+// What a run beyond the paper adds to an encounter (dynamic trust, noise,
+// learned trust, population_mean): written as extra encounters.csv columns
+// only by such runs. NaN / empty: not applicable to the policy.
+struct BeyondEncounter {
+  double design_trust = kNoValue;    // theta_hat of this encounter's design
+  double scheme_b = 0;               // its P(nudge | Stop)
+  double reading = 0;                // what the HV read: clamp(observed + bias + noise, 0, s_max)
+  double trust_after = 0;            // the HV's trust after the encounter (hv_trust: before)
+  std::string outcome;               // nudge_go | nudge_stop | still_stop | still_go | collision
+  double quality = kNoValue;         // q of the outcome (trust dynamics)
+  double oracle_dc = 0, oracle_collision = 0;  // TA-EBP for the HV's exact trust, same noise
+  double regret = 0;                 // (oracle_dc - theory_dc) + r (theory_collision - oracle_collision)
+  // ta_ebp_learned
+  std::string mode;                  // design | probe | fallback
+  double risk_level = kNoValue;      // eps of this encounter
+  double failure_probability = kNoValue;  // posterior P(the nudge does not persuade)
+  double belief_lower = kNoValue, belief_upper = kNoValue;  // [L, U) before the encounter
+  std::string observation;           // narrowed | consistent | uninformative | contradiction
+};
 
 // A nudge is realised when SUMO's reported displacement d satisfies
 // s <= d <= s + kNudgeTolerance (the controller aims at s + kNudgeOvershoot).
@@ -31,6 +54,7 @@ struct EncounterRecord {
   double decided_at = 0;    // when the HV decided (after the nudge)
   double theory_dc = 0;         // library prediction for this AV-HV pair's design and HV
   double theory_collision = 0;
+  BeyondEncounter beyond;
 };
 
 // A controlled junction's totals over the measured time (after the warm-up).
@@ -68,6 +92,59 @@ struct StallRecord {
   double detected = 0;  // when the safety net noticed
 };
 
+// Beyond the paper: the population's state over time and the run's totals.
+struct TimeSample {  // timeseries.csv: one row per outputs.interval
+  double time = 0;
+  long hvs = 0;                       // HVs in the network
+  double mean_trust = 0;              // their mean current trust
+  double mean_field_trust = kNoValue; // the mean-field prediction for the same HVs (dynamics)
+  long encounters = 0, dc = 0, collisions = 0, nudges = 0, failures = 0;  // cumulative
+  double theory_dc = 0, theory_collisions = 0;  // cumulative sums of the per-encounter theory
+  double oracle_dc = 0, oracle_collisions = 0;  // ... of the oracle's
+  double regret = 0, expected_failures = 0;
+};
+struct HvSample {  // hv_trust.csv: one row per HV in the network per outputs.interval
+  double time = 0;
+  std::string hv;
+  double trust = 0;                  // current trust (the HV's own)
+  long encounters = 0;               // its encounters so far
+  double belief_lower = kNoValue, belief_upper = kNoValue, belief_mean = kNoValue;
+  double design_trust = kNoValue;    // ta_ebp_learned: what its next design would assume
+  long observations = 0, contradictions = 0;
+};
+struct TrustEquilibriumRecord {
+  double theta = 0;
+  std::string kind;  // root | jump | boundary
+  bool stable = false;
+};
+struct BeyondRun {
+  bool on = false;  // the config is beyond the paper (ExperimentConfig::BeyondPaper)
+  std::vector<TimeSample> series;
+  std::vector<HvSample> hv_series;
+  double initial_mean_trust = 0;  // mean drawn trust of every HV registered
+  double final_mean_trust = 0;    // mean trust of the HVs in the network at the end
+  long hvs = 0;  // HVs registered
+  // Trust dynamics (empty when off or when no closed-form long run applies).
+  bool long_run = false;
+  std::string design_rule;  // e.g. "ta_ebp tracking", "ta_ebp for 0.6"
+  std::vector<TrustEquilibriumRecord> equilibria;  // for the population's mean initial state
+  double expected_long_run_mean = kNoValue;        // over the trust distribution, each HV's attractor
+  double long_run_dc = kNoValue, long_run_collision = kNoValue;  // theory at those attractors
+  double final_mean_field = kNoValue;
+  // Learned trust.
+  bool learning = false;
+  long hvs_met = 0, observations = 0, contradictions = 0, probes = 0;
+  double final_mean_abs_error = kNoValue;  // |posterior mean - trust| over the HVs met
+  // Perception noise: the population design.
+  bool noise = false;
+  std::string noise_kind, noise_design, noise_status;
+  double noise_scale = 0, noise_bias = 0, noise_delta = 0;
+  double noise_nudge = 0, noise_b = 0, noise_persuasion = 0, noise_density_ratio = 0;
+  bool noise_credible = true;
+  // The oracle (TA-EBP for the exact trust) over the trust distribution.
+  persuasion::PredictedOutcome oracle;
+};
+
 struct PolicyRun {
   std::string policy;
   persuasion::CommittedScheme scheme;     // the design for the population's theta_hat
@@ -96,6 +173,7 @@ struct PolicyRun {
   // SUMO's own outputs when the config asks for them (scenario.tripinfo_output,
   // summary_output): the files' text, written next to the results.
   std::string sumo_tripinfo_xml, sumo_summary_xml;
+  BeyondRun beyond;
 };
 
 }  // namespace taebp

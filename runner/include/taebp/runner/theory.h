@@ -5,6 +5,7 @@
 
 #include "taebp/config/config.h"
 #include "taebp/persuasion/av_hv.h"
+#include "taebp/persuasion/noise.h"
 #include "taebp/persuasion/outcomes.h"
 
 #include <nlohmann/json.hpp>
@@ -20,17 +21,28 @@ struct TheoryRequest {
   std::optional<double> assumed_trust;  // theta_hat the AV designs for (default: trust)
   std::string likelihood = "linear";    // linear | logistic
   double steepness = 4.0, midpoint = 1.0;
+  // Perception noise on the HV's reading (model.noise): none | gaussian |
+  // uniform, its scale (sigma or half-width, m), bias (m) and the
+  // noise-aware design's delta. With noise (or a bias) the JSON gains `noise`.
+  std::string noise = "none";
+  double noise_scale = 0.05, noise_bias = 0.0, noise_delta = 0.01;
 
   // Throws persuasion::InvalidArgument naming the parameter and value.
   void Validate() const;
   persuasion::AvHvParams Params() const;
   LikelihoodConfig Likelihood() const;
+  persuasion::PerceptionNoise Noise() const;  // throws for an unknown kind
 };
 
 // `taebp theory --json`: prior_go, collision_penalty, trust, assumed_trust,
 // likelihood, s_max, p_star, theta_star, persuadable, s_star, a, b, p_nudge,
 // dc_rate, collision_rate (the TA-EBP design's) and policies.NAME.{dc_rate,
-// collision_rate, nudge_rate}. Throws persuasion::InvalidArgument.
+// collision_rate, nudge_rate}; with noise also noise.{kind, scale, bias,
+// delta, aware: the noise-aware design for theta_hat (status, nudge, b,
+// credible, density_ratio, persuasion_probability, dc_rate, collision_rate),
+// policies.NAME: every policy's rates under the noise (ta_ebp: the paper's
+// s*, unaware of the noise), collision_bound = delta * lambda}. Throws
+// persuasion::InvalidArgument.
 nlohmann::ordered_json TheoryJson(const TheoryRequest& request);
 
 // The TA-EBP design for theta_hat = request.assumed_trust (default trust).

@@ -1,0 +1,148 @@
+// The HV population as the AVs meet it, beyond the paper's setting: each HV's
+// trust (static, or a Beta state updated by its encounters), the AV fleet's
+// beliefs about each HV (ta_ebp_learned), the HV's noisy reading of the nudge,
+// and per encounter the design, the exact theory, the oracle and the regret.
+// SUMO-free: the network controller calls it from its hooks (a vehicle
+// registers, an AV draws, an HV reads, an encounter is recorded, once a
+// simulated second), and tests drive it with made-up encounters.
+//
+// With the paper's setting (static trust known to the AV, no noise, a paper
+// policy) it computes exactly what the controller computed before: the same
+// scheme per HV, the same reading (ReadNudge), the same theory, and it draws
+// no random number; the encounter stream (DrawAv) stays the controller's.
+//
+// Randomness: two streams of its own, seeded from scenario.seed and a salt
+// per purpose: the noise of the HVs' readings (one uniform per reading, when
+// model.noise is set) and the probes of ta_ebp_learned (one uniform per
+// encounter of that policy). Same config and seed, same draws.
+#pragma once
+
+#include "taebp/config/config.h"
+#include "taebp/junction/intersection.h"
+#include "taebp/persuasion/noise.h"
+#include "taebp/persuasion/outcomes.h"
+#include "taebp/persuasion/trust_dynamics.h"
+#include "taebp/persuasion/trust_learning.h"
+#include "taebp/report/results.h"
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace taebp {
+
+class HvPopulation {
+ public:
+  // `policy`: the run's persuasion policy. Throws ConfigError for settings
+  // the models cannot take (e.g. ta_ebp_learned with lambda >= p*).
+  HvPopulation(const ExperimentConfig& config, persuasion::Policy policy);
+  ~HvPopulation();
+  HvPopulation(const HvPopulation&) = delete;
+  HvPopulation& operator=(const HvPopulation&) = delete;
+
+  // What the AV commits to for an HV of the population's mean trust (an HV
+  // never met, for ta_ebp_learned), and the theory over the trust
+  // distribution (exact over the noise) where one exists a priori.
+  const persuasion::CommittedScheme& PopulationScheme() const { return population_scheme_; }
+  const persuasion::PredictedOutcome& Theory() const { return theory_; }
+  // True when the outputs gain the columns and sections of BeyondRun.
+  bool Beyond() const { return beyond_; }
+
+  // An HV entered the network with its drawn trust.
+  void Add(const std::string& hv, double trust);
+  // It left (its trust state goes; the fleet's belief about it stays).
+  void Remove(const std::string& hv);
+  bool Has(const std::string& hv) const { return hvs_.count(hv) > 0; }
+  // The trust the HV uses now (its Beta mean under dynamics).
+  double Trust(const std::string& hv) const;
+
+  // The AV `av` meets `hv`: the scheme it commits to for this encounter
+  // (draw the intent and signal from it).
+  const persuasion::CommittedScheme& Commit(const std::string& av, const std::string& hv);
+  // The HV reads the displacement SUMO reported (plus noise) under the
+  // committed scheme with its current trust.
+  HvReading Read(const std::string& av, const std::string& hv, double observed);
+  // The encounter finished: fills the record's hv_trust (before), theory and
+  // `beyond` fields, then updates the HV's trust and the fleet's belief.
+  // `counted`: after the warm-up (totals and time series count it); the
+  // updates happen either way.
+  void Finish(const std::string& av, const std::string& hv, const AvDraw& draw,
+              const HvReading& reading, bool collision, bool counted, EncounterRecord* record);
+
+  // Once a simulated second (cheap when no sample is due): a time-series row
+  // every outputs.interval seconds from the warm-up on.
+  void Sample(double now);
+  // The totals; `end`: the simulated time at the end.
+  BeyondRun Results(double end);
+  // Mean of the per-encounter predictions so far (the theory of runs whose
+  // a-priori expectation does not exist: dynamic or learned trust).
+  persuasion::PredictedOutcome EncounterTheory() const;
+
+ private:
+  struct Hv {
+    double trust0 = 0;
+    std::optional<persuasion::BetaTrust> state;       // trust dynamics
+    std::optional<persuasion::BetaTrust> mean_field;  // its mean-field twin
+    long encounters = 0;
+    // Static trust, not learned: the design and predictions, fixed per HV.
+    bool cached = false;
+    persuasion::CommittedScheme scheme;
+    double design_trust = 0;
+    persuasion::PredictedOutcome theory, oracle;
+  };
+  struct Pending {
+    persuasion::CommittedScheme scheme;
+    double trust = 0;
+    double design_trust = kNoValue;
+    persuasion::PredictedOutcome theory, oracle;
+    double reading = 0;
+    std::optional<persuasion::LearnedDesign> learned;
+    double belief_lower = kNoValue, belief_upper = kNoValue;
+  };
+  struct Totals {
+    long encounters = 0, dc = 0, collisions = 0, nudges = 0, failures = 0;
+    double theory_dc = 0, theory_collisions = 0, oracle_dc = 0, oracle_collisions = 0;
+    double regret = 0, expected_failures = 0;
+  };
+
+  double DesignTrustFor(double theta) const;
+  persuasion::CommittedScheme SchemeAt(double theta_hat) const;
+  persuasion::CommittedScheme OracleScheme(double theta) const;
+  persuasion::PredictedOutcome Predict(const persuasion::CommittedScheme& scheme,
+                                       double theta) const;
+  void Design(Hv& h, double theta, Pending* p) const;
+
+  const ExperimentConfig& config_;
+  persuasion::Policy policy_;
+  persuasion::AvHvParams params_;
+  std::unique_ptr<persuasion::LikelihoodModel> model_;
+  bool beyond_ = false;
+  bool dynamic_ = false, learned_ = false;
+  std::optional<persuasion::PerceptionNoise> noise_;  // model.noise set
+  bool noise_aware_ = false;
+  double noise_delta_ = 0.01;
+  persuasion::TrustUpdateRule rule_;
+  std::optional<persuasion::DesignRule> design_rule_;  // the mean-field's, when one applies
+  std::unique_ptr<persuasion::FleetTrustBeliefs> fleet_;
+  persuasion::ExplorationSchedule schedule_;
+  std::mt19937_64 noise_rng_, probe_rng_;
+  persuasion::CommittedScheme population_scheme_;
+  persuasion::PredictedOutcome theory_;
+
+  std::map<std::string, Hv> hvs_;                 // the HVs in the network, by id
+  std::map<std::string, double> met_trust_;       // ta_ebp_learned: each HV met's drawn trust
+  std::map<std::pair<std::string, std::string>, Pending> pending_;
+  Totals totals_;
+  long hvs_added_ = 0, probes_ = 0;
+  double trust_sum_ = 0;  // of the drawn trust of every HV added
+  double next_sample_ = 0;
+  double last_sample_ = -1;
+  std::vector<TimeSample> series_;
+  std::vector<HvSample> hv_series_;
+};
+
+}  // namespace taebp

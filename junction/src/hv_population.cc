@@ -1,0 +1,519 @@
+#include "taebp/junction/hv_population.h"
+
+#include "taebp/junction/design.h"
+#include "taebp/persuasion/random.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace taebp {
+namespace {
+
+namespace per = persuasion;
+using per::Policy;
+
+// Seeds of the population's own streams: scenario.seed mixed with a salt per
+// purpose (splitmix64), so the streams are independent of each other and of
+// the controller's encounter stream (std::mt19937_64(seed)).
+std::uint64_t StreamSeed(std::uint64_t seed, std::uint64_t salt) {
+  std::uint64_t x = seed ^ (salt * 0x9E3779B97F4A7C15ULL);
+  for (int i = 0; i < 2; ++i) {
+    x += 0x9E3779B97F4A7C15ULL;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+    x ^= x >> 31;
+  }
+  return x;
+}
+constexpr std::uint64_t kSaltNoise = 0x6e6f697365;  // "noise"
+constexpr std::uint64_t kSaltProbe = 0x70726f6265;  // "probe"
+
+std::string Num(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+// The population prior of the learner from a trust distribution's YAML form:
+// Beta as it is; fixed and discrete as atoms; uniform on [low, high] as a
+// histogram of 1000 cells (exact when low and high are multiples of 1/1000).
+per::TrustPrior PriorFrom(const TrustSpec& t) {
+  if (t.dist == "beta") return per::TrustPrior::Beta(t.alpha, t.beta);
+  if (t.dist == "discrete") {
+    std::vector<double> w;
+    for (std::size_t i = 0; i < t.values.size(); ++i) w.push_back(t.Weight(i));
+    return per::TrustPrior::Discrete(t.values, w);
+  }
+  if (t.dist == "uniform") {
+    if (t.low == t.high) return per::TrustPrior::Discrete({t.low}, {1.0});
+    if (t.low == 0.0 && t.high == 1.0) return per::TrustPrior::Beta(1.0, 1.0);
+    constexpr int kCells = 1000;
+    std::vector<double> w(kCells, 0.0);
+    for (int k = 0; k < kCells; ++k) {
+      const double a = static_cast<double>(k) / kCells, b = static_cast<double>(k + 1) / kCells;
+      w[k] = std::max(0.0, std::min(b, t.high) - std::max(a, t.low));
+    }
+    return per::TrustPrior::Histogram(w);
+  }
+  return per::TrustPrior::Discrete({t.value}, {1.0});
+}
+
+bool TaebpFamily(Policy p) {
+  return p == Policy::kTaEbp || p == Policy::kPopulationMean || p == Policy::kTaEbpLearned;
+}
+
+// A drawn trust 0 or 1 (a quantile at the very end of a distribution) as the
+// mean of a proper Beta state.
+double Inside01(double theta) { return std::clamp(theta, 1e-9, 1.0 - 1e-9); }
+
+}  // namespace
+
+HvPopulation::HvPopulation(const ExperimentConfig& config, Policy policy)
+    : config_(config),
+      policy_(policy),
+      model_(MakeLikelihood(config.model.likelihood)),
+      noise_rng_(StreamSeed(config.scenario.seed, kSaltNoise)),
+      probe_rng_(StreamSeed(config.scenario.seed, kSaltProbe)) {
+  const ModelConfig& m = config.model;
+  params_.prior_go = m.prior_go;
+  params_.collision_penalty = m.collision_penalty;
+  beyond_ = config.BeyondPaper();
+  dynamic_ = m.trust_dynamics.has_value();
+  learned_ = policy == Policy::kTaEbpLearned;
+  next_sample_ = config.scenario.warmup;
+  if (m.noise) {
+    per::PerceptionNoise n;
+    n.kind = per::ParseNoiseKind(m.noise->kind);
+    n.scale = m.noise->scale;
+    n.bias = m.noise->bias;
+    noise_ = n;
+    noise_aware_ = m.noise->design == "aware";
+    noise_delta_ = m.noise->delta;
+  }
+  if (dynamic_) {
+    const TrustDynamicsConfig& d = *m.trust_dynamics;
+    rule_.success_weight = d.success_weight;
+    rule_.failure_weight = d.failure_weight;
+    rule_.forgetting = d.forgetting;
+    rule_.quality.nudge_go = d.quality.nudge_go;
+    rule_.quality.nudge_stop = d.quality.nudge_stop;
+    rule_.quality.still_stop = d.quality.still_stop;
+    rule_.quality.still_go = d.quality.still_go;
+    rule_.quality.collision = d.quality.collision;
+    rule_.Validate();
+    // The mean-field and long-run theory (noise-free models of trust_dynamics.h).
+    if (!noise_ && !learned_) {
+      per::DesignRule r;
+      r.policy = policy == Policy::kPopulationMean ? Policy::kTaEbp : policy;
+      if (policy == Policy::kPopulationMean) {
+        r.assumed_trust = m.trust.Mean();
+      } else if (policy == Policy::kTaEbp) {
+        const std::string k = m.Knowledge();
+        if (k == "population_mean") r.assumed_trust = m.trust.Mean();
+        if (k == "assumed") r.assumed_trust = m.assumed_trust;
+      }
+      design_rule_ = r;
+    }
+  }
+  if (learned_) {
+    const LearningConfig l = m.learning.value_or(LearningConfig{});
+    schedule_.delta = l.delta;
+    schedule_.decay = l.constant_level ? std::numeric_limits<double>::infinity() : l.decay;
+    schedule_.probe = l.probe;
+    schedule_.Validate();
+    fleet_ = std::make_unique<per::FleetTrustBeliefs>(PriorFrom(l.prior.value_or(m.trust)));
+    const per::TrustBelief fresh(std::make_shared<per::TrustPrior>(fleet_->Population()));
+    // The design for an HV never met, without a probe.
+    const per::LearnedDesign ld =
+        per::ChooseLearnedDesign(fresh, params_, *model_, schedule_, std::nextafter(1.0, 0.0));
+    population_scheme_ = ld.mode == per::LearnedDesign::Mode::kDesign
+                             ? (noise_aware_ ? SchemeAt(ld.design_trust) : ld.scheme)
+                             : ld.scheme;
+  } else {
+    population_scheme_ = SchemeAt(DesignTrustFor(m.trust.Mean()));
+    if (!dynamic_) {
+      // The a-priori expectation over the trust distribution (and the noise).
+      theory_ = noise_ ? ExpectedOver(m.trust,
+                                      [&](double theta) {
+                                        return Predict(SchemeAt(DesignTrustFor(theta)), theta);
+                                      })
+                       : ExpectedOutcome(m, policy);
+    }
+  }
+}
+
+HvPopulation::~HvPopulation() = default;
+
+double HvPopulation::DesignTrustFor(double theta) const {
+  return DesignTrust(config_.model, policy_, theta);
+}
+
+per::CommittedScheme HvPopulation::SchemeAt(double theta_hat) const {
+  if (noise_ && noise_aware_ && TaebpFamily(policy_))
+    return per::DesignUnderNoise(params_, theta_hat, *model_, *noise_, noise_delta_).scheme;
+  return per::CommitScheme(policy_, params_, theta_hat, *model_);
+}
+
+per::CommittedScheme HvPopulation::OracleScheme(double theta) const {
+  if (noise_ && noise_aware_)
+    return per::DesignUnderNoise(params_, theta, *model_, *noise_, noise_delta_).scheme;
+  return per::CommitScheme(Policy::kTaEbp, params_, theta, *model_);
+}
+
+per::PredictedOutcome HvPopulation::Predict(const per::CommittedScheme& scheme,
+                                            double theta) const {
+  if (noise_) return per::PredictOutcomeUnderNoise(scheme, params_, theta, *model_, *noise_);
+  return per::PredictOutcome(scheme, params_, theta, *model_);
+}
+
+void HvPopulation::Add(const std::string& hv, double trust) {
+  Hv h;
+  h.trust0 = trust;
+  if (dynamic_) {
+    const double strength = config_.model.trust_dynamics->strength;
+    h.state = per::BetaTrust::FromMean(Inside01(trust), strength);
+    h.mean_field = h.state;
+  } else if (!learned_) {
+    // Static trust: one design per HV, as the paper's controller had it.
+    h.cached = true;
+    h.design_trust = DesignTrustFor(trust);
+    h.scheme = SchemeAt(h.design_trust);
+    h.theory = Predict(h.scheme, trust);
+    if (beyond_) h.oracle = Predict(OracleScheme(trust), trust);
+  }
+  if (learned_) met_trust_[hv] = trust;
+  hvs_[hv] = std::move(h);
+  ++hvs_added_;
+  trust_sum_ += trust;
+}
+
+void HvPopulation::Remove(const std::string& hv) { hvs_.erase(hv); }
+
+double HvPopulation::Trust(const std::string& hv) const {
+  const auto it = hvs_.find(hv);
+  if (it == hvs_.end()) throw std::logic_error("HvPopulation: HV '" + hv + "' is not in the network");
+  return it->second.state ? it->second.state->Mean() : it->second.trust0;
+}
+
+const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const std::string& hv) {
+  const auto it = hvs_.find(hv);
+  if (it == hvs_.end()) throw std::logic_error("HvPopulation: HV '" + hv + "' is not in the network");
+  Hv& h = it->second;
+  Pending p;
+  p.trust = h.state ? h.state->Mean() : h.trust0;
+  if (learned_) {
+    const double u = per::Uniform01(probe_rng_);  // one per encounter, whatever the mode
+    const per::TrustBelief& belief = fleet_->For(hv);
+    p.belief_lower = belief.Lower();
+    p.belief_upper = belief.Upper();
+    const per::LearnedDesign ld = per::ChooseLearnedDesign(belief, params_, *model_, schedule_, u);
+    p.scheme = ld.scheme;
+    p.design_trust = ld.design_trust;
+    if (noise_ && noise_aware_ && ld.mode != per::LearnedDesign::Mode::kFallback)
+      p.scheme = SchemeAt(ld.design_trust);
+    if (ld.mode == per::LearnedDesign::Mode::kProbe) ++probes_;
+    p.learned = ld;
+  } else if (h.cached) {
+    p.scheme = h.scheme;
+    p.design_trust = h.design_trust;
+    p.theory = h.theory;
+    p.oracle = h.oracle;
+  } else {
+    p.design_trust = DesignTrustFor(p.trust);
+    p.scheme = SchemeAt(p.design_trust);
+  }
+  if (!h.cached) {
+    p.theory = Predict(p.scheme, p.trust);
+    if (beyond_) p.oracle = Predict(OracleScheme(p.trust), p.trust);
+  }
+  if (policy_ == Policy::kNoEbp || policy_ == Policy::kFullReveal) p.design_trust = kNoValue;
+  Pending& slot = pending_[{av, hv}];
+  slot = std::move(p);
+  return slot.scheme;
+}
+
+HvReading HvPopulation::Read(const std::string& av, const std::string& hv, double observed) {
+  const auto it = pending_.find({av, hv});
+  if (it == pending_.end())
+    throw std::logic_error("HvPopulation: no encounter of " + av + " and " + hv + " to read");
+  Pending& p = it->second;
+  if (!noise_) {
+    const HvReading r = ReadNudge(p.scheme, params_, p.trust, *model_, observed);
+    p.reading = std::clamp(observed, 0.0, model_->SMax());
+    return r;
+  }
+  // The noise is added to what SUMO realised, never to the command.
+  const double u = per::Uniform01(noise_rng_);
+  p.reading = per::NoisyReading(*noise_, observed, model_->SMax(), u);
+  HvReading r;
+  r.observed = observed;
+  r.posterior = per::HvPosteriorGo(p.scheme, params_, p.trust, *model_, p.reading);
+  r.drives_if_clear = per::HvDrivesIfClear(params_, r.posterior);
+  return r;
+}
+
+void HvPopulation::Finish(const std::string& av, const std::string& hv, const AvDraw& draw,
+                          const HvReading& reading, bool collision, bool counted,
+                          EncounterRecord* record) {
+  const auto it = pending_.find({av, hv});
+  if (it == pending_.end())
+    throw std::logic_error("HvPopulation: no encounter of " + av + " and " + hv + " to finish");
+  const Pending p = std::move(it->second);
+  pending_.erase(it);
+  record->hv_trust = p.trust;
+  record->theory_dc = p.theory.dc_rate;
+  record->theory_collision = p.theory.collision_rate;
+
+  const bool nudged = draw.nudge_distance > 0.0;
+  const per::EncounterOutcome outcome =
+      per::ClassifyEncounter(nudged, draw.goes_first, collision, /*near_miss=*/false);
+  BeyondEncounter& b = record->beyond;
+  b.design_trust = p.design_trust;
+  b.scheme_b = p.scheme.b;
+  b.reading = p.reading;
+  b.trust_after = p.trust;
+  b.outcome = per::ToString(outcome);
+  b.oracle_dc = p.oracle.dc_rate;
+  b.oracle_collision = p.oracle.collision_rate;
+  b.regret = (p.oracle.dc_rate - p.theory.dc_rate) +
+             params_.collision_penalty * (p.theory.collision_rate - p.oracle.collision_rate);
+  if (p.learned) {
+    const per::LearnedDesign& ld = *p.learned;
+    b.mode = per::ToString(ld.mode);
+    b.risk_level = ld.risk_level;
+    b.failure_probability = ld.failure_probability;
+    b.belief_lower = p.belief_lower;
+    b.belief_upper = p.belief_upper;
+    // The AV knows the displacement it realised, not the HV's (noisy) reading.
+    // Without a signalling scheme the HV reads the prior: nothing to learn.
+    per::ObservationEffect effect = per::ObservationEffect::kUninformative;
+    if (p.scheme.Signals())
+      effect = fleet_->For(hv).Observe(params_, *model_,
+                                       std::clamp(reading.observed, 0.0, model_->SMax()),
+                                       reading.drives_if_clear);
+    b.observation = per::ToString(effect);
+  }
+  const auto hit = hvs_.find(hv);
+  if (hit != hvs_.end()) {
+    Hv& h = hit->second;
+    ++h.encounters;
+    if (h.state) {
+      b.quality = rule_.quality.Of(outcome);
+      h.state->Update(outcome, rule_);
+      b.trust_after = h.state->Mean();
+      if (design_rule_)
+        h.mean_field->Update(per::ExpectedQuality(*design_rule_, params_, h.mean_field->Mean(),
+                                                  *model_, rule_.quality),
+                             rule_);
+    }
+  }
+  if (!counted) return;
+  Totals& t = totals_;
+  ++t.encounters;
+  t.dc += reading.drives_if_clear;
+  t.collisions += collision;
+  t.nudges += nudged;
+  t.failures += nudged && !reading.drives_if_clear;
+  t.theory_dc += p.theory.dc_rate;
+  t.theory_collisions += p.theory.collision_rate;
+  t.oracle_dc += p.oracle.dc_rate;
+  t.oracle_collisions += p.oracle.collision_rate;
+  t.regret += b.regret;
+  if (p.learned && nudged) t.expected_failures += p.learned->failure_probability;
+}
+
+void HvPopulation::Sample(double now) {
+  if (!beyond_ || now + 1e-9 < next_sample_) return;
+  const double interval = config_.outputs.interval;
+  while (next_sample_ <= now + 1e-9) next_sample_ += interval;
+  last_sample_ = now;
+  TimeSample s;
+  s.time = now;
+  s.hvs = static_cast<long>(hvs_.size());
+  double sum = 0, mf = 0;
+  for (const auto& [id, h] : hvs_) {
+    sum += h.state ? h.state->Mean() : h.trust0;
+    if (h.mean_field) mf += h.mean_field->Mean();
+  }
+  s.mean_trust = s.hvs ? sum / s.hvs : kNoValue;
+  if (design_rule_) s.mean_field_trust = s.hvs ? mf / s.hvs : kNoValue;
+  const Totals& t = totals_;
+  s.encounters = t.encounters;
+  s.dc = t.dc;
+  s.collisions = t.collisions;
+  s.nudges = t.nudges;
+  s.failures = t.failures;
+  s.theory_dc = t.theory_dc;
+  s.theory_collisions = t.theory_collisions;
+  s.oracle_dc = t.oracle_dc;
+  s.oracle_collisions = t.oracle_collisions;
+  s.regret = t.regret;
+  s.expected_failures = t.expected_failures;
+  series_.push_back(s);
+  if (!config_.outputs.per_hv) return;
+  std::optional<per::TrustBelief> fresh;
+  for (const auto& [id, h] : hvs_) {
+    HvSample hs;
+    hs.time = now;
+    hs.hv = id;
+    hs.trust = h.state ? h.state->Mean() : h.trust0;
+    hs.encounters = h.encounters;
+    if (learned_) {
+      const per::TrustBelief* belief = fleet_->Find(id);
+      if (!belief) {
+        if (!fresh) fresh.emplace(std::make_shared<per::TrustPrior>(fleet_->Population()));
+        belief = &*fresh;
+      }
+      hs.belief_lower = belief->Lower();
+      hs.belief_upper = belief->Upper();
+      hs.belief_mean = belief->Mean();
+      hs.design_trust = belief->LowerBound(schedule_.Level(belief->Observations()));
+      hs.observations = belief->Observations();
+      hs.contradictions = belief->Contradictions();
+    }
+    hv_series_.push_back(std::move(hs));
+  }
+}
+
+per::PredictedOutcome HvPopulation::EncounterTheory() const {
+  per::PredictedOutcome o;
+  if (totals_.encounters == 0) return o;
+  const double n = static_cast<double>(totals_.encounters);
+  o.dc_rate = totals_.theory_dc / n;
+  o.collision_rate = totals_.theory_collisions / n;
+  return o;
+}
+
+BeyondRun HvPopulation::Results(double end) {
+  BeyondRun out;
+  out.on = beyond_;
+  if (!beyond_) return out;
+  if (end >= config_.scenario.warmup && last_sample_ < end - 1e-9) {
+    next_sample_ = end;
+    Sample(end);
+  }
+  out.series = std::move(series_);
+  out.hv_series = std::move(hv_series_);
+  out.hvs = hvs_added_;
+  const ModelConfig& m = config_.model;
+  out.initial_mean_trust = hvs_added_ ? trust_sum_ / static_cast<double>(hvs_added_) : kNoValue;
+  double sum = 0;
+  for (const auto& [id, h] : hvs_) sum += h.state ? h.state->Mean() : h.trust0;
+  out.final_mean_trust = hvs_.empty() ? kNoValue : sum / static_cast<double>(hvs_.size());
+  out.oracle = ExpectedOver(m.trust, [&](double theta) {
+    return Predict(OracleScheme(theta), theta);
+  });
+  if (dynamic_ || learned_) theory_ = EncounterTheory();
+
+  if (design_rule_) {
+    // The long run: where the mean-field drift G of each HV's trust changes
+    // sign (FindLongRunTrust), for the population's mean initial state, and
+    // each HV's attractor from its own initial trust, averaged over the
+    // trust distribution.
+    out.long_run = true;
+    const per::DesignRule& rule = *design_rule_;
+    const double strength = m.trust_dynamics->strength;
+    out.design_rule = per::ToString(rule.policy);
+    if (rule.policy == Policy::kTaEbp)
+      out.design_rule += rule.assumed_trust ? " for theta_hat = " + Num(*rule.assumed_trust)
+                                            : " tracking the HV's trust";
+    auto initial = [&](double theta) {
+      const double mean = Inside01(theta);
+      return std::pair<double, double>(mean * strength, (1.0 - mean) * strength);
+    };
+    const auto [a_bar, b_bar] = initial(m.trust.Mean());
+    const per::LongRunTrust lr =
+        per::FindLongRunTrust(rule, params_, *model_, rule_, a_bar, b_bar);
+    for (const per::TrustEquilibrium& e : lr.equilibria)
+      out.equilibria.push_back({e.theta, per::ToString(e.kind), e.stable});
+    // Without forgetting G does not depend on (alpha0, beta0): one scan serves
+    // every HV. With forgetting each initial state has its own.
+    std::map<double, double> attractor_of;
+    auto attractor = [&](double theta0) {
+      const auto cached = attractor_of.find(theta0);
+      if (cached != attractor_of.end()) return cached->second;
+      const auto [a0, b0] = initial(theta0);
+      const per::LongRunTrust own =
+          rule_.forgetting > 0 ? per::FindLongRunTrust(rule, params_, *model_, rule_, a0, b0) : lr;
+      const double x = Inside01(theta0);
+      const double g = per::MeanDrift(x, rule, params_, *model_, rule_, a0, b0);
+      double to = x;
+      if (g > 0) {
+        to = 1.0;
+        for (const per::TrustEquilibrium& e : own.equilibria)
+          if (e.stable && e.theta >= x) {
+            to = e.theta;
+            break;
+          }
+      } else if (g < 0) {
+        to = 0.0;
+        for (auto e = own.equilibria.rbegin(); e != own.equilibria.rend(); ++e)
+          if (e->stable && e->theta <= x) {
+            to = e->theta;
+            break;
+          }
+      }
+      attractor_of.emplace(theta0, to);
+      return to;
+    };
+    double mean = 0, dc = 0, coll = 0;
+    for (const auto& [theta0, w] : TrustNodes(m.trust, 64)) {
+      const double to = attractor(theta0);
+      mean += w * to;
+      const per::PredictedOutcome o =
+          per::PredictOutcome(per::SchemeFor(rule, params_, to, *model_), params_, to, *model_);
+      dc += w * o.dc_rate;
+      coll += w * o.collision_rate;
+    }
+    out.expected_long_run_mean = mean;
+    out.long_run_dc = dc;
+    out.long_run_collision = coll;
+    double mf = 0;
+    for (const auto& [id, h] : hvs_) mf += h.mean_field->Mean();
+    out.final_mean_field = hvs_.empty() ? kNoValue : mf / static_cast<double>(hvs_.size());
+  }
+
+  if (learned_) {
+    out.learning = true;
+    double err = 0;
+    long met = 0;
+    for (const auto& [id, belief] : fleet_->All()) {
+      ++out.hvs_met;
+      out.observations += belief.Observations();
+      out.contradictions += belief.Contradictions();
+      const auto t = met_trust_.find(id);
+      if (t != met_trust_.end()) {
+        err += std::abs(belief.Mean() - t->second);
+        ++met;
+      }
+    }
+    out.probes = probes_;
+    out.final_mean_abs_error = met ? err / static_cast<double>(met) : kNoValue;
+  }
+
+  if (noise_) {
+    out.noise = true;
+    const NoiseConfig& n = *m.noise;
+    out.noise_kind = n.kind;
+    out.noise_design = n.design;
+    out.noise_scale = n.scale;
+    out.noise_bias = n.bias;
+    out.noise_delta = n.delta;
+    // The population's design (TA-EBP for the mean trust) under this noise.
+    const per::NoiseAwareDesign nd =
+        per::DesignUnderNoise(params_, m.trust.Mean(), *model_, *noise_, n.delta);
+    out.noise_status = per::ToString(nd.status);
+    out.noise_nudge = nd.nudge;
+    out.noise_b = nd.b;
+    out.noise_persuasion = nd.persuasion_probability;
+    out.noise_density_ratio = nd.density_ratio;
+    out.noise_credible = nd.credible;
+  }
+  return out;
+}
+
+}  // namespace taebp
