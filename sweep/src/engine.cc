@@ -561,6 +561,7 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
   const std::string task_header = any_beyond ? beyond_header : paper_header;
   const fs::path tmp = out / ("encounters.csv.tmp." + std::to_string(::getpid()));
   std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+  errno = 0;
   if (!f) throw std::runtime_error("cannot write " + tmp.string());
   f << "point,replicate,seed";
   for (const std::string& c : plan.columns) f << ',' << CsvQuote(c);
@@ -588,9 +589,12 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
   }
   f.flush();
   if (!f) {
+    const int err = errno;  // set by the failed write (ENOSPC on a full disk)
     f.close();
-    fs::remove(tmp);
-    throw std::runtime_error("cannot write " + tmp.string() + " (disk full?)");
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw std::runtime_error("cannot write " + tmp.string() + ": " +
+                             (err != 0 ? std::strerror(err) : "the stream failed (disk full?)"));
   }
   f.close();
   fs::rename(tmp, out / "encounters.csv");

@@ -191,24 +191,32 @@ class CliFaults : public ::testing::Test {
   std::map<std::string, std::string> earlier_;
 };
 
-// SUMO cannot load the network: a file that is not XML, and the shipped
-// figure-8 cut in the middle of an element. Exit 3, the file named, no
-// results written, earlier results untouched.
+// A network that cannot be read: a file that is not XML and the shipped
+// figure-8 cut in the middle of an element are refused when the scenario is
+// built (exit 2, config error naming the file); well-formed XML that SUMO
+// rejects (a lane speed that is not a number) fails at SUMO's start (exit 3,
+// the file named). No results written, earlier results untouched.
 TEST_F(CliFaults, CorruptNetworkIsASumoErrorNamingTheFile) {
   TempDir dir;
   const fs::path out = dir.path() / "out";
   WriteEarlierResults(out);
   const std::string net = ReadText(fs::path(kCli).parent_path() / "sumo_net/figure8.net.xml");
   ASSERT_GT(net.size(), 4000u);
-  const std::vector<std::string> networks = {
-      dir.Write("garbage.net.xml", "<<< not a SUMO network\n\x01\x02\n"),
-      dir.Write("truncated.net.xml", net.substr(0, net.size() / 2)),
+  std::string bad_speed = net;
+  const std::size_t at = bad_speed.find("speed=\"");
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t end = bad_speed.find('"', at + 7);
+  bad_speed.replace(at, end - at + 1, "speed=\"fast\"");
+  const std::vector<std::pair<std::string, int>> networks = {
+      {dir.Write("garbage.net.xml", "<<< not a SUMO network\n\x01\x02\n"), kExitConfig},
+      {dir.Write("truncated.net.xml", net.substr(0, net.size() / 2)), kExitConfig},
+      {dir.Write("bad_speed.net.xml", bad_speed), kExitSumo},
   };
-  for (const std::string& network : networks) {
+  for (const auto& [network, code] : networks) {
     SCOPED_TRACE(network);
     const CliResult r = RunCli({"run", kPaper, "--set", "scenario.duration=30", "--set",
                                 "scenario.network=" + network, "--out", out.string()});
-    EXPECT_EQ(r.exit_code, kExitSumo) << r.Describe();
+    EXPECT_EQ(r.exit_code, code) << r.Describe();
     EXPECT_THAT(r.err, HasSubstr(network)) << r.Describe();
     ExpectEarlierResultsUntouched(out);
   }

@@ -156,10 +156,16 @@ TEST(Snapshot, OnlyPngAndNeverAnEmptyOrHalfWrittenFile) {
   }
   const fs::path png = tmp.path() / "earlier.png";
   std::ofstream(png, std::ios::binary) << "an earlier picture";
-  const std::string garbage = (tmp.path() / "garbage.net.xml").string();
-  std::ofstream(garbage) << "<<< not a network\n";
+  // Well-formed XML that SUMO refuses (a lane speed that is not a number):
+  // sumo-gui fails after the scenario was accepted.
+  std::string net = ReadFile(fs::path(kCli).parent_path() / "sumo_net/figure8.net.xml");
+  const std::size_t at = net.find("speed=\"");
+  ASSERT_NE(at, std::string::npos);
+  net.replace(at, net.find('"', at + 7) - at + 1, "speed=\"fast\"");
+  const std::string bad = (tmp.path() / "bad_speed.net.xml").string();
+  std::ofstream(bad) << net;
   const Result r = Shell("env -u DISPLAY " + kCli + " snapshot " + kPaper + " --out " +
-                             png.string() + " --at 5 --set scenario.network=" + garbage,
+                             png.string() + " --at 5 --set scenario.network=" + bad,
                          tmp.path() / "log.txt");
   EXPECT_EQ(r.code, 3) << r.output;
   EXPECT_EQ(ReadFile(png), "an earlier picture");

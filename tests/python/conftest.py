@@ -44,3 +44,14 @@ def readme():
 @pytest.fixture
 def root():
     return ROOT
+
+
+def sumo_rejected_network(folder):
+    """The shipped figure-8 network with one lane speed that is not a number:
+    well-formed XML that taebp accepts as a scenario and SUMO refuses at start."""
+    net = open(os.path.join(os.path.dirname(CLI), "sumo_net", "figure8.net.xml")).read()
+    net = re.sub(r'speed="[^"]*"', 'speed="fast"', net, count=1)
+    path = os.path.join(str(folder), "bad_speed.net.xml")
+    with open(path, "w") as f:
+        f.write(net)
+    return path

@@ -9,7 +9,7 @@ import time
 import pytest
 
 import taebp
-from conftest import PAPER, cli, cli_error
+from conftest import PAPER, cli, cli_error, sumo_rejected_network
 
 SHORT = ["scenario.duration=300"]
 
@@ -145,8 +145,7 @@ def test_table_flags_rates_outside_their_interval_and_repeats_the_geometry_warni
 
 
 def test_a_sumo_failure_is_sumo_error_with_the_cli_message_and_the_process_runs_again(tmp_path):
-    bad = tmp_path / "bad.net.xml"
-    bad.write_text("<net>garbage")
+    bad = sumo_rejected_network(tmp_path)
     over = ["scenario.network=%s" % bad, "scenario.duration=10"]
     message, code = cli_error("run", PAPER, *sum([["--set", o] for o in over], []),
                               "--out", tmp_path / "cli")

@@ -16,13 +16,13 @@ def near(pixel, rgb, tol=40):
 def test_snapshot_has_a_legend_strip_with_every_colour_and_the_time(tmp_path):
     env_display = os.environ.pop("DISPLAY", None)  # headless: xvfb-run
     try:
-        r = cli("snapshot", PAPER, "--policy", "ta_ebp", "--at", 17, "--out", tmp_path / "a.png")
-        cli("snapshot", PAPER, "--policy", "ta_ebp", "--at", 17, "--out", tmp_path / "raw.png",
+        r = cli("snapshot", PAPER, "--policy", "ta_ebp", "--at", 20, "--out", tmp_path / "a.png")
+        cli("snapshot", PAPER, "--policy", "ta_ebp", "--at", 20, "--out", tmp_path / "raw.png",
             "--no-legend")
     finally:
         if env_display is not None:
             os.environ["DISPLAY"] = env_display
-    assert "snapshot of ta_ebp at t = 17 s" in r.stderr
+    assert "snapshot of ta_ebp at t = 20 s" in r.stderr
     raw = Image.open(tmp_path / "raw.png").convert("RGB")
     pic = Image.open(tmp_path / "a.png").convert("RGB")
     w, h = raw.size
@@ -34,7 +34,7 @@ def test_snapshot_has_a_legend_strip_with_every_colour_and_the_time(tmp_path):
     assert LEGEND <= colours, LEGEND - colours  # one exact swatch per colour
     dark = sum(1 for p in strip.getdata() if sum(p) < 150)
     assert dark > 1000, "no text in the legend strip"
-    # The scene shows the colours the legend explains: at t = 17 s av2 holds
+    # The scene shows the colours the legend explains: at t = 20 s av2 holds
     # after its nudge (yellow) and hv7 chose DC (green).
     scene = list(raw.getdata())
     assert any(near(p, (255, 220, 0)) for p in scene)

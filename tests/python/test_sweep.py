@@ -10,7 +10,7 @@ import time
 import pytest
 
 import taebp
-from conftest import ROOT, cli
+from conftest import CLI, ROOT, cli, sumo_rejected_network
 
 CONFIG = """\
 scenario: {duration: 90, seed: 3}
@@ -94,8 +94,12 @@ def test_pooled_encounters_are_the_tasks_rows_with_the_task_in_front(tmp_path, c
 
 def test_a_failed_task_is_a_sweep_error_with_the_cli_message(tmp_path):
     path = tmp_path / "bad.yaml"
+    # Both points are valid configs (checked before any task); the second
+    # one's network is refused by SUMO when its task starts.
+    good = os.path.join(os.path.dirname(CLI), "sumo_net", "figure8.net.xml")
+    bad = sumo_rejected_network(tmp_path)
     path.write_text("scenario: {duration: 30}\npolicies: [ta_ebp]\nsweep:\n  replicates: 1\n"
-                    "  grid:\n    model.trust: [0.5, 1.5]\n")
+                    "  grid:\n    scenario.network: [%s, %s]\n" % (good, bad))
     r = cli("sweep", path, "--out", tmp_path / "cli", "--jobs", 2, "--quiet", check=False)
     assert r.returncode == 1
     with open(tmp_path / "cli" / "journal.jsonl") as f:
@@ -103,7 +107,7 @@ def test_a_failed_task_is_a_sweep_error_with_the_cli_message(tmp_path):
     with pytest.raises(taebp.SweepError) as e:
         taebp.sweep(path, out=tmp_path / "py", jobs=2)
     assert e.value.failed == [(1, 0, cli_errors[1])]
-    assert "model.trust" in cli_errors[1] and cli_errors[1] in str(e.value)
+    assert "bad_speed.net.xml" in cli_errors[1] and cli_errors[1] in str(e.value)
     assert len(e.value.result.aggregate) == 2  # the ok point and the failed one
     assert e.value.result.aggregate["runs_failed"] == [0, 1]
 

@@ -1,6 +1,6 @@
 // Generated demand on a network's fringe: every edge that enters the network
 // from a dead end gets random arrivals (a Poisson process of `flow` vehicles
-// per hour, seeded), each a SUMO <trip> to a uniformly random fringe exit
+// per hour, seeded), each a SUMO `<trip>` to a uniformly random fringe exit
 // other than the way back, routed by SUMO (fastest path) when it departs.
 #pragma once
 

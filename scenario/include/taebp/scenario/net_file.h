@@ -1,7 +1,7 @@
 // The static topology of a SUMO network, read from its .net.xml: edges and
 // lanes, junctions with their SUMO type, their connections (movements: from
 // lane -> via internal lane -> to lane, direction, link state) and SUMO's own
-// conflict matrix (each junction's <request foes=...>, the relation SUMO's
+// conflict matrix (each junction's `<request foes=...>`, the relation SUMO's
 // junction logic uses: crossing and merging movements). SUMO-free (pugixml);
 // tests cross-check it against libsumo's Lane::getInternalFoes.
 #pragma once
