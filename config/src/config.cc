@@ -200,6 +200,11 @@ bool ExperimentConfig::IsValid(std::string* why) const {
       c.Fail("scenario.kind = 'network' has no vehicles: give scenario.routes, scenario.demand "
              "or a scenario.sumocfg with route files");
   }
+  if (!(std::isfinite(s.routes_scale) && s.routes_scale > 0.0 && s.routes_scale <= 100.0))
+    c.Fail("scenario.routes_scale = " + Num(s.routes_scale) + " must be in (0, 100] (SUMO's --scale)");
+  if (s.routes_scale != 1.0 && s.kind != "network")
+    c.Fail("scenario.routes_scale = " + Num(s.routes_scale) +
+           " applies to scenario.kind = 'network' only (the figure-8 has exact vehicle counts)");
   if (s.grid) {
     const GridConfig& g = *s.grid;
     if (g.columns < 2 || g.rows < 2)

@@ -39,6 +39,12 @@ std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario
       "--collision.mingap-factor", "0", "--time-to-teleport", "-1", "--no-step-log", "true",
       "--no-warnings", "true", "--duration-log.disable", "true", "--xml-validation", "never"};
   if (!scenario.route_files.empty()) args.insert(args.end(), {"-r", Join(scenario.route_files)});
+  if (sc.routes_scale != 1.0) {
+    std::ostringstream scale;
+    scale.precision(17);
+    scale << sc.routes_scale;
+    args.insert(args.end(), {"--scale", scale.str()});
+  }
   if (!scenario.additional_files.empty())
     args.insert(args.end(), {"-a", Join(scenario.additional_files)});
   if (scenario.scratch) {

@@ -124,6 +124,7 @@ struct JunctionRt {
   double last_progress = 0;     // a vehicle last passed it (route progress)
   double last_gap_refusal = -1; // a minor head last refused a gap (two-way)
   bool waiting = false;         // vehicles halted at its stop lines (last sample)
+  double waiting_since = 0;     // since when (an idle junction is not stalled)
   bool stall_recorded = false;  // this stall episode is in the outputs
   double stall_since = -1;
 };
@@ -799,7 +800,10 @@ struct NetworkController::Impl : junction::EncounterModel {
   void CheckStalls() {
     for (JunctionRt& j : junctions) {
       const JunctionLogic& l = *j.logic;
-      const double progress = std::max({j.last_progress, l.LastActivity(), j.last_gap_refusal});
+      // A junction nobody waited at is idle, not stalled: the clock starts
+      // when vehicles began to wait, or at the last progress after that.
+      const double progress =
+          std::max({j.last_progress, l.LastActivity(), j.last_gap_refusal, j.waiting_since});
       if (!j.waiting || now - progress <= stall_limit) {
         if (j.waiting) continue;
         j.stall_recorded = false;
@@ -834,7 +838,11 @@ struct NetworkController::Impl : junction::EncounterModel {
       CountProgress(h, sumo::RouteIndex(id));
       KeepCirculating(h);
     }
-    for (JunctionRt& j : junctions) j.waiting = j.logic->Waiting() > 0;
+    std::vector<char> was_waiting(junctions.size());
+    for (std::size_t i = 0; i < junctions.size(); ++i) {
+      was_waiting[i] = junctions[i].waiting;
+      junctions[i].waiting = junctions[i].logic->Waiting() > 0;
+    }
     for (ApproachRt& ap : approaches) {
       const double q = sumo::LaneHaltingNumber(ap.lane);
       if (q > 0) junctions[ap.junction].waiting = true;
@@ -843,6 +851,8 @@ struct NetworkController::Impl : junction::EncounterModel {
       ap.stats.queue_sum += q;
       ++ap.stats.samples;
     }
+    for (std::size_t i = 0; i < junctions.size(); ++i)
+      if (junctions[i].waiting && !was_waiting[i]) junctions[i].waiting_since = now;
     CheckStalls();
     if (population) population->Sample(now);
     if (now < sc.warmup) return;

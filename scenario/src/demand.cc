@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <deque>
+#include <set>
 #include <fstream>
 #include <random>
 #include <stdexcept>
@@ -18,10 +20,47 @@ double Uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11)
 
 }  // namespace
 
+namespace {
+
+// A normal edge cars may use: one of its lanes lets class passenger drive.
+bool CarEdge(const net::NetFile& net, const net::Edge& e) {
+  if (!e.function.empty()) return false;
+  for (const std::string& lane : e.lanes) {
+    const net::Lane* l = net.FindLane(lane);
+    if (l && l->passenger) return true;
+  }
+  return false;
+}
+
+// The car edges reachable from `from` through the junctions' links between
+// car lanes (breadth first over edges).
+std::set<std::string> Reachable(const net::NetFile& net, const std::string& from) {
+  std::set<std::string> seen = {from};
+  std::deque<std::string> todo = {from};
+  while (!todo.empty()) {
+    const net::Edge* e = net.FindEdge(todo.front());
+    todo.pop_front();
+    for (const std::string& lane : e->lanes) {
+      const net::Lane* l = net.FindLane(lane);
+      if (!l || !l->passenger) continue;
+      for (int k : net.LinksFrom(lane)) {
+        const net::Lane* to = net.FindLane(net.links()[static_cast<std::size_t>(k)].to_lane);
+        if (!to || !to->passenger) continue;
+        if (seen.insert(to->edge).second) todo.push_back(to->edge);
+      }
+    }
+  }
+  return seen;
+}
+
+}  // namespace
+
+// Entries leave a dead end, exits end at one; both must be open to cars
+// (an OpenStreetMap import has footways and tracks at its fringe too).
 FringeEdges FindFringe(const net::NetFile& net) {
   FringeEdges f;
   for (const auto& [id, e] : net.edges()) {
-    if (!e.function.empty()) continue;
+    if (!CarEdge(net, e)) continue;
     const net::Junction* from = net.FindJunction(e.from);
     const net::Junction* to = net.FindJunction(e.to);
     if (from && from->type == "dead_end") f.entries.push_back(id);
@@ -41,9 +80,12 @@ std::vector<Trip> FringeTrips(const net::NetFile& net, const DemandSpec& spec) {
   for (std::size_t k = 0; k < f.entries.size(); ++k) {
     const std::string& entry = f.entries[k];
     const std::string from_junction = net.FindEdge(entry)->from;
+    // The exits a car can reach from this entry (one-way streets, turn
+    // restrictions), not the way back.
+    const std::set<std::string> reachable = Reachable(net, entry);
     std::vector<std::string> exits;
     for (const std::string& x : f.exits)
-      if (net.FindEdge(x)->to != from_junction) exits.push_back(x);
+      if (net.FindEdge(x)->to != from_junction && reachable.count(x)) exits.push_back(x);
     if (exits.empty()) continue;
     // One stream per entry edge: adding an edge does not shift the others.
     std::seed_seq seq{static_cast<std::uint32_t>(spec.seed & 0xffffffffu),

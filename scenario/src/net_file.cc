@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "taebp/scenario/net_file.h"
 
 #include <pugixml.hpp>
@@ -75,6 +76,16 @@ NetFile NetFile::Load(const std::string& path) {
       lane.width = l.attribute("width").as_double(3.2);
       lane.speed = l.attribute("speed").as_double(13.89);
       lane.shape = Shape(l.attribute("shape").as_string());
+      // SUMO's permissions: `allow` lists the classes (or "all"), else
+      // `disallow` removes some; passenger cars are what the demand uses.
+      auto has_passenger = [](const std::vector<std::string>& classes) {
+        return std::find(classes.begin(), classes.end(), "passenger") != classes.end() ||
+               std::find(classes.begin(), classes.end(), "all") != classes.end();
+      };
+      if (pugi::xml_attribute a = l.attribute("allow"))
+        lane.passenger = has_passenger(Words(a.as_string()));
+      else if (pugi::xml_attribute d = l.attribute("disallow"))
+        lane.passenger = !has_passenger(Words(d.as_string()));
       if (static_cast<int>(edge.lanes.size()) <= lane.index) edge.lanes.resize(lane.index + 1);
       edge.lanes[lane.index] = lane.id;
       net.lanes_[lane.id] = lane;

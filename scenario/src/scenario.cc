@@ -306,7 +306,16 @@ void SelectJunctions(const ScenarioConfig& sc, const net::NetFile& net, Scenario
                         "; the rules cover allway_stop, priority_stop, priority, "
                         "right_before_left and unregulated junctions");
   }
+  for (const std::string& id : sel.exclude) {
+    const net::Junction* j = net.FindJunction(id);
+    if (!j || j->type == "internal")
+      throw ConfigError("scenario.junctions.exclude: junction '" + id + "' is not" + where);
+    if (std::find(sel.ids.begin(), sel.ids.end(), id) != sel.ids.end())
+      throw ConfigError("scenario.junctions.exclude: junction '" + id +
+                        "' is also in scenario.junctions.ids");
+  }
   const std::set<std::string> ids(sel.ids.begin(), sel.ids.end());
+  const std::set<std::string> excluded(sel.exclude.begin(), sel.exclude.end());
   const std::set<std::string> types(sel.types.begin(), sel.types.end());
   auto slow_enough = [&](const net::Junction& j) {
     if (sel.max_speed <= 0) return true;
@@ -335,7 +344,9 @@ void SelectJunctions(const ScenarioConfig& sc, const net::NetFile& net, Scenario
     return false;
   };
   for (const auto& [id, j] : net.junctions()) {
-    if (!ids.count(id) && !(types.count(j.type) && slow_enough(j) && intersection(j))) continue;
+    if (!ids.count(id) &&
+        !(types.count(j.type) && !excluded.count(id) && slow_enough(j) && intersection(j)))
+      continue;
     if (j.int_lanes.empty())
       throw ConfigError("scenario.junctions: junction '" + id + "'" + where +
                         " has no internal lanes (built with --no-internal-links?): SUMO cannot "

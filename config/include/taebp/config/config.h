@@ -36,12 +36,17 @@ struct JunctionSelection {
   // (m/s; 0: any), e.g. 13.9 keeps an OSM import's town streets and leaves
   // its motorway and trunk junctions to SUMO. Applies to `types`, not `ids`.
   double max_speed = 0.0;
+  // Junctions left to SUMO although `types` selects them (e.g. the two
+  // halves of a dual carriageway a few metres apart, where two stop lines
+  // leave no room to queue between them).
+  std::vector<std::string> exclude;
 
   template <typename Archive>
   void Serialize(Archive* a) {
     a->Visit("ids", &ids);
     a->Visit("types", &types);
     a->Visit("max_speed", &max_speed);
+    a->Visit("exclude", &exclude);
     a->Visit("priority", &priority);
     a->Visit("right_before_left", &right_before_left);
     a->Visit("unregulated", &unregulated);
@@ -113,6 +118,9 @@ struct ScenarioConfig {
   // kind: network
   std::string sumocfg;                  // a .sumocfg: its net, route and additional files
   std::vector<std::string> routes;      // SUMO route files (vehicles, flows, trips, vTypes)
+  // SUMO's --scale: every route file's demand (and the generated demand)
+  // multiplied by this factor (seeded by scenario.seed); 1 = as written.
+  double routes_scale = 1.0;
   std::vector<std::string> additional;  // SUMO additional files
   std::optional<GridConfig> grid;       // generate the network instead
   std::optional<DemandConfig> demand;   // generate demand on the fringe
@@ -157,6 +165,7 @@ struct ScenarioConfig {
     a->Visit("network", &network);
     a->Visit("sumocfg", &sumocfg);
     a->Visit("routes", &routes);
+    a->Visit("routes_scale", &routes_scale);
     a->Visit("additional", &additional);
     a->Visit("grid", &grid);
     a->Visit("demand", &demand);

@@ -22,6 +22,7 @@ struct Lane {
   int index = 0;
   double length = 0, width = 3.2, speed = 13.89;
   std::vector<Point> shape;
+  bool passenger = true;     // SUMO's allow/disallow let class "passenger" drive here
 };
 
 struct Edge {
