@@ -293,6 +293,11 @@ TEST(ConfigErrors, OutOfRangeValuesNameKeyAndValue) {
       {"scenario: {stall_action: ignore}\n", "scenario.stall_action = 'ignore'"},
       {"scenario: {nudge_check: maybe}\n", "scenario.nudge_check = 'maybe'"},
       {"policies: [sumo_native, yolo]\n", "'yolo' is not one of sumo_native"},
+      {"scenario: {kind: network, grid: {}, demand: {flow: 10}, routes_scale: 0}\n",
+       "scenario.routes_scale = 0 must be in (0, 100]"},
+      {"scenario: {kind: network, grid: {}, demand: {flow: 10}, routes_scale: 1e3}\n",
+       "scenario.routes_scale = 1000 must be in (0, 100]"},
+      {"scenario: {routes_scale: 2}\n", "applies to scenario.kind = 'network' only"},
   };
   for (const Case& c : cases) {
     const FileError e = LoadError(c.yaml);

@@ -67,6 +67,53 @@ long AvDeparted(const PolicyRun& r) {
   return r.network.departed - static_cast<long>(r.hv_trust.size());
 }
 
+// ------------------------------------------------------------------ selection and demand
+
+// junctions.exclude leaves junctions that `types` selects to SUMO, and names
+// a junction that is not in the network; junctions.ids and exclude cannot
+// name the same junction.
+TEST(NetworkSelection, ExcludeLeavesJunctionsToSumo) {
+  const Scenario all = BuildScenario(GridConfig({}), "");
+  ASSERT_EQ(all.junctions.size(), 9u);
+  std::set<std::string> ids;
+  for (const ControlledJunction& j : all.junctions) ids.insert(j.id);
+  const std::string a = *ids.begin(), b = *ids.rbegin();
+  const Scenario some =
+      BuildScenario(GridConfig({"scenario.junctions.exclude=[" + a + ", " + b + "]"}), "");
+  std::set<std::string> left;
+  for (const ControlledJunction& j : some.junctions) left.insert(j.id);
+  ids.erase(a);
+  ids.erase(b);
+  EXPECT_EQ(left, ids);
+  try {
+    BuildScenario(GridConfig({"scenario.junctions.exclude=[nowhere]"}), "");
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("scenario.junctions.exclude: junction 'nowhere'"));
+  }
+  try {
+    BuildScenario(GridConfig({"scenario.junctions.ids=[" + a + "]",
+                              "scenario.junctions.exclude=[" + a + "]"}), "");
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("is also in scenario.junctions.ids"));
+  }
+}
+
+// scenario.routes_scale is SUMO's --scale: twice the demand departs about
+// twice the vehicles (SUMO's own seeded sampling), the same seed the same count.
+TEST(NetworkDemand, RoutesScaleMultipliesTheDemand) {
+  const ExperimentConfig one = GridConfig({"scenario.demand.flow=150"});
+  const ExperimentConfig two = GridConfig({"scenario.demand.flow=150", "scenario.routes_scale=2"});
+  const long n1 = RunPolicy(one, "sumo_native", BuildScenario(one, "")).network.departed;
+  const long n2 = RunPolicy(two, "sumo_native", BuildScenario(two, "")).network.departed;
+  const long again = RunPolicy(two, "sumo_native", BuildScenario(two, "")).network.departed;
+  ASSERT_GT(n1, 100);
+  EXPECT_EQ(n2, again);
+  // Scaling by 2 duplicates every trip (SUMO inserts floor(scale) copies).
+  EXPECT_NEAR(static_cast<double>(n2) / n1, 2.0, 0.1) << n1 << " vs " << n2;
+}
+
 // ------------------------------------------------------------------ AV share
 
 TEST(NetworkAvShare, AvFractionOfDepartedVehiclesAgreesWithTheShare) {

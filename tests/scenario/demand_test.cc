@@ -250,5 +250,67 @@ TEST_F(DemandOnGrid, TheRoutesFileRunsInSumo) {
   EXPECT_THAT(msg, HasSubstr(bad));
 }
 
+
+// An OpenStreetMap-like fringe: the north arm is a footway (pedestrians
+// only), the east arm one-way into the crossing, and the west-to-south turn
+// is not a connection. Trips use only edges open to cars, and only exits a
+// car can reach from their entry; SUMO departs every one of them.
+TEST(DemandOnAnImport, OnlyCarEdgesAndReachableExits) {
+  TempDir dir("taebp_demand_osm");
+  // No turn from W to S: a car entering at W can reach no exit (no U-turns).
+  const std::string con = dir.Write("osmlike.con.xml",
+                                    "<connections>\n  <delete from=\"WC\" to=\"CS\"/>\n"
+                                    "</connections>\n");
+  const std::string net_path = test::Netconvert(
+      dir, "osmlike2",
+      "  <node id=\"C\" x=\"0\" y=\"0\" type=\"priority\"/>\n"
+      "  <node id=\"N\" x=\"0\" y=\"100\" type=\"dead_end\"/>\n"
+      "  <node id=\"S\" x=\"0\" y=\"-100\" type=\"dead_end\"/>\n"
+      "  <node id=\"E\" x=\"100\" y=\"0\" type=\"dead_end\"/>\n"
+      "  <node id=\"W\" x=\"-100\" y=\"0\" type=\"dead_end\"/>\n",
+      "  <edge id=\"WC\" from=\"W\" to=\"C\" numLanes=\"1\"/>\n"
+      "  <edge id=\"CW\" from=\"C\" to=\"W\" numLanes=\"1\"/>\n"
+      "  <edge id=\"EC\" from=\"E\" to=\"C\" numLanes=\"1\"/>\n"
+      "  <edge id=\"SC\" from=\"S\" to=\"C\" numLanes=\"1\"/>\n"
+      "  <edge id=\"CS\" from=\"C\" to=\"S\" numLanes=\"1\"/>\n"
+      "  <edge id=\"NC\" from=\"N\" to=\"C\" numLanes=\"1\" allow=\"pedestrian\"/>\n"
+      "  <edge id=\"CN\" from=\"C\" to=\"N\" numLanes=\"1\" allow=\"pedestrian\"/>\n",
+      "--connection-files " + con);
+  const net::NetFile net = net::NetFile::Load(net_path);
+  ASSERT_NE(net.FindLane("NC_0"), nullptr);
+  EXPECT_FALSE(net.FindLane("NC_0")->passenger);
+  EXPECT_TRUE(net.FindLane("WC_0")->passenger);
+
+  const FringeEdges f = FindFringe(net);
+  EXPECT_EQ(std::set<std::string>(f.entries.begin(), f.entries.end()),
+            (std::set<std::string>{"WC", "EC", "SC"}));
+  EXPECT_EQ(std::set<std::string>(f.exits.begin(), f.exits.end()),
+            (std::set<std::string>{"CW", "CS"}));
+
+  DemandSpec spec;
+  spec.flow = 600;
+  spec.end = 600;
+  spec.seed = 5;
+  const std::vector<Trip> trips = FringeTrips(net, spec);
+  std::map<std::string, std::set<std::string>> pairs;
+  for (const Trip& t : trips) pairs[t.from].insert(t.to);
+  // E reaches both exits, S only W (its way back excluded), W none (turn deleted, no U-turn).
+  EXPECT_EQ(pairs["EC"], (std::set<std::string>{"CW", "CS"}));
+  EXPECT_EQ(pairs["SC"], (std::set<std::string>{"CW"}));
+  EXPECT_EQ(pairs.count("WC"), 0u);
+
+  const std::string routes = (dir.path() / "demand.rou.xml").string();
+  ASSERT_GT(WriteFringeDemand(net, spec, routes), 0);
+  sumo::Start({"sumo", "-n", net_path, "-r", routes, "--no-step-log", "true", "--xml-validation",
+               "never", "--step-length", "0.5", "--end", "700"});
+  long departed = 0;
+  while (sumo::Time() < 700) {
+    sumo::Step();
+    departed += static_cast<long>(sumo::DepartedIDs().size());
+  }
+  sumo::Close();
+  EXPECT_EQ(departed, static_cast<long>(trips.size()));
+}
+
 }  // namespace
 }  // namespace taebp
