@@ -160,4 +160,29 @@ TEST_F(SweepCli, MpiRanksGiveTheSameTables) {
   EXPECT_EQ(ranks, (std::set<int>{0, 1}));
 }
 
+// A network study (a generated grid with fringe demand, SUMO's own logic and
+// a controller policy) gives the same tables and the same pooled
+// encounters.csv with one and two worker processes.
+TEST_F(SweepCli, NetworkStudyIsTheSameAtAnyJobsCount) {
+  const fs::path cfg = dir_ / "grid.yaml";
+  std::ofstream(cfg) << "scenario:\n"
+                        "  kind: network\n"
+                        "  grid: {columns: 3, rows: 3, length: 100, attach_length: 50}\n"
+                        "  demand: {flow: 300}\n"
+                        "  av_share: 0.5\n"
+                        "  cruise_speed: 10\n"
+                        "  duration: 240\n"
+                        "  stall_action: record\n"
+                        "model: {trust: 0.6}\n"
+                        "policies: [sumo_native, ta_ebp]\n"
+                        "sweep:\n  replicates: 2\n  grid:\n    scenario.demand.flow: [200, 500]\n";
+  ASSERT_EQ(Sweep(cfg, dir_ / "two", "--jobs 2"), 0) << last_log_;
+  ASSERT_EQ(Sweep(cfg, dir_ / "one", "--jobs 1"), 0) << last_log_;
+  ExpectSameTables(dir_ / "two", dir_ / "one");
+  EXPECT_EQ(ReadFile(dir_ / "two" / "encounters.csv"), ReadFile(dir_ / "one" / "encounters.csv"));
+  EXPECT_GT(Journal(dir_ / "one").size(), 3u);
+  EXPECT_NE(ReadFile(dir_ / "one" / "encounters.csv").find("\n0,"), std::string::npos)
+      << "no encounter in the study";
+}
+
 }  // namespace
