@@ -4,7 +4,9 @@ are captured before saving and their texts, legends and artists inspected.
   mismatch heat map: theta-hat named on the axis and in the legend, the theta*
     line in the legend, every cell note with a halo, white on dark cells;
   penetration: collisions beside throughput, error bars on the waits, the
-    seed count, the loop length and the track caveat.
+    seed count, the loop length and the track caveat;
+  noise: sigma = 0 (the paper's rates) a point of its own, the theory curves
+    for sigma > 0 only (they do not meet sigma = 0 at the noisy values).
 Usage: plot_content_test.py SOURCE_DIR TAEBP_BINARY WORK_DIR."""
 import importlib.machinery
 import importlib.util
@@ -115,6 +117,35 @@ check(wait_ax.containers and all(c.has_yerr for c in wait_ax.containers),
       "penetration: error bars on the waits")
 check(any("80 m loops" in t for t in all_text), "penetration: the loop length in the title")
 check(any("Caveat" in t and "track" in t for t in all_text), "penetration: the track caveat")
+
+# ---- noise: the sigma = 0 limit is the paper's result, not the curves' end
+d = os.path.join(work, "noise")
+os.makedirs(d)
+cols = ("point,model.noise.scale,model.noise.design,policy,encounters,collision_rate,collision_rate_lo,"
+        "collision_rate_hi,dc_rate,dc_rate_lo,dc_rate_hi,theory_collision_rate,theory_dc_rate")
+rows = ["0,0.05,aware,ta_ebp,4118,0.0015,0.0007,0.0032,0.357,0.342,0.371,0.002,0.37125",
+        "1,0.05,paper,ta_ebp,4307,0.0947,0.0863,0.1038,0.185,0.174,0.197,0.1,0.1875",
+        "2,0.1,aware,ta_ebp,4114,0.0015,0.0007,0.0032,0.356,0.342,0.371,0.002,0.37125",
+        "3,0.1,paper,ta_ebp,4307,0.0947,0.0863,0.1038,0.185,0.174,0.197,0.1,0.1875"]
+with open(os.path.join(d, "aggregate.csv"), "w") as f:
+    f.write("\n".join([cols] + rows) + "\n")
+with open(os.path.join(d, "sweep.json"), "w") as f:
+    json.dump({"config": {"model": {"prior_go": 0.2, "collision_penalty": 3.0, "trust": 0.6,
+                                    "likelihood": {"type": "linear", "s_max": 2.0},
+                                    "noise": {"kind": "gaussian", "delta": 0.01}}},
+               "replicates": 2}, f)
+figures.clear()
+assert plot.main([d, "--taebp", taebp]) == 0
+fig = figures[-1]
+dc_ax, coll_ax = fig.axes[0], fig.axes[1]
+check(any("σ = 0" in t and "paper" in t for t in texts(fig)), "noise: the sigma = 0 point is in the legend")
+for ax, metric, paper in ((dc_ax, "DC", 0.375), (coll_ax, "collision", 0.0)):
+    zero = [l for l in ax.get_lines() if list(l.get_xdata()) == [0]]
+    check(len(zero) == 1 and abs(zero[0].get_ydata()[0] - paper) < 1e-9,
+          "noise: %s rate at sigma = 0 is the paper's %g" % (metric, paper))
+    curves = [l for l in ax.get_lines() if len(l.get_xdata()) > 10]
+    check(curves and all(min(l.get_xdata()) > 0 for l in curves),
+          "noise: %s theory curves start at sigma > 0" % metric)
 
 print("%d checks failed" % len(failures) if failures else "all checks passed")
 sys.exit(1 if failures else 0)
