@@ -253,6 +253,40 @@ TEST(EncounterSequence, AvWaitsHvDrivesIfClearAfterConfirmDelayThenTheAv) {
   }
 }
 
+// Keep clear: a careful release (the AV, a DC HV) stays due while its exit
+// has no room, and happens as soon as it has; a reckless HV ignores it.
+TEST(EncounterSequence, CarefulReleasesWaitForRoomRecklessOnesDoNot) {
+  {  // AV goes, HV DC: the AV waits for room, then the HV after the AV cleared waits too.
+    EncounterSequence seq(true, true, 10.0, 1.0);
+    EXPECT_TRUE(seq.Update(10.0, false, false, /*av_may_enter=*/false, true).empty());
+    EXPECT_TRUE(seq.Update(12.0, false, false, false, true).empty());
+    auto out = seq.Update(12.1, false, false, true, true);
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_TRUE(IsAv(out[0]));
+    EXPECT_TRUE(seq.Update(15.0, true, false, true, /*hv_may_enter=*/false).empty());
+    out = seq.Update(15.1, true, false, true, true);
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_TRUE(IsHv(out[0], false));
+  }
+  {  // AV goes, HV DR: the reckless HV goes at once although its exit is full.
+    EncounterSequence seq(true, false, 10.0, 1.0);
+    const auto out = seq.Update(10.0, false, false, false, false);
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_TRUE(IsHv(out[0], true));
+  }
+  {  // AV waits, HV DC: the HV after its confirm delay only with room; then the AV only with room.
+    EncounterSequence seq(false, true, 10.0, 1.0);
+    EXPECT_TRUE(seq.Update(11.0, false, false, true, false).empty());
+    auto out = seq.Update(11.5, false, false, true, true);
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_TRUE(IsHv(out[0], false));
+    EXPECT_TRUE(seq.Update(14.0, false, true, false, true).empty());
+    out = seq.Update(14.1, false, true, true, true);
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_TRUE(IsAv(out[0]));
+  }
+}
+
 // ------------------------------------------------------------------ creep
 
 TEST(CreepSpeed, LandsExactlyWithinLimitsAndNeverOvershoots) {
