@@ -131,6 +131,11 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
 }
 
 double RunBareSumo(const ExperimentConfig& config, const Scenario& scenario) {
+  if (!config.scenario.IsNetwork())
+    throw ConfigError(
+        "a bare SUMO run needs scenario.kind = 'network': the figure-8's vehicles keep "
+        "circulating only through the controller's lap re-routing (compare against "
+        "sumo_native instead)");
   NetworkController controller(config, std::nullopt, scenario, *scenario.topology, {});
   sumo::Start(SumoArgs(config, scenario, kSumoNative));
   try {

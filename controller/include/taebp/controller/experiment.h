@@ -42,8 +42,10 @@ struct RunOptions {
 PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
                     const Scenario& scenario, const RunOptions& options = {});
 
-// The speed floor for tools/bench: the same network, vehicles and step with
-// SUMO's own junction logic and nothing but Simulation::step in the loop.
+// The speed floor for tools/bench on a network (kind: network): the same net,
+// demand and step with SUMO's own junction logic and nothing but
+// Simulation::step in the loop (the figure-8 needs the controller to keep its
+// vehicles circulating: compare it against sumo_native). ConfigError otherwise.
 // Returns the simulated seconds.
 double RunBareSumo(const ExperimentConfig& config, const Scenario& scenario);
 
