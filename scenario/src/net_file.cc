@@ -1,9 +1,10 @@
-#include <algorithm>
 #include "taebp/scenario/net_file.h"
 
 #include <pugixml.hpp>
 
+#include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -36,11 +37,20 @@ const std::vector<std::string> kNoLanes;
 }  // namespace
 
 NetFile NetFile::Load(const std::string& path) {
+  // Read by us, not by pugixml's load_file: a directory opens with fopen on
+  // Linux and its "size" made pugixml ask for 2^63 bytes.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw std::runtime_error(path + ": is a directory, not a SUMO network file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot open the file (does it exist?)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw std::runtime_error(path + ": cannot read the file");
+  const std::string content = text.str();
   pugi::xml_document doc;
-  const pugi::xml_parse_result parsed = doc.load_file(path.c_str());
+  const pugi::xml_parse_result parsed = doc.load_buffer(content.data(), content.size());
   if (!parsed) {
-    std::ifstream probe(path);
-    if (!probe) throw std::runtime_error(path + ": cannot open the file (does it exist?)");
     throw std::runtime_error(path + ": not a readable XML file (" +
                              std::string(parsed.description()) + " at byte " +
                              std::to_string(parsed.offset) + ")");

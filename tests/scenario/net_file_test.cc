@@ -476,6 +476,7 @@ TEST(NetFileBadInput, ClearMessagesNamingTheFile) {
   // A directory is not a file.
   msg = ErrorOf<std::runtime_error>([&] { NetFile::Load(dir.path().string()); });
   EXPECT_THAT(msg, HasSubstr(dir.path().string()));
+  EXPECT_THAT(msg, HasSubstr("is a directory"));
 }
 
 }  // namespace

@@ -116,7 +116,7 @@ class HvPopulation {
                                        double theta) const;
   void Design(Hv& h, double theta, Pending* p) const;
 
-  const ExperimentConfig& config_;
+  const ExperimentConfig config_;  // a copy: callers may pass a temporary
   persuasion::Policy policy_;
   persuasion::AvHvParams params_;
   std::unique_ptr<persuasion::LikelihoodModel> model_;
