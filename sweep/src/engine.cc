@@ -564,7 +564,7 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
   errno = 0;
   if (!f) throw std::runtime_error("cannot write " + tmp.string());
   f << "point,replicate,seed";
-  for (const std::string& c : plan.columns) f << ',' << CsvQuote(c);
+  for (const std::string& c : plan.columns) f << ',' << CsvCell(c);
   f << ',' << task_header << '\n';
   for (const Task& t : plan.tasks) {
     const auto it = journal.entries.find(t.index);
@@ -583,7 +583,7 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
     std::string prefix = std::to_string(t.point) + ',' + std::to_string(t.replicate) + ',' +
                          std::to_string(t.seed);
     for (const std::string& v : plan.points[static_cast<std::size_t>(t.point)].values)
-      prefix += ',' + CsvQuote(v);
+      prefix += ',' + CsvCell(v);
     while (std::getline(in, line))
       if (!line.empty()) f << prefix << ',' << line << (pad ? padding : std::string()) << '\n';
   }

@@ -57,8 +57,8 @@ std::string Cell(const Json& v) {
     return std::isfinite(d) ? FormatDouble(d) : "";
   }
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
-  if (v.is_string()) return CsvQuote(v.get<std::string>());
-  return CsvQuote(Dump(v));
+  if (v.is_string()) return CsvCell(v.get<std::string>());
+  return CsvCell(Dump(v));
 }
 
 double Number(const Json& v) {
@@ -138,15 +138,6 @@ std::string Dump(const Json& j, int indent) {
   return j.dump(indent, ' ', false, Json::error_handler_t::replace);
 }
 
-std::string CsvQuote(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
 
 bool SplitFlowSequence(const std::string& raw, std::vector<std::string>* items) {
   const std::string text = Trim(raw);
@@ -544,7 +535,7 @@ Journal ParseJournal(const std::string& text, const Plan& plan, const std::strin
 std::string ResultsCsv(const Plan& plan, const Journal& journal) {
   std::ostringstream out;
   out << "point,replicate,seed";
-  for (const auto& c : plan.columns) out << ',' << CsvQuote(c);
+  for (const auto& c : plan.columns) out << ',' << CsvCell(c);
   out << ",policy,status,error";
   for (const auto& c : MetricColumns()) out << ',' << c;
   out << '\n';
@@ -552,8 +543,8 @@ std::string ResultsCsv(const Plan& plan, const Journal& journal) {
                                 const std::string& status, const std::string& error,
                                 const Json& metrics) {
     out << t.point << ',' << t.replicate << ',' << t.seed;
-    for (const auto& v : p.values) out << ',' << CsvQuote(v);
-    out << ',' << CsvQuote(policy) << ',' << status << ',' << CsvQuote(error);
+    for (const auto& v : p.values) out << ',' << CsvCell(v);
+    out << ',' << CsvCell(policy) << ',' << status << ',' << CsvCell(error);
     for (const auto& c : MetricColumns()) out << ',' << Cell(metrics[c]);
     out << '\n';
   });
@@ -673,7 +664,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
 
   std::ostringstream out;
   out << "point";
-  for (const auto& c : plan.columns) out << ',' << CsvQuote(c);
+  for (const auto& c : plan.columns) out << ',' << CsvCell(c);
   out << ",policy,runs_ok,runs_failed,encounters,collision_rate,collision_rate_lo,"
          "collision_rate_hi,dc_rate,dc_rate_lo,dc_rate_hi,theory_collision_rate,theory_dc_rate,"
          "theory_given_hvs_collision_rate,theory_given_hvs_dc_rate,throughput_av,throughput_hv,"
@@ -690,8 +681,8 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       if (it == by_policy.end()) continue;
       const Acc& a = it->second;
       out << point_index;
-      for (const auto& v : p.values) out << ',' << CsvQuote(v);
-      out << ',' << CsvQuote(policy) << ',' << a.ok << ',' << a.failed;
+      for (const auto& v : p.values) out << ',' << CsvCell(v);
+      out << ',' << CsvCell(policy) << ',' << a.ok << ',' << a.failed;
       if (a.ok == 0) {
         out << std::string(23 + 14, ',') << '\n';  // one empty cell per metric column
         continue;

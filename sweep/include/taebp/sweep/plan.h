@@ -124,7 +124,5 @@ Json SweepHeader(const Plan& plan, const std::string& shard, const std::string& 
 // (a task's error message, a path) become U+FFFD instead of throwing.
 std::string Dump(const Json& j, int indent = -1);
 
-// A CSV cell, quoted when it holds a comma, quote or newline.
-std::string CsvQuote(const std::string& s);
 
 }  // namespace taebp::sweep
