@@ -127,7 +127,7 @@ ordered_json TheoryJson(const TheoryRequest& o) {
   return j;
 }
 
-SolveOutput SolveJson(const ProblemConfig& pc, const std::string& path) {
+per::Game ProblemGame(const ProblemConfig& pc, const std::string& path) {
   per::Game g;
   g.states = pc.states;
   g.actions = pc.actions;
@@ -158,13 +158,16 @@ SolveOutput SolveJson(const ProblemConfig& pc, const std::string& path) {
   if (!(pc.trust >= 0 && pc.trust <= 1))
     throw ConfigError(path + ": key 'trust' = " + std::to_string(pc.trust) +
                       " is outside [0, 1]");
-  const per::LpResult r = per::SolveTrustAwarePersuasion(g, pc.trust);
+  return g;
+}
+
+ordered_json SolveResultJson(const per::Game& g, double trust, const per::LpResult& r) {
   ordered_json j;
   j["status"] = per::ToString(r.status);
   j["sender_value"] = r.sender_value;
   j["states"] = g.states;
   j["actions"] = g.actions;
-  j["trust"] = pc.trust;
+  j["trust"] = trust;
   ordered_json scheme = ordered_json::array(), post = ordered_json::array();
   for (Eigen::Index i = 0; i < r.scheme.rows(); ++i) {
     ordered_json row = ordered_json::array();
@@ -182,7 +185,13 @@ SolveOutput SolveJson(const ProblemConfig& pc, const std::string& path) {
       r.signal_probability.data(), r.signal_probability.data() + r.signal_probability.size());
   j["posteriors"] = post;
   if (!r.message.empty()) j["message"] = r.message;
-  return {j, r.status == per::LpResult::Status::kOptimal};
+  return j;
+}
+
+SolveOutput SolveJson(const ProblemConfig& pc, const std::string& path) {
+  const per::Game g = ProblemGame(pc, path);
+  const per::LpResult r = per::SolveTrustAwarePersuasion(g, pc.trust);
+  return {SolveResultJson(g, pc.trust, r), r.status == per::LpResult::Status::kOptimal};
 }
 
 }  // namespace taebp

@@ -35,12 +35,6 @@ namespace fs = std::filesystem;
 constexpr int kExitConfig = 2;
 constexpr int kExitSumo = 3;
 
-ordered_json Num(double v) {
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  if (std::isnan(v)) return nullptr;
-  return v;
-}
-
 // ------------------------------------------------------------------ theory
 struct TheoryOptions : taebp::TheoryRequest {
   bool json = false;
@@ -103,36 +97,9 @@ int Theory(const TheoryOptions& o) {
 // ------------------------------------------------------------------ solve
 int Solve(const std::string& path, bool json) {
   const taebp::ProblemConfig pc = taebp::LoadProblemConfig(path);
-  per::Game g;
-  g.states = pc.states;
-  g.actions = pc.actions;
-  const auto n = static_cast<Eigen::Index>(pc.states.size());
-  const auto m = static_cast<Eigen::Index>(pc.actions.size());
-  auto matrix = [&](const std::vector<std::vector<double>>& rows, const char* key) {
-    if (static_cast<Eigen::Index>(rows.size()) != n)
-      throw taebp::ConfigError(path + ": key '" + key + "' has " + std::to_string(rows.size()) +
-                               " rows but there are " + std::to_string(n) + " states");
-    Eigen::MatrixXd mat(n, m);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      if (static_cast<Eigen::Index>(rows[i].size()) != m)
-        throw taebp::ConfigError(path + ": key '" + key + "' row " + std::to_string(i) + " has " +
-                                 std::to_string(rows[i].size()) + " entries but there are " +
-                                 std::to_string(m) + " actions");
-      for (Eigen::Index a = 0; a < m; ++a) mat(i, a) = rows[i][a];
-    }
-    return mat;
-  };
-  if (static_cast<Eigen::Index>(pc.prior.size()) != n)
-    throw taebp::ConfigError(path + ": key 'prior' has " + std::to_string(pc.prior.size()) +
-                             " entries but there are " + std::to_string(n) + " states");
-  g.prior = Eigen::Map<const Eigen::VectorXd>(pc.prior.data(), n);
-  g.receiver_utility = matrix(pc.receiver_utility, "receiver_utility");
-  g.sender_utility = matrix(pc.sender_utility, "sender_utility");
-  std::string why;
-  if (!g.IsValid(&why)) throw taebp::ConfigError(path + ": " + why);
-  if (!(pc.trust >= 0 && pc.trust <= 1))
-    throw taebp::ConfigError(path + ": key 'trust' = " + std::to_string(pc.trust) +
-                             " is outside [0, 1]");
+  const per::Game g = taebp::ProblemGame(pc, path);
+  const auto n = static_cast<Eigen::Index>(g.states.size());
+  const auto m = static_cast<Eigen::Index>(g.actions.size());
   per::LpResult r;
   try {
     r = per::SolveTrustAwarePersuasion(g, pc.trust);
@@ -140,29 +107,7 @@ int Solve(const std::string& path, bool json) {
     throw taebp::ConfigError(path + ": " + e.what());
   }
   if (json) {
-    ordered_json j;
-    j["status"] = per::ToString(r.status);
-    j["sender_value"] = r.sender_value;
-    j["states"] = g.states;
-    j["actions"] = g.actions;
-    j["trust"] = pc.trust;
-    ordered_json scheme = ordered_json::array(), post = ordered_json::array();
-    for (Eigen::Index i = 0; i < r.scheme.rows(); ++i) {
-      ordered_json row = ordered_json::array();
-      for (Eigen::Index a = 0; a < r.scheme.cols(); ++a) row.push_back(r.scheme(i, a));
-      scheme.push_back(row);
-    }
-    // posteriors: one row per recommended action, one entry per state.
-    for (Eigen::Index a = 0; a < r.posteriors.cols(); ++a) {
-      ordered_json row = ordered_json::array();
-      for (Eigen::Index i = 0; i < r.posteriors.rows(); ++i) row.push_back(Num(r.posteriors(i, a)));
-      post.push_back(row);
-    }
-    j["scheme"] = scheme;
-    j["signal_probability"] = std::vector<double>(r.signal_probability.data(),
-                                                  r.signal_probability.data() + r.signal_probability.size());
-    j["posteriors"] = post;
-    if (!r.message.empty()) j["message"] = r.message;
+    const ordered_json j = taebp::SolveResultJson(g, pc.trust, r);
     std::cout << j.dump(2) << "\n";
     return r.status == per::LpResult::Status::kOptimal ? 0 : 1;
   }

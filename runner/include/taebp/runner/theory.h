@@ -5,6 +5,7 @@
 
 #include "taebp/config/config.h"
 #include "taebp/persuasion/av_hv.h"
+#include "taebp/persuasion/lp.h"
 #include "taebp/persuasion/noise.h"
 #include "taebp/persuasion/outcomes.h"
 
@@ -50,6 +51,14 @@ persuasion::TaebpDesign Design(const TheoryRequest& request);
 // One policy's predicted outcome for an HV of trust request.trust when the AV
 // designs for request.assumed_trust (default: trust; no_trust forces 1).
 persuasion::PredictedOutcome Predict(persuasion::Policy policy, const TheoryRequest& request);
+
+// The game of a problem config (rows = states), checked: ConfigError naming
+// `origin`, the key and the sizes for a malformed problem or a trust outside [0, 1].
+persuasion::Game ProblemGame(const ProblemConfig& problem, const std::string& origin);
+
+// The LP's result as `taebp solve --json` prints it.
+nlohmann::ordered_json SolveResultJson(const persuasion::Game& game, double trust,
+                                       const persuasion::LpResult& result);
 
 // `taebp solve --json` for a problem (rows = states). Throws ConfigError
 // naming `origin`, the key and the sizes for a malformed problem. `optimal`
