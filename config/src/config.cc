@@ -261,6 +261,12 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   c.Positive("scenario.critical_gap", s.critical_gap);
   if (s.stall_action != "error" && s.stall_action != "record")
     c.Fail("scenario.stall_action = '" + s.stall_action + "' is not one of: error, record");
+  if (s.encounter_pairs != "colliding" && s.encounter_pairs != "all")
+    c.Fail("scenario.encounter_pairs = '" + s.encounter_pairs +
+           "' is not one of: colliding, all");
+  else if (!s.IsNetwork() && s.encounter_pairs == "all")
+    c.Fail("scenario.encounter_pairs = 'all' applies to scenario.kind = 'network' only (the "
+           "figure-8's crossing is always the game)");
   if (s.nudge_check != "error" && s.nudge_check != "count")
     c.Fail("scenario.nudge_check = '" + s.nudge_check + "' is not one of: error, count");
 

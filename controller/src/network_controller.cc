@@ -104,6 +104,9 @@ struct MovementRt {
   // Lanes feeding this (major) movement with the distance from their end to
   // the line, for the gap check.
   std::vector<std::pair<std::string, double>> feeders;
+  // Its path from the approach lane through the junction onto the exit lane
+  // (front, length and kinematics filled per vehicle): EncounterModel::Game.
+  junction::Mover mover;
 };
 
 struct ApproachRt {
@@ -202,6 +205,36 @@ struct NetworkController::Impl : junction::EncounterModel {
     return k;
   }
 
+  // A movement's centreline: the approach lane, the internal lanes, the exit
+  // lane, with their speed limits; the stop line and the junction's end on it.
+  junction::Mover MoverFor(const MovementRt& m) const {
+    junction::Mover mv;
+    double arc = 0;
+    auto add = [&](const std::string& lane_id) {
+      const net::Lane* l = net.FindLane(lane_id);
+      if (!l) return;
+      mv.limits.emplace_back(arc, l->speed);
+      for (const net::Point& p : l->shape) {
+        if (!mv.path.empty()) {
+          const junction::Point2 q = mv.path.back();
+          const double d = std::hypot(p.x - q.x, p.y - q.y);
+          if (d == 0) continue;
+          arc += d;
+        }
+        mv.path.push_back({p.x, p.y});
+      }
+    };
+    add(m.from_lane);
+    mv.entry = arc;
+    for (const std::string& in : m.internal) add(in);
+    mv.exit = arc;
+    add(m.to_lane);
+    mv.width = sc.vehicle_width;
+    mv.accel = sc.accel;
+    mv.max_speed = sc.cruise_speed;
+    return mv;
+  }
+
   void BuildTopology() {
     for (std::size_t j = 0; j < scenario.junctions.size(); ++j)
       junction_index.emplace(scenario.junctions[j].id, static_cast<int>(j));
@@ -273,6 +306,7 @@ struct NetworkController::Impl : junction::EncounterModel {
           }
         }
       }
+      for (std::size_t a = 0; a < n; ++a) rt.movements[a].mover = MoverFor(rt.movements[a]);
       spec.clear_at.assign(n, std::vector<double>(n, 0.0));
       for (std::size_t a = 0; a < n; ++a)
         for (std::size_t b = 0; b < n; ++b)
@@ -412,6 +446,28 @@ struct NetworkController::Impl : junction::EncounterModel {
     ++vehs[hv].open_encounters;
     return DrawAv(population->Commit(vehs[av].id, vehs[hv].id), params.prior_go, rng);
   }
+  // The paper's game needs "AV goes, HV drives recklessly" to be a collision:
+  // predicted on the two movements' geometry from where the two vehicles
+  // would start, the AV from its Go signal (s* ahead of where it is held
+  // when its scheme nudges on Go). Figure-8: its crossing is always the game.
+  bool Game(int av, int hv, int av_movement, int hv_movement) override {
+    if (!sc.IsNetwork()) return true;
+    const Veh& a = vehs[av];
+    const Veh& h = vehs[hv];
+    JunctionRt& j = junctions[a.junction];
+    junction::Mover ma = j.movements[av_movement].mover;
+    junction::Mover mh = j.movements[hv_movement].mover;
+    ma.length = a.length;
+    mh.length = h.length;
+    ma.front = ma.entry - a.line_gap + population->GoSignal(h.id);
+    mh.front = mh.entry - h.line_gap;
+    const bool collides = junction::BothProceedCollide(ma, mh, dt);
+    verdicts[{av, hv}] = collides;
+    if (collides || sc.encounter_pairs == "all") return true;
+    if (now >= sc.warmup) ++j.run.meetings_not_game;
+    return false;
+  }
+
   HvReading Read(int av, int hv, double observed) override {
     const HvReading r = population->Read(vehs[av].id, vehs[hv].id, observed);
     SetPaint(hv, r.drives_if_clear ? Paint::kDc : Paint::kDr);
@@ -732,6 +788,10 @@ struct NetworkController::Impl : junction::EncounterModel {
 
   void Record(const JunctionRt& j, const junction::EncounterOutcome& e) {
     EncounterRecord r;
+    if (const auto it = verdicts.find({e.av, e.hv}); it != verdicts.end()) {
+      r.both_proceed_collides = it->second;
+      verdicts.erase(it);
+    }
     // The HV's trust (before), the theory, and the updates of trust and beliefs.
     population->Finish(vehs[e.av].id, vehs[e.hv].id, e.draw, e.reading, e.collision,
                        e.time >= sc.warmup, &r);
@@ -754,6 +814,7 @@ struct NetworkController::Impl : junction::EncounterModel {
     r.av_first = e.draw.goes_first;
     r.collision = e.collision;
     r.decided_at = e.decided_at;
+
     out.encounters.push_back(r);
   }
 
@@ -898,6 +959,7 @@ struct NetworkController::Impl : junction::EncounterModel {
   std::vector<std::string> edge_names;
   std::vector<int> crossing, nudging;
   std::set<std::pair<std::string, std::string>> colliding;
+  std::map<std::pair<int, int>, bool> verdicts;  // (AV, HV) met: would both proceeding collide
 };
 
 NetworkController::NetworkController(const ExperimentConfig& config,

@@ -1,6 +1,7 @@
 #include "taebp/junction/conflict_geometry.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace taebp::junction {
@@ -39,6 +40,99 @@ double ClearDistance(const std::vector<Point2>& a, double width_a, const std::ve
     along += seg;
   }
   return whole;  // no crossing: they merge (or meet at the exit)
+}
+
+}  // namespace taebp::junction
+
+namespace taebp::junction {
+namespace {
+
+struct Arcs {
+  const std::vector<Point2>* path;
+  std::vector<double> at;  // cumulative arc length at each vertex
+  explicit Arcs(const std::vector<Point2>& p) : path(&p), at(p.size(), 0.0) {
+    for (std::size_t i = 1; i < p.size(); ++i)
+      at[i] = at[i - 1] + std::hypot(p[i].x - p[i - 1].x, p[i].y - p[i - 1].y);
+  }
+  double Total() const { return at.empty() ? 0 : at.back(); }
+  Point2 PointAt(double s) const {
+    const std::vector<Point2>& p = *path;
+    if (p.size() < 2 || s <= 0) return p.empty() ? Point2{} : p.front();
+    if (s >= Total()) {  // extend the last segment straight on
+      const Point2 u = p[p.size() - 2], v = p.back();
+      const double seg = at.back() - at[at.size() - 2];
+      const double k = seg > 0 ? (s - at.back()) / seg : 0;
+      return {v.x + k * (v.x - u.x), v.y + k * (v.y - u.y)};
+    }
+    const std::size_t i = std::upper_bound(at.begin(), at.end(), s) - at.begin();
+    const double seg = at[i] - at[i - 1];
+    const double k = seg > 0 ? (s - at[i - 1]) / seg : 0;
+    return {p[i - 1].x + k * (p[i].x - p[i - 1].x), p[i - 1].y + k * (p[i].y - p[i - 1].y)};
+  }
+};
+
+// A vehicle's body as SUMO's collision check sees it: the rectangle of its
+// width around the straight line from its rear point to its front point.
+struct Box {
+  std::array<Point2, 4> c;
+};
+Box BoxOf(Point2 rear, Point2 front, double width) {
+  const double dx = front.x - rear.x, dy = front.y - rear.y;
+  const double len = std::hypot(dx, dy);
+  const double nx = len > 0 ? -dy / len * 0.5 * width : 0, ny = len > 0 ? dx / len * 0.5 * width : 0;
+  return {{{{rear.x + nx, rear.y + ny}, {front.x + nx, front.y + ny}, {front.x - nx, front.y - ny},
+            {rear.x - nx, rear.y - ny}}}};
+}
+// Separating axes: two convex quadrilaterals overlap unless some edge normal
+// separates their projections.
+bool Overlap(const Box& a, const Box& b) {
+  for (const Box* box : {&a, &b}) {
+    for (int i = 0; i < 4; ++i) {
+      const Point2 p = box->c[i], q = box->c[(i + 1) % 4];
+      const double ax = -(q.y - p.y), ay = q.x - p.x;
+      if (ax == 0 && ay == 0) continue;
+      double amin = 1e300, amax = -1e300, bmin = 1e300, bmax = -1e300;
+      for (const Point2& v : a.c) {
+        const double d = v.x * ax + v.y * ay;
+        amin = std::min(amin, d);
+        amax = std::max(amax, d);
+      }
+      for (const Point2& v : b.c) {
+        const double d = v.x * ax + v.y * ay;
+        bmin = std::min(bmin, d);
+        bmax = std::max(bmax, d);
+      }
+      if (amax <= bmin || bmax <= amin) return false;
+    }
+  }
+  return true;
+}
+
+double Limit(const Mover& m, double front) {
+  double v = m.max_speed;
+  for (const auto& [from, limit] : m.limits)
+    if (from <= front) v = std::min(m.max_speed, limit);
+  return v;
+}
+
+}  // namespace
+
+bool BothProceedCollide(const Mover& a, const Mover& b, double dt) {
+  const Arcs arcs_a(a.path), arcs_b(b.path);
+  double xa = a.front, xb = b.front, va = 0, vb = 0;
+  for (int step = 0; step < 100000; ++step) {
+    va = std::min(va + a.accel * dt, Limit(a, xa));
+    vb = std::min(vb + b.accel * dt, Limit(b, xb));
+    xa += va * dt;
+    xb += vb * dt;
+    // Once either has left the junction they can no longer meet on it.
+    if (xa - a.length >= a.exit || xb - b.length >= b.exit) return false;
+    if (xa <= a.entry || xb <= b.entry) continue;  // not both on the junction yet
+    if (Overlap(BoxOf(arcs_a.PointAt(xa - a.length), arcs_a.PointAt(xa), a.width),
+                BoxOf(arcs_b.PointAt(xb - b.length), arcs_b.PointAt(xb), b.width)))
+      return true;
+  }
+  return false;
 }
 
 }  // namespace taebp::junction

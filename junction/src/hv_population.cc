@@ -193,6 +193,15 @@ void HvPopulation::Add(const std::string& hv, double trust) {
 
 void HvPopulation::Remove(const std::string& hv) { hvs_.erase(hv); }
 
+double HvPopulation::GoSignal(const std::string& hv) const {
+  const auto go = [](const per::CommittedScheme& sc) { return sc.a > 0 ? sc.nudge : 0.0; };
+  const auto it = hvs_.find(hv);
+  if (it == hvs_.end() || learned_) return go(population_scheme_);
+  const Hv& h = it->second;
+  if (h.cached) return go(h.scheme);
+  return go(SchemeAt(DesignTrustFor(h.state ? h.state->Mean() : h.trust0)));
+}
+
 double HvPopulation::Trust(const std::string& hv) const {
   const auto it = hvs_.find(hv);
   if (it == hvs_.end()) throw std::logic_error("HvPopulation: HV '" + hv + "' is not in the network");

@@ -219,7 +219,14 @@ std::vector<Command> JunctionLogic::Decide(double now, Environment& env, Encount
       break;
     }
     done[i] = 1;
+    bool game = false;
     if (partner != n && heads_[partner].kind != h.kind) {
+      const HeadState& av = h.kind == VehicleKind::kAV ? h : heads_[partner];
+      const HeadState& hv = h.kind == VehicleKind::kAV ? heads_[partner] : h;
+      game = model.Game(av.vehicle, hv.vehicle, av.movement, hv.movement);
+      if (!game) ++non_game_;
+    }
+    if (game) {
       done[partner] = 1;
       const HeadState& av = h.kind == VehicleKind::kAV ? h : heads_[partner];
       const HeadState& hv = h.kind == VehicleKind::kAV ? heads_[partner] : h;

@@ -157,8 +157,9 @@ PYBIND11_MODULE(_taebp, m) {
     return py::make_tuple(out.json.dump(), out.optimal);
   });
 
-  m.def("encounter_columns", [](bool beyond) { return taebp::EncounterCsvColumns(beyond); },
-        py::arg("beyond") = false);
+  m.def("encounter_columns",
+        [](bool beyond, bool network) { return taebp::EncounterCsvColumns(beyond, network); },
+        py::arg("beyond") = false, py::arg("network") = false);
 
   // One experiment; the GIL is released while SUMO runs. Returns the result
   // files (name -> text), the printed table and the warnings.

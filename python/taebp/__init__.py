@@ -231,11 +231,12 @@ def to_pandas(obj):
                     % type(obj).__name__)
 
 
-def encounter_columns(beyond=False):
-    """The columns of encounters.csv, in order; ``beyond=True``: those of a run
-    beyond the paper (dynamic / learned trust, noise, population_mean), which
-    add columns after the paper's."""
-    return list(_taebp.encounter_columns(bool(beyond)))
+def encounter_columns(beyond=False, network=False):
+    """The columns of encounters.csv, in order; ``network=True``: those of a
+    network scenario (adds ``both_proceed_collides``); ``beyond=True``: those
+    of a run beyond the paper (dynamic / learned trust, noise,
+    population_mean), which add columns after those."""
+    return list(_taebp.encounter_columns(bool(beyond), bool(network)))
 
 
 def _flatten(prefix, value, out):

@@ -116,6 +116,7 @@ json JunctionJson(const PolicyRun& r, const JunctionRun& jr) {
                           {"queue_max", a.queue_max},
                           {"queue_mean", a.samples ? a.queue_sum / a.samples : 0.0}});
   j["approaches"] = approaches;
+  j["meetings_not_game"] = jr.meetings_not_game;
   const json rates = RatesJson(ComputeAt(r, jr.id));
   for (auto it = rates.begin(); it != rates.end(); ++it) j[it.key()] = it.value();
   return j;
@@ -257,7 +258,8 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
   std::ostringstream out;
   out << "policy,junction,type,original_type,rule,crossings_av,crossings_hv,"
          "throughput_per_hour,held,wait_mean,wait_max,queue_max,queue_mean,encounters,dc,"
-         "dc_rate,collisions,collision_rate,theory_dc_rate,theory_collision_rate\n";
+         "dc_rate,collisions,collision_rate,theory_dc_rate,theory_collision_rate,"
+         "meetings_not_game\n";
   for (const PolicyRun& r : runs) {
     for (const JunctionRun& jr : r.junctions) {
       const Stats s = ComputeAt(r, jr.id);
@@ -281,7 +283,8 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
           << FormatDouble(Rate(s.dc, s.n)) << ',' << s.collisions << ','
           << FormatDouble(Rate(s.collisions, s.n)) << ','
           << FormatDouble(s.n ? s.theory_dc_sum / s.n : 0.0) << ','
-          << FormatDouble(s.n ? s.theory_collision_sum / s.n : 0.0) << '\n';
+          << FormatDouble(s.n ? s.theory_collision_sum / s.n : 0.0) << ','
+          << jr.meetings_not_game << '\n';
     }
   }
   return out.str();
@@ -458,6 +461,20 @@ const std::vector<EncounterColumn>& BeyondColumns() {
   return cols;
 }
 
+// The column a network scenario adds after those (README "Outputs").
+const std::vector<EncounterColumn>& NetworkColumns() {
+  static const std::vector<EncounterColumn> cols = {
+      {"both_proceed_collides", [](const PolicyRun&, const EncounterRecord& e) {
+         return std::string(e.both_proceed_collides ? "1" : "0"); }},
+  };
+  return cols;
+}
+
+bool AnyNetwork(const std::vector<PolicyRun>& runs) {
+  return std::any_of(runs.begin(), runs.end(),
+                     [](const PolicyRun& r) { return r.scenario_kind == "network"; });
+}
+
 bool AnyBeyond(const std::vector<PolicyRun>& runs) {
   return std::any_of(runs.begin(), runs.end(), [](const PolicyRun& r) { return r.beyond.on; });
 }
@@ -474,9 +491,11 @@ std::string CsvCell(const std::string& s) {
   return out + "\"";
 }
 
-std::vector<std::string> EncounterCsvColumns(bool beyond) {
+std::vector<std::string> EncounterCsvColumns(bool beyond, bool network) {
   std::vector<std::string> names;
   for (const EncounterColumn& c : EncounterColumns()) names.emplace_back(c.name);
+  if (network)
+    for (const EncounterColumn& c : NetworkColumns()) names.emplace_back(c.name);
   if (beyond)
     for (const EncounterColumn& c : BeyondColumns()) names.emplace_back(c.name);
   return names;
@@ -486,6 +505,8 @@ bool BeyondPaper(const std::vector<PolicyRun>& runs) { return AnyBeyond(runs); }
 
 std::string EncountersCsv(const std::vector<PolicyRun>& runs) {
   std::vector<EncounterColumn> cols = EncounterColumns();
+  if (AnyNetwork(runs))
+    cols.insert(cols.end(), NetworkColumns().begin(), NetworkColumns().end());
   if (AnyBeyond(runs))
     cols.insert(cols.end(), BeyondColumns().begin(), BeyondColumns().end());
   std::string out;

@@ -338,5 +338,78 @@ TEST(NetworkConflicts, AllWayGridEncountersConflictInSumosMatrix) {
   EXPECT_GE(junctions.size(), 5u);
 }
 
+// ------------------------------------------------------------------ the game's premise
+
+// SUMO against the predictor: with scenario.encounter_pairs = all every
+// conflicting AV-HV meeting is an encounter, and with trust 0 every HV drives
+// recklessly, so each encounter where the AV went is "both proceed". SUMO's
+// junction collision check must collide on exactly those the geometry
+// predicts (both_proceed_collides), and both verdicts must occur (merges the
+// AV leads, opposite left turns). Faking either side (a predictor that always
+// says yes, a collision read from the actions instead of SUMO) turns this red.
+TEST(NetworkGame, SumoCollidesExactlyWhereBothProceedingIsPredictedToCollide) {
+  const ExperimentConfig cfg = GridConfig(
+      {"scenario.demand.flow=250", "scenario.duration=1500", "scenario.encounter_pairs=all",
+       "model.trust=0.0", "policies=[no_trust]", "scenario.stall_action=record"});
+  const Scenario sc = BuildScenario(cfg, "");
+  const PolicyRun r = RunPolicy(cfg, "no_trust", sc);
+  long both = 0, predicted = 0, collided = 0;
+  std::map<std::string, long> missed;  // pairs SUMO did not collide, by directions
+  for (const EncounterRecord& e : r.encounters) {
+    EXPECT_FALSE(e.hv_dc) << "trust 0: the HV always drives recklessly";
+    if (!e.av_first) {
+      EXPECT_FALSE(e.collision) << e.av << "/" << e.hv << " at " << e.time;
+      continue;
+    }
+    ++both;
+    predicted += e.both_proceed_collides;
+    collided += e.collision;
+    EXPECT_EQ(e.collision, e.both_proceed_collides)
+        << e.junction << " " << e.av_movement << " (AV) / " << e.hv_movement << " at " << e.time;
+    if (!e.collision) ++missed[std::string(1, e.av_dir) + "/" + e.hv_dir];
+  }
+  EXPECT_GT(both, 60);
+  EXPECT_GT(collided, both / 2);
+  EXPECT_GT(both - collided, 5) << "no pair where both proceeding does not collide";
+  long not_game = 0;
+  for (const JunctionRun& j : r.junctions) not_game += j.meetings_not_game;
+  EXPECT_EQ(not_game, 0) << "encounter_pairs: all forms every meeting";
+  std::cout << "both proceed " << both << ", predicted to collide " << predicted
+            << ", SUMO collided " << collided << "; not colliding:";
+  for (const auto& [d, k] : missed) std::cout << " " << d << " " << k;
+  std::cout << "\n";
+}
+
+// The default (encounter_pairs: colliding): every encounter is the paper's
+// game, so SUMO's collision is exactly "the AV went and the HV drove
+// recklessly", and the meetings that were not a game are counted per junction.
+TEST(NetworkGame, EveryEncounterIsTheGameCollisionIffAvGoesAndHvDrivesRecklessly) {
+  const ExperimentConfig cfg =
+      GridConfig({"scenario.demand.flow=250", "scenario.duration=1500", "model.trust=0.6",
+                  "policies=[no_trust, ta_ebp]", "scenario.stall_action=record"});
+  const Scenario sc = BuildScenario(cfg, "");
+  for (const std::string policy : {"no_trust", "ta_ebp"}) {
+    SCOPED_TRACE(policy);
+    const PolicyRun r = RunPolicy(cfg, policy, sc);
+    long collisions = 0;
+    for (const EncounterRecord& e : r.encounters) {
+      EXPECT_TRUE(e.both_proceed_collides) << e.av_movement << " / " << e.hv_movement;
+      EXPECT_EQ(e.collision, e.av_first && !e.hv_dc)
+          << e.junction << " " << e.av_movement << " (AV) / " << e.hv_movement << " at "
+          << e.time;
+      collisions += e.collision;
+    }
+    EXPECT_GT(r.encounters.size(), 100u);
+    if (policy == "ta_ebp") {
+      EXPECT_EQ(collisions, 0);
+    } else {
+      EXPECT_GT(collisions, 10);
+    }
+    long not_game = 0;
+    for (const JunctionRun& j : r.junctions) not_game += j.meetings_not_game;
+    EXPECT_GT(not_game, 0) << "the grid has merges the AV leads";
+  }
+}
+
 }  // namespace
 }  // namespace taebp

@@ -34,6 +34,12 @@ struct OpenWorld : Environment {
 struct FixedModel : EncounterModel {
   int draws = 0;
   bool go = false;
+  bool game = true;  // what Game answers
+  std::vector<std::pair<int, int>> asked;  // (AV, HV) Game was asked about
+  bool Game(int av, int hv, int, int) override {
+    asked.emplace_back(av, hv);
+    return game;
+  }
   AvDraw Draw(int, int) override {
     ++draws;
     AvDraw d;
@@ -112,6 +118,43 @@ TEST(RightOfWay, AvAndHvWithinTheWindowMeetAndTheAvSignals) {
       }
     }
   }
+}
+
+// An AV and an HV that meet where both proceeding would not collide
+// (EncounterModel::Game: false) are not the paper's game: no draw, no nudge;
+// the earlier goes as two of a kind would, the other after it cleared.
+TEST(RightOfWay, AvHvMeetingThatIsNotAGameGoesByArrival) {
+  for (bool av_earlier : {true, false}) {
+    Harness h;
+    h.model.game = false;
+    h.logic.Arrive(1, VehicleKind::kAV, 0, av_earlier ? 20.0 : 20.3);
+    h.logic.Arrive(2, VehicleKind::kHV, 1, av_earlier ? 20.3 : 20.0);
+    std::vector<Command> cmds = h.Decide(21.0);
+    ASSERT_EQ(cmds.size(), 1u);
+    const int first = av_earlier ? 1 : 2, second = av_earlier ? 2 : 1;
+    EXPECT_TRUE(Released(cmds, first));
+    EXPECT_EQ(h.model.draws, 0);
+    EXPECT_EQ(h.logic.Encounters(), 0);
+    EXPECT_EQ(h.logic.NonGameMeetings(), 1);
+    ASSERT_EQ(h.model.asked.size(), 1u);
+    EXPECT_EQ(h.model.asked[0], std::make_pair(1, 2)) << "asked with the AV first";
+    h.logic.Cleared(first, 23.0);
+    EXPECT_TRUE(h.Decide(23.5).empty());
+    EXPECT_TRUE(Released(h.Decide(24.0), second));
+    EXPECT_EQ(h.model.draws, 0);
+  }
+  // The same meeting as a game is an encounter.
+  Harness g;
+  g.logic.Arrive(1, VehicleKind::kAV, 0, 20.0);
+  g.logic.Arrive(2, VehicleKind::kHV, 1, 20.3);
+  EXPECT_TRUE(Nudges(g.Decide(21.0), 1));
+  EXPECT_EQ(g.logic.NonGameMeetings(), 0);
+  // Two of a kind never ask.
+  Harness k;
+  k.logic.Arrive(1, VehicleKind::kHV, 0, 20.0);
+  k.logic.Arrive(2, VehicleKind::kHV, 1, 20.3);
+  EXPECT_TRUE(Released(k.Decide(21.0), 1));
+  EXPECT_TRUE(k.model.asked.empty());
 }
 
 TEST(RightOfWay, BeyondTheWindowTheEarlierGoes) {

@@ -141,6 +141,13 @@ struct ScenarioConfig {
   // record (note it in the outputs and go on: a gridlocked network measured
   // as it is, e.g. beyond saturation).
   std::string stall_action = "error";
+  // Network scenarios: which AV-HV meetings on conflicting movements are the
+  // paper's game. colliding: those where both proceeding would collide on the
+  // junction's geometry (the game's premise; a merge the AV leads is not one
+  // and goes by arrival); all: every conflicting pair (SUMO then decides
+  // collisions that the theory's "AV goes, HV drives recklessly" may not
+  // produce). The figure-8's crossing is always the game.
+  std::string encounter_pairs = "colliding";
 
   template <typename Archive>
   void Serialize(Archive* a) {
@@ -178,6 +185,7 @@ struct ScenarioConfig {
     a->Visit("summary_output", &summary_output);
     a->Visit("nudge_check", &nudge_check);
     a->Visit("stall_action", &stall_action);
+    a->Visit("encounter_pairs", &encounter_pairs);
   }
   bool IsNetwork() const { return kind == "network"; }
 };

@@ -3,6 +3,7 @@
 // from its stop line, before its rear is clear of the other's path. SUMO-free.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 namespace taebp::junction {
@@ -22,5 +23,35 @@ double PathLength(const std::vector<Point2>& path);
 // must leave the junction). `width_a`, `width_b`: lane widths.
 double ClearDistance(const std::vector<Point2>& a, double width_a, const std::vector<Point2>& b,
                      double width_b, double margin = 0.5);
+
+}  // namespace taebp::junction
+
+namespace taebp::junction {
+
+// A vehicle released from rest on its way through a junction: its path (the
+// approach lane, the internal lanes, the exit lane, as one centreline), the
+// speed limits along it, and where the junction begins and ends on it.
+struct Mover {
+  std::vector<Point2> path;
+  // (arc length from which it holds, speed limit m/s), ascending; empty: none.
+  std::vector<std::pair<double, double>> limits;
+  double entry = 0;   // arc length of the stop line
+  double exit = 0;    // arc length where the junction ends (the exit lane begins)
+  double front = 0;   // arc length of the front at release
+  double length = 5.0, width = 1.8;
+  double accel = 2.6, max_speed = 13.89;
+};
+
+// The theory's collision event made physical: do two vehicles released from
+// rest at the same instant, each driving its path at full acceleration
+// without regard to the other (an AV going, an HV driving recklessly), touch
+// while both are on the junction? A body is what SUMO's collision check
+// compares: the rectangle of the vehicle's width around the straight line
+// from its rear point to its front point on the path (on a curve it cuts
+// the corner); speeds follow SUMO's Euler update v += accel*dt capped by the
+// limit under the front. Paths that only merge
+// behind each other, or cross where one has passed before the other comes,
+// do not collide. `dt`: SUMO's step length.
+bool BothProceedCollide(const Mover& a, const Mover& b, double dt);
 
 }  // namespace taebp::junction

@@ -63,6 +63,11 @@ class HvPopulation {
   // The AV `av` meets `hv`: the scheme it commits to for this encounter
   // (draw the intent and signal from it).
   const persuasion::CommittedScheme& Commit(const std::string& av, const std::string& hv);
+  // Where the AV stands when it goes, relative to its stop line, under the
+  // scheme it would commit to for `hv` now: the Go signal's nudge (s*) when
+  // the scheme nudges on Go, else 0. No side effects (Commit's probe draw is
+  // not made: ta_ebp_learned answers for the population's scheme).
+  double GoSignal(const std::string& hv) const;
   // The HV reads the displacement SUMO reported (plus noise) under the
   // committed scheme with its current trust.
   HvReading Read(const std::string& av, const std::string& hv, double observed);

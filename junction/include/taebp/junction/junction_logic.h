@@ -17,7 +17,9 @@
 //   ready: it arrived, or the last conflicting vehicle cleared its path
 //   (spec.clear_at). A conflicting head that was ready by the end of that
 //   window meets it: an AV and an HV form an AV-HV encounter (the paper's
-//   two-player game); two of a kind go by arrival time. Meetings are
+//   two-player game) when both proceeding would collide
+//   (EncounterModel::Game); otherwise, and for two of a kind, they go by
+//   arrival time. Meetings are
 //   pairwise: a third conflicting head waits for the encounter to finish, so
 //   every decision stays the two-player game. (Looking again after the
 //   junction frees is what lets the figure-8's two queues meet; it costs
@@ -87,6 +89,14 @@ class EncounterModel {
   virtual ~EncounterModel() = default;
   virtual AvDraw Draw(int av, int hv) = 0;
   virtual HvReading Read(int av, int hv, double observed) = 0;
+  // Is the meeting of this AV and HV the paper's game: would they collide if
+  // both proceeded (conflict_geometry.h BothProceedCollide)? A meeting that
+  // is not a game (a merge the AV leads, a crossing one of them has passed
+  // before the other comes) goes by arrival, as two of a kind do.
+  virtual bool Game(int av, int hv, int av_movement, int hv_movement) {
+    (void)av, (void)hv, (void)av_movement, (void)hv_movement;
+    return true;
+  }
 };
 
 struct Command {
@@ -142,6 +152,8 @@ class JunctionLogic {
   int Waiting() const { return static_cast<int>(heads_.size()); }
   int InJunction() const { return static_cast<int>(inside_.size()); }
   int Encounters() const { return static_cast<int>(encounters_.size()); }
+  // AV-HV meetings that were not a game (EncounterModel::Game), so far.
+  long NonGameMeetings() const { return non_game_; }
   double LastActivity() const { return last_activity_; }
   // The waiting heads, the vehicles inside and the encounters, for messages;
   // `name` turns a vehicle handle into its id.
@@ -179,6 +191,7 @@ class JunctionLogic {
   std::vector<Active> encounters_;
   std::vector<EncounterOutcome> finished_;
   double last_activity_ = 0;
+  long non_game_ = 0;
 };
 
 }  // namespace taebp::junction

@@ -34,10 +34,11 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
 // encounters.csv text: the header (EncounterCsvColumns) on the first line, then
 // one row per AV-HV encounter, policy first. No comment lines: provenance is in
 // summary.json.
-// Runs beyond the paper (PolicyRun::beyond.on) add the columns of
-// EncounterCsvColumns(true) after the paper's.
+// Network scenarios add both_proceed_collides after the paper's columns;
+// runs beyond the paper (PolicyRun::beyond.on) then add the columns of
+// EncounterCsvColumns(true, ...).
 std::string EncountersCsv(const std::vector<PolicyRun>& runs);
-std::vector<std::string> EncounterCsvColumns(bool beyond = false);
+std::vector<std::string> EncounterCsvColumns(bool beyond = false, bool network = false);
 // Whether any run is beyond the paper (then the files below are written too).
 bool BeyondPaper(const std::vector<PolicyRun>& runs);
 // timeseries.csv: one row per (policy, sample time): the HVs in the network,

@@ -51,6 +51,9 @@ struct EncounterRecord {
   bool hv_dc = false;       // HV action: drive if clear (else drive recklessly)
   bool av_first = false;    // AV action: go first (else wait)
   bool collision = false;   // SUMO reported a collision between the two
+  // Both proceeding would collide on the junction's geometry (network
+  // scenarios: the meeting is the paper's game; conflict_geometry.h).
+  bool both_proceed_collides = true;
   double decided_at = 0;    // when the HV decided (after the nudge)
   double theory_dc = 0;         // library prediction for this AV-HV pair's design and HV
   double theory_collision = 0;
@@ -72,6 +75,10 @@ struct JunctionRun {
   long crossings_av = 0, crossings_hv = 0;  // vehicles through the junction
   long held = 0;                            // vehicles held at a stop line and released
   double wait_sum = 0, wait_max = 0;        // their waits at the line (s)
+  // AV-HV meetings on conflicting movements where both proceeding would not
+  // collide (a merge the AV leads, ...): not the paper's game, they went by
+  // arrival (scenario.encounter_pairs: colliding).
+  long meetings_not_game = 0;
   std::vector<ApproachStats> approaches;
 };
 // Network-wide totals over the measured time (kind: network).
