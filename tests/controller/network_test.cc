@@ -306,7 +306,7 @@ TEST(NetworkConflicts, FourWayAllWayStopWithTurnsEncountersConflictInSumosMatrix
 
 TEST(NetworkConflicts, TwoWayStopGridEncountersAreBetweenStopLinksThatConflict) {
   const ExperimentConfig cfg =
-      GridConfig({"scenario.grid.junction_type=priority_stop", "scenario.duration=1500",
+      GridConfig({"scenario.grid.junction_type=priority_stop", "scenario.duration=5000",
                   "scenario.demand.flow=150", "policies=[ta_ebp]",
                   // minor roads wait for 5 s gaps: the grid may saturate
                   "scenario.stall_action=record"});
