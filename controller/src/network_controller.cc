@@ -76,6 +76,7 @@ struct Veh {
   VehicleKind kind = VehicleKind::kHV;
   double trust = 0;
   double length = 5, min_gap = 2;
+  double width = 1.8, accel = 2.6, max_speed = 13.89;  // its SUMO type's (BothProceedCollide)
   std::vector<int> route;  // edge indices
   int route_pos = 0;       // route index already counted
   State state = State::kFree;
@@ -206,7 +207,8 @@ struct NetworkController::Impl : junction::EncounterModel {
   }
 
   // A movement's centreline: the approach lane, the internal lanes, the exit
-  // lane, with their speed limits; the stop line and the junction's end on it.
+  // lane, with their speed limits; the stop line and the junction's end on it
+  // (the vehicle's size and kinematics are filled in per meeting: Game).
   junction::Mover MoverFor(const MovementRt& m) const {
     junction::Mover mv;
     double arc = 0;
@@ -229,9 +231,6 @@ struct NetworkController::Impl : junction::EncounterModel {
     for (const std::string& in : m.internal) add(in);
     mv.exit = arc;
     add(m.to_lane);
-    mv.width = sc.vehicle_width;
-    mv.accel = sc.accel;
-    mv.max_speed = sc.cruise_speed;
     return mv;
   }
 
@@ -457,8 +456,12 @@ struct NetworkController::Impl : junction::EncounterModel {
     JunctionRt& j = junctions[a.junction];
     junction::Mover ma = j.movements[av_movement].mover;
     junction::Mover mh = j.movements[hv_movement].mover;
-    ma.length = a.length;
-    mh.length = h.length;
+    for (auto [m, v] : {std::pair{&ma, &a}, std::pair{&mh, &h}}) {
+      m->length = v->length;
+      m->width = v->width;
+      m->accel = v->accel;
+      m->max_speed = v->max_speed;
+    }
     ma.front = ma.entry - a.line_gap + population->GoSignal(h.id);
     mh.front = mh.entry - h.line_gap;
     const bool collides = junction::BothProceedCollide(ma, mh, dt);
@@ -513,6 +516,11 @@ struct NetworkController::Impl : junction::EncounterModel {
     }
     v.length = sumo::Length(id);
     v.min_gap = sumo::MinGap(id);
+    if (sc.IsNetwork()) {  // for the game's premise (Game): route files may bring their own types
+      v.width = sumo::Width(id);
+      v.accel = sumo::Accel(id);
+      v.max_speed = sumo::MaxSpeed(id);
+    }
     for (const std::string& e : sumo::Route(id)) v.route.push_back(EdgeIndex(e));
     v.route_pos = std::max(0, sumo::RouteIndex(id));
     vehs[h] = std::move(v);

@@ -142,6 +142,9 @@ std::string LaneID(const std::string& veh) { return TAEBP_SUMO_CALL(LaneID(veh))
 std::string TypeID(const std::string& veh) { return TAEBP_SUMO_CALL(TypeID(veh)); }
 double Length(const std::string& veh) { return TAEBP_SUMO_CALL(Length(veh)); }
 double MinGap(const std::string& veh) { return TAEBP_SUMO_CALL(MinGap(veh)); }
+double Width(const std::string& veh) { return TAEBP_SUMO_CALL(Width(veh)); }
+double Accel(const std::string& veh) { return TAEBP_SUMO_CALL(Accel(veh)); }
+double MaxSpeed(const std::string& veh) { return TAEBP_SUMO_CALL(MaxSpeed(veh)); }
 int RouteIndex(const std::string& veh) { return TAEBP_SUMO_CALL(RouteIndex(veh)); }
 std::vector<std::string> Route(const std::string& veh) { return TAEBP_SUMO_CALL(Route(veh)); }
 void SetRoute(const std::string& veh, const std::vector<std::string>& edges) {

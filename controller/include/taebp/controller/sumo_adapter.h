@@ -102,6 +102,9 @@ std::string LaneID(const std::string& veh);
 std::string TypeID(const std::string& veh);
 double Length(const std::string& veh);
 double MinGap(const std::string& veh);
+double Width(const std::string& veh);
+double Accel(const std::string& veh);
+double MaxSpeed(const std::string& veh);
 int RouteIndex(const std::string& veh);  // index of the current edge in its route
 std::vector<std::string> Route(const std::string& veh);  // the route's edges
 void SetRoute(const std::string& veh, const std::vector<std::string>& edges);  // from its edge
