@@ -36,6 +36,23 @@ def test_run_equals_the_cli_files_and_table(tmp_path):
     assert loaded.summary == r.summary and loaded.encounters.rows == r.encounters.rows
 
 
+def test_network_run_has_the_network_column():
+    """A network scenario's encounters.csv adds both_proceed_collides (the
+    meeting is the paper's game) after the paper's columns."""
+    grid = os.path.join(os.path.dirname(PAPER), "grid_throughput.yaml")
+    r = taebp.run(grid, overrides=["policies=[no_trust]", "scenario.duration=600",
+                                   "scenario.warmup=0"])
+    cols = taebp.encounter_columns(network=True)
+    assert cols == taebp.encounter_columns() + ["both_proceed_collides"]
+    assert r.encounters.columns == cols
+    assert len(r.encounters) > 20
+    assert set(r.encounters["both_proceed_collides"]) == {1}
+    # Every encounter is the game: SUMO collided exactly where the AV went
+    # and the HV drove recklessly.
+    for e in r.encounters:
+        assert e["collision"] == (e["av_action"] == "go" and e["hv_action"] == "DR")
+
+
 def test_run_without_out_writes_nothing(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     r = taebp.run(PAPER, overrides=SHORT + ["policies=[ta_ebp]"])
