@@ -206,6 +206,21 @@ struct NetworkController::Impl : junction::EncounterModel {
     return k;
   }
 
+  // Appends a lane's shape to a path (a point equal to the path's last is
+  // skipped: consecutive lanes share their end points); returns the length added.
+  static double AppendShape(const net::Lane& lane, std::vector<junction::Point2>* path) {
+    double added = 0;
+    for (const net::Point& p : lane.shape) {
+      if (!path->empty()) {
+        const junction::Point2 q = path->back();
+        if (q.x == p.x && q.y == p.y) continue;
+        added += std::hypot(p.x - q.x, p.y - q.y);
+      }
+      path->push_back({p.x, p.y});
+    }
+    return added;
+  }
+
   // A movement's centreline: the approach lane, the internal lanes, the exit
   // lane, with their speed limits; the stop line and the junction's end on it
   // (the vehicle's size and kinematics are filled in per meeting: Game).
@@ -216,15 +231,7 @@ struct NetworkController::Impl : junction::EncounterModel {
       const net::Lane* l = net.FindLane(lane_id);
       if (!l) return;
       mv.limits.emplace_back(arc, l->speed);
-      for (const net::Point& p : l->shape) {
-        if (!mv.path.empty()) {
-          const junction::Point2 q = mv.path.back();
-          const double d = std::hypot(p.x - q.x, p.y - q.y);
-          if (d == 0) continue;
-          arc += d;
-        }
-        mv.path.push_back({p.x, p.y});
-      }
+      arc += AppendShape(*l, &mv.path);
     };
     add(m.from_lane);
     mv.entry = arc;
@@ -299,10 +306,7 @@ struct NetworkController::Impl : junction::EncounterModel {
           const net::Lane* il = net.FindLane(in);
           if (!il) continue;
           widths[a] = il->width;
-          for (const net::Point& p : il->shape) {
-            if (!paths[a].empty() && paths[a].back().x == p.x && paths[a].back().y == p.y) continue;
-            paths[a].push_back({p.x, p.y});
-          }
+          AppendShape(*il, &paths[a]);
         }
       }
       for (std::size_t a = 0; a < n; ++a) rt.movements[a].mover = MoverFor(rt.movements[a]);

@@ -542,36 +542,27 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
     for (const std::string& c : cols) h += (h.empty() ? "" : ",") + c;
     return h;
   };
+  // The header line of each ok task's encounters.csv, read once.
+  std::vector<std::string> headers;
+  for (const Task& t : plan.tasks) {
+    const auto it = journal.entries.find(t.index);
+    if (it == journal.entries.end() || !IsOk(it->second)) continue;
+    std::ifstream in(TaskDir(out, t) / "encounters.csv", std::ios::binary);
+    std::string line;
+    if (in && std::getline(in, line)) headers.push_back(line);
+  }
   // A network scenario's tasks have its column (EncounterCsvColumns(..., true)),
   // the first readable task says which. A task of a run beyond the paper has
   // the extra columns (EncounterCsvColumns(true, ...)); when any has, the
   // pooled file has them and the other tasks' rows get empty cells.
-  bool network = false;
-  for (const Task& t : plan.tasks) {
-    const auto it = journal.entries.find(t.index);
-    if (it == journal.entries.end() || !IsOk(it->second)) continue;
-    std::ifstream in(TaskDir(out, t) / "encounters.csv", std::ios::binary);
-    std::string line;
-    if (!in || !std::getline(in, line)) continue;
-    network = line == join(EncounterCsvColumns(false, true)) ||
-              line == join(EncounterCsvColumns(true, true));
-    break;
-  }
+  const bool network = !headers.empty() && (headers[0] == join(EncounterCsvColumns(false, true)) ||
+                                            headers[0] == join(EncounterCsvColumns(true, true)));
   const std::string paper_header = join(EncounterCsvColumns(false, network));
   const std::string beyond_header = join(EncounterCsvColumns(true, network));
   const std::string padding(
       EncounterCsvColumns(true, network).size() - EncounterCsvColumns(false, network).size(), ',');
-  bool any_beyond = false;
-  for (const Task& t : plan.tasks) {
-    const auto it = journal.entries.find(t.index);
-    if (it == journal.entries.end() || !IsOk(it->second)) continue;
-    std::ifstream in(TaskDir(out, t) / "encounters.csv", std::ios::binary);
-    std::string line;
-    if (in && std::getline(in, line) && line == beyond_header) {
-      any_beyond = true;
-      break;
-    }
-  }
+  const bool any_beyond =
+      std::find(headers.begin(), headers.end(), beyond_header) != headers.end();
   const std::string task_header = any_beyond ? beyond_header : paper_header;
   const fs::path tmp = out / ("encounters.csv.tmp." + std::to_string(::getpid()));
   std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
