@@ -179,7 +179,7 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   c.Positive("scenario.vehicle_width", s.vehicle_width);
   c.Positive("scenario.accel", s.accel);
   c.Positive("scenario.decel", s.decel);
-  c.NonNegative("scenario.arrival_window", s.arrival_window);
+  c.NonNegative("scenario.meeting_distance", s.meeting_distance);
   c.NonNegative("scenario.confirm_delay", s.confirm_delay);
   c.Positive("scenario.creep_speed", s.creep_speed);
   c.Positive("scenario.loop_length", s.loop_length);

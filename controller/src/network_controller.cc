@@ -5,7 +5,7 @@
 #include "taebp/junction/design.h"
 #include "taebp/junction/hv_population.h"
 #include "taebp/junction/intersection.h"
-#include "taebp/junction/junction_logic.h"
+#include "taebp/junction/interception.h"
 
 #include <algorithm>
 #include <array>
@@ -21,7 +21,7 @@ namespace taebp {
 namespace {
 
 using junction::Command;
-using junction::JunctionLogic;
+using junction::Interception;
 using persuasion::Policy;
 
 // Speed modes (bits: 1 safe speed, 2 max accel, 4 max decel, 8 right of way,
@@ -31,9 +31,15 @@ constexpr int kModeReleased = 55;  // the controller decided the junction; keep 
 constexpr int kModeCreep = 0;      // exact commanded speeds during a nudge
 
 constexpr double kHaltSpeed = 0.1;      // m/s: SUMO's halting threshold
-constexpr double kAtLine = 1.0;         // m: a halted front this near the lane end is at the line
+constexpr double kAtLine = 1.0;         // m: a front this near the lane end is at the line
+constexpr double kSlow = 0.5;           // m/s: a front at its line slower than this waits there
+constexpr double kStopGap = 0.1;        // m: SUMO halts a front this far before the lane end
 constexpr double kMajorNear = 3.0;      // m: a major-road vehicle this near the line is entering
 
+// kFree: SUMO drives it. kHeld: held at its line (an encounter's vehicle, or a
+// third vehicle waiting for one). kNudging/kNudged: the encounter's AV.
+// kCrossing: an encounter vehicle released (SUMO's right of way off) or handed
+// back, until it has left the junction.
 enum class State { kFree, kHeld, kNudging, kNudged, kCrossing };
 
 // Vehicle colours under colour_states (r, g, b).
@@ -81,8 +87,12 @@ struct Veh {
   int route_pos = 0;       // route index already counted
   State state = State::kFree;
   int junction = -1, movement = -1, approach = -1;
-  double arrival = 0, hold_odometer = 0;
-  double line_gap = 0;     // m from its front to the stop line when held
+  double held_since = 0, hold_odometer = 0;
+  double line_since = -1;  // halted at its stop line since (-1: not there)
+  double line_gap = 0;     // m from its front to the stop line when halted there
+  bool encounter = false;  // in an AV-HV encounter (not a held third vehicle)
+  bool reckless = false;   // released with SUMO's right of way off
+  std::vector<int> near;   // controlled junctions whose stop line it may reach within a second
   double target = 0, creep_speed = 0, commanded = 0;
   std::string lane;        // while crossing: the lane it was last seen on
   Paint paint = Paint::kType;
@@ -114,20 +124,22 @@ struct ApproachRt {
   std::string lane;
   double length = 0;
   int junction = -1;
-  int head = -1;          // vehicle held at (or nudging from) this line
-  int skip = -1;          // a halted front that cannot be held (no movement for its route)
+  int front = -1;  // the vehicle at its line last time it was looked at
   ApproachStats stats;
 };
 
 struct JunctionRt {
   ControlledJunction info;
-  std::unique_ptr<JunctionLogic> logic;
+  std::unique_ptr<Interception> logic;
   std::vector<MovementRt> movements;
-  std::vector<int> approaches;  // global approach indices
+  std::vector<int> approaches;  // global approach indices (stop-controlled lanes)
+  std::vector<std::string> incoming;  // every lane into it (stall check)
   JunctionRun run;
+  int near_av = 0, near_hv = 0;  // vehicles that may reach its stop lines within a second
+  std::vector<junction::AtLine> at_line;  // this step
   double last_progress = 0;     // a vehicle last passed it (route progress)
-  double last_gap_refusal = -1; // a minor head last refused a gap (two-way)
-  bool waiting = false;         // vehicles halted at its stop lines (last sample)
+  bool waiting = false;         // vehicles halted on its incoming lanes (last sample)
+  bool watched = false;         // looked at this step (Watched)
   double waiting_since = 0;     // since when (an idle junction is not stalled)
   bool stall_recorded = false;  // this stall episode is in the outputs
   double stall_since = -1;
@@ -171,6 +183,10 @@ struct NetworkController::Impl : junction::EncounterModel {
     const auto jt = junction_index.find(end);
     edge_junction.push_back(jt == junction_index.end() ? -1 : jt->second);
     edge_names.push_back(edge);
+    double length = 0;
+    if (const net::Edge* e = net.FindEdge(edge); e && !e->lanes.empty())
+      if (const net::Lane* l = net.FindLane(e->lanes.front())) length = l->length;
+    edge_length.push_back(length);
     return k;
   }
 
@@ -242,6 +258,11 @@ struct NetworkController::Impl : junction::EncounterModel {
   }
 
   void BuildTopology() {
+    double vmax = sc.cruise_speed;
+    for (const auto& [id, e] : net.edges())
+      for (const std::string& lane : e.lanes)
+        if (const net::Lane* l = net.FindLane(lane)) vmax = std::max(vmax, l->speed);
+    reach = 2.0 * vmax * sample_every * dt + 10.0;  // speed factors up to 2, and a margin
     for (std::size_t j = 0; j < scenario.junctions.size(); ++j)
       junction_index.emplace(scenario.junctions[j].id, static_cast<int>(j));
     for (const ControlledJunction& cj : scenario.junctions) {
@@ -296,25 +317,7 @@ struct NetworkController::Impl : junction::EncounterModel {
       for (std::size_t a = 0; a < n; ++a)
         for (std::size_t b = 0; b < n; ++b)
           spec.conflict[a][b] = nj->foes[link_of[a]][link_of[b]];
-      // Where each pair conflicts: a vehicle unblocks a crossing movement
-      // once its rear is past the crossing point, not only when it has left
-      // the junction.
-      std::vector<std::vector<junction::Point2>> paths(n);
-      std::vector<double> widths(n, 3.2);
-      for (std::size_t a = 0; a < n; ++a) {
-        for (const std::string& in : rt.movements[a].internal) {
-          const net::Lane* il = net.FindLane(in);
-          if (!il) continue;
-          widths[a] = il->width;
-          AppendShape(*il, &paths[a]);
-        }
-      }
       for (std::size_t a = 0; a < n; ++a) rt.movements[a].mover = MoverFor(rt.movements[a]);
-      spec.clear_at.assign(n, std::vector<double>(n, 0.0));
-      for (std::size_t a = 0; a < n; ++a)
-        for (std::size_t b = 0; b < n; ++b)
-          if (spec.Conflict(static_cast<int>(a), static_cast<int>(b)))
-            spec.clear_at[a][b] = junction::ClearDistance(paths[a], widths[a], paths[b], widths[b]);
       const int jx = static_cast<int>(junctions.size());
       for (std::size_t a = 0; a < n; ++a) {
         MovementRt& m = rt.movements[a];
@@ -327,6 +330,7 @@ struct NetworkController::Impl : junction::EncounterModel {
       // Approaches with a stop link: where heads are held.
       std::map<std::string, bool> stop_lane;
       for (const MovementRt& m : rt.movements) stop_lane[m.from_lane] |= m.controlled;
+      for (const auto& [lane, has_stop] : stop_lane) rt.incoming.push_back(lane);
       for (const auto& [lane, has_stop] : stop_lane) {
         if (!has_stop) continue;
         ApproachRt ap;
@@ -359,8 +363,8 @@ struct NetworkController::Impl : junction::EncounterModel {
           }
         }
       }
-      junction::Timing timing{sc.arrival_window, sc.confirm_delay};
-      rt.logic = std::make_unique<JunctionLogic>(std::move(spec), timing);
+      junction::Timing timing{sc.confirm_delay};
+      rt.logic = std::make_unique<Interception>(std::move(spec), timing);
       rt.run.id = cj.id;
       rt.run.type = cj.type;
       rt.run.original_type = cj.original_type;
@@ -375,15 +379,29 @@ struct NetworkController::Impl : junction::EncounterModel {
   struct Env : junction::Environment {
     Impl* self = nullptr;
     JunctionRt* j = nullptr;
-    bool ExitHasRoom(int movement, int vehicle, int also) override {
-      return self->ExitHasRoom(*j, movement, vehicle, also);
+    bool AreaClear(int av_movement, int hv_movement) override {
+      return self->AreaClear(*j, av_movement, hv_movement);
     }
-    bool MajorClear(int movement) override {
-      const bool clear = self->MajorClear(*j, movement);
-      if (!clear) j->last_gap_refusal = self->now;
-      return clear;
+    bool ExitHasRoom(int movement, int vehicle) override {
+      return self->ExitHasRoom(*j, movement, vehicle);
     }
+    bool MajorClear(int movement) override { return self->MajorClear(*j, movement); }
   };
+
+  // No vehicle inside the junction on the two movements or on any movement
+  // conflicting with them (the encounter's two are still at their lines).
+  bool AreaClear(const JunctionRt& j, int av_movement, int hv_movement) {
+    const junction::JunctionSpec& spec = j.logic->spec();
+    for (std::size_t k = 0; k < j.movements.size(); ++k) {
+      const int m = static_cast<int>(k);
+      if (m != av_movement && m != hv_movement && !spec.Conflict(m, av_movement) &&
+          !spec.Conflict(m, hv_movement))
+        continue;
+      for (const std::string& in : j.movements[k].internal)
+        if (sumo::LaneVehicleNumber(in) > 0) return false;
+    }
+    return true;
+  }
 
   // Keep clear: a head enters only if its exit can take it with its rear off
   // the junction. Two forms of one rule, by what the exit can be relied on
@@ -529,6 +547,7 @@ struct NetworkController::Impl : junction::EncounterModel {
     v.route_pos = std::max(0, sumo::RouteIndex(id));
     vehs[h] = std::move(v);
     index[id] = h;
+    UpdateNear(h);
     if (opts.colour_states) {
       vehs[h].paint = Paint::kNudging;  // force the first paint
       SetPaint(h, Paint::kType);
@@ -545,6 +564,7 @@ struct NetworkController::Impl : junction::EncounterModel {
       const int j = edge_junction[v.route[k]];
       if (j < 0) continue;
       junctions[j].last_progress = now;
+      last_crossing = now;
       if (now < sc.warmup) continue;
       (v.kind == VehicleKind::kAV ? junctions[j].run.crossings_av : junctions[j].run.crossings_hv)++;
     }
@@ -560,14 +580,41 @@ struct NetworkController::Impl : junction::EncounterModel {
     v.alive = false;
     if (population && v.kind == VehicleKind::kHV) population->Remove(id);
     if (v.state == State::kCrossing) Clear(h);  // left the network inside a junction
-    if (v.approach >= 0 && approaches[v.approach].head == h) approaches[v.approach].head = -1;
+    SetNear(h, {});
     if (now >= sc.warmup) ++out.network.arrived;
     v.route.clear();
     index.erase(it);
     if (v.open_encounters == 0) free_slots.push_back(h);  // else once recorded
   }
 
-  // ------------------------------------------------------------ holding
+  // ------------------------------------------------------------ watching
+  // Which controlled junctions' stop lines a vehicle may reach before the next
+  // sample (a second from now): those its route reaches within the farthest a
+  // vehicle can drive in that time, counted from the end of its current edge
+  // (so the junction ending its current edge always counts). A junction is
+  // watched in a step only while an AV and an HV may both be at its lines:
+  // a run without AVs or without HVs reads nothing per step.
+  void UpdateNear(int h) {
+    Veh& v = vehs[h];
+    std::vector<int> near;
+    double ahead = 0;
+    for (std::size_t k = v.route_pos; k < v.route.size(); ++k) {
+      if (k > static_cast<std::size_t>(v.route_pos)) ahead += edge_length[v.route[k]];
+      if (ahead > reach) break;
+      const int j = edge_junction[v.route[k]];
+      if (j >= 0 && std::find(near.begin(), near.end(), j) == near.end()) near.push_back(j);
+    }
+    if (!scenario.lap.empty() && near.empty()) near.push_back(0);  // the figure-8's centre
+    SetNear(h, std::move(near));
+  }
+  void SetNear(int h, std::vector<int> near) {
+    Veh& v = vehs[h];
+    const int sign_av = v.kind == VehicleKind::kAV;
+    for (int j : v.near) (sign_av ? junctions[j].near_av : junctions[j].near_hv)--;
+    v.near = std::move(near);
+    for (int j : v.near) (sign_av ? junctions[j].near_av : junctions[j].near_hv)++;
+  }
+
   int MovementFor(const JunctionRt& j, const std::string& lane, const Veh& v) const {
     const int next = v.route_pos + 1;
     if (next >= static_cast<int>(v.route.size())) return -1;
@@ -580,71 +627,111 @@ struct NetworkController::Impl : junction::EncounterModel {
     return -1;
   }
 
-  void DetectArrivals() {
-    for (std::size_t a = 0; a < approaches.size(); ++a) {
+  // The front vehicles of a watched junction's stop-controlled lanes that
+  // wait at their lines (front within kAtLine, below kSlow) or are coming to
+  // a stop there (front within scenario.meeting_distance): SUMO's view this
+  // step (junction/interception.h, "Meeting").
+  void ObserveLines(JunctionRt& j) {
+    j.at_line.clear();
+    const int jx = static_cast<int>(&j - junctions.data());
+    for (int a : j.approaches) {
       ApproachRt& ap = approaches[a];
-      if (ap.head >= 0) continue;
-      if (sumo::LaneHaltingNumber(ap.lane) == 0) continue;
-      const std::vector<std::string> ids = sumo::LaneVehicleIDs(ap.lane);
-      if (ids.empty()) continue;
-      const auto it = index.find(ids.back());
-      if (it == index.end()) continue;
-      const int h = it->second;
+      int h = -1;
+      if (sumo::LaneVehicleNumber(ap.lane) > 0) {
+        const std::vector<std::string> ids = sumo::LaneVehicleIDs(ap.lane);
+        const auto it = ids.empty() ? index.end() : index.find(ids.back());
+        if (it != index.end()) h = it->second;
+      }
+      if (ap.front >= 0 && ap.front != h) LeftLine(ap.front);
+      ap.front = h;
+      if (h < 0) continue;
       Veh& v = vehs[h];
-      if (v.state != State::kFree || ap.skip == h) continue;
-      if (sumo::Speed(v.id) >= kHaltSpeed) continue;
-      if (ap.length - sumo::LanePosition(v.id) > kAtLine) continue;
-      JunctionRt& j = junctions[ap.junction];
-      CountProgress(h, sumo::RouteIndex(v.id));
-      KeepCirculating(h);
-      const int m = MovementFor(j, ap.lane, v);
-      if (m < 0) {
-        ap.skip = h;  // e.g. needs another lane for its next edge: SUMO's own logic
+      if (v.state == State::kHeld) {
+        if (v.movement >= 0) j.at_line.push_back({h, v.kind, v.movement, true, v.line_since});
         continue;
       }
-      sumo::SetSpeed(v.id, 0.0);
-      v.state = State::kHeld;
-      v.junction = ap.junction;
-      v.movement = m;
-      v.approach = static_cast<int>(a);
-      v.arrival = now;
-      v.hold_odometer = sumo::Distance(v.id);
-      v.line_gap = ap.length - sumo::LanePosition(v.id);
-      ap.head = h;
-      j.logic->Arrive(h, v.kind, m, now);
+      if (v.state != State::kFree) continue;
+      if (v.junction != jx) {  // new at the front of this lane
+        v.junction = jx;
+        CountProgress(h, sumo::RouteIndex(v.id));
+        KeepCirculating(h);
+        v.movement = MovementFor(j, ap.lane, v);
+        v.line_since = -1;
+      }
+      if (v.movement < 0) continue;  // e.g. needs another lane for its next edge
+      const double gap = ap.length - sumo::LanePosition(v.id);
+      if (gap > sc.meeting_distance && gap > kAtLine) continue;
+      const bool waiting = gap <= kAtLine && sumo::Speed(v.id) < kSlow;
+      if (waiting && v.line_since < 0) v.line_since = now;
+      if (!waiting) v.line_since = -1;
+      v.line_gap = waiting ? gap : kStopGap;
+      j.at_line.push_back({h, v.kind, v.movement, waiting, v.line_since});
     }
   }
 
-  void Release(int h, bool reckless) {
-    (void)reckless;  // DR and DC alike: the controller decided the junction
+  // A free vehicle that was the front of a watched lane is no longer (SUMO
+  // let it go, or the junction is no longer watched).
+  void LeftLine(int h) {
     Veh& v = vehs[h];
-    sumo::SetSpeedMode(v.id, kModeReleased);
+    if (v.state != State::kFree) return;
+    v.line_since = -1;
+    v.movement = v.junction = -1;
+  }
+
+  // ------------------------------------------------------------ holding
+  void Hold(JunctionRt& j, int h) {
+    Veh& v = vehs[h];
+    sumo::SetSpeed(v.id, 0.0);
+    v.state = State::kHeld;
+    v.junction = static_cast<int>(&j - junctions.data());
+    v.held_since = now;
+    v.hold_odometer = sumo::Distance(v.id);  // the nudge is measured from here
+  }
+
+  void CountWait(JunctionRt& j, const Veh& v) {
+    if (now < sc.warmup) return;
+    const double wait = now - v.held_since;
+    j.run.wait_sum += wait;
+    j.run.wait_max = std::max(j.run.wait_max, wait);
+    ++j.run.held;
+  }
+
+  // An encounter vehicle drives on: with SUMO's right of way off (the AV
+  // that goes, the HV that drives recklessly) or under SUMO's own rules (a
+  // careful release); watched until it has left the junction.
+  void Release(JunctionRt& j, int h, bool reckless) {
+    Veh& v = vehs[h];
+    sumo::SetSpeedMode(v.id, reckless ? kModeReleased : kModeDefault);
     sumo::SetSpeed(v.id, -1);
-    JunctionRt& j = junctions[v.junction];
-    if (now >= sc.warmup) {
-      const double wait = now - v.arrival;
-      j.run.wait_sum += wait;
-      j.run.wait_max = std::max(j.run.wait_max, wait);
-      ++j.run.held;
-    }
-    approaches[v.approach].head = -1;
+    CountWait(j, v);
     v.state = State::kCrossing;
+    v.reckless = reckless;
     v.lane = j.movements[v.movement].from_lane;
     crossing.push_back(h);
   }
 
-  // The released vehicle's rear left the junction: SUMO's rules again.
+  // A third vehicle held for an encounter: SUMO's again.
+  void HandBack(JunctionRt& j, int h) {
+    Veh& v = vehs[h];
+    sumo::SetSpeed(v.id, -1);
+    CountWait(j, v);
+    v.state = State::kFree;  // still its lane's front: ObserveLines goes on looking
+  }
+
+  // A released encounter vehicle's rear left the junction: SUMO's rules again.
   void Clear(int h) {
     Veh& v = vehs[h];
     JunctionRt& j = junctions[v.junction];
     j.logic->Cleared(h, now);
     crossing.erase(std::remove(crossing.begin(), crossing.end(), h), crossing.end());
     v.state = State::kFree;
-    v.junction = v.movement = v.approach = -1;
+    v.junction = v.movement = -1;
+    v.line_since = -1;
+    v.encounter = false;
     if (!v.alive) return;
-    sumo::SetSpeedMode(v.id, kModeDefault);
+    if (v.reckless) sumo::SetSpeedMode(v.id, kModeDefault);
+    v.reckless = false;
     SetPaint(h, Paint::kType);
-    last_crossing = now;
   }
 
   // Figure-8: one shared route per starting edge, a lap long (added once at
@@ -696,8 +783,6 @@ struct NetworkController::Impl : junction::EncounterModel {
         Clear(h);
         continue;
       }
-      const double rear = sumo::Distance(v.id) - v.hold_odometer - v.line_gap - v.length;
-      junctions[v.junction].logic->Progress(h, rear, now);
     }
   }
 
@@ -779,16 +864,32 @@ struct NetworkController::Impl : junction::EncounterModel {
   }
 
   // ------------------------------------------------------------ decisions
+  // One watched junction's step: what SUMO shows at its lines, then the
+  // interception's commands.
   void Decide(JunctionRt& j) {
+    ObserveLines(j);
     Env env;
     env.self = this;
     env.j = &j;
-    for (const Command& c : j.logic->Decide(now, env, *this)) {
-      if (c.kind == Command::Kind::kRelease) {
-        Release(c.vehicle, c.reckless);
-      } else {
-        if (now >= sc.warmup) ++out.encounters_formed;
-        StartNudge(c.vehicle, c.distance);
+    for (const junction::Command& c : j.logic->Step(now, j.at_line, env, *this)) {
+      switch (c.kind) {
+        case Command::Kind::kHold:
+          Hold(j, c.vehicle);
+          break;
+        case Command::Kind::kStartNudge:
+          if (now >= sc.warmup) ++out.encounters_formed;
+          StartNudge(c.vehicle, c.distance);
+          break;
+        case Command::Kind::kRelease:
+          Release(j, c.vehicle, true);
+          break;
+        case Command::Kind::kHandBack:
+          if (c.in_encounter) {
+            Release(j, c.vehicle, false);
+          } else {
+            HandBack(j, c.vehicle);
+          }
+          break;
       }
     }
     for (const junction::EncounterOutcome& e : j.logic->TakeFinished()) {
@@ -796,6 +897,22 @@ struct NetworkController::Impl : junction::EncounterModel {
       for (int h : {e.av, e.hv})
         if (--vehs[h].open_encounters == 0 && !vehs[h].alive) free_slots.push_back(h);
     }
+  }
+
+  // A junction is looked at in a step while an AV and an HV may both be at
+  // its lines, or while it holds vehicles; on leaving that, what it saw is
+  // forgotten.
+  bool Watched(JunctionRt& j) {
+    const bool watched = (j.near_av > 0 && j.near_hv > 0) || j.logic->Busy() ||
+                         j.logic->HeldThirds() > 0;
+    if (!watched && j.watched) {
+      for (int a : j.approaches) {
+        if (approaches[a].front >= 0) LeftLine(approaches[a].front);
+        approaches[a].front = -1;
+      }
+    }
+    j.watched = watched;
+    return watched;
   }
 
   void Record(const JunctionRt& j, const junction::EncounterOutcome& e) {
@@ -830,96 +947,92 @@ struct NetworkController::Impl : junction::EncounterModel {
     out.encounters.push_back(r);
   }
 
-  // Why the heads of a stalled junction cannot go: exit room, major road.
+  // What waits at a stalled junction: each incoming lane with halted
+  // vehicles, its front vehicle and who holds it.
   std::string StallDetail(JunctionRt& j) {
     std::string out;
-    // The front vehicle of each approach with a queue, as SUMO has it.
-    for (int a : j.approaches) {
-      const ApproachRt& ap = approaches[a];
-      if (sumo::LaneHaltingNumber(ap.lane) == 0) continue;
-      const std::vector<std::string> ids = sumo::LaneVehicleIDs(ap.lane);
+    for (const std::string& lane : j.incoming) {
+      const int halting = sumo::LaneHaltingNumber(lane);
+      if (halting == 0) continue;
+      const std::vector<std::string> ids = sumo::LaneVehicleIDs(lane);
       if (ids.empty()) continue;
       const std::string& front = ids.back();
       const auto it = index.find(front);
-      std::string state = "unknown";
+      std::string state = "driven by SUMO";
       if (it != index.end()) {
         const Veh& v = vehs[it->second];
-        state = v.state == State::kHeld       ? "held"
-                : v.state == State::kCrossing ? "released"
-                : ap.skip == it->second       ? "not held: no stop movement towards its next edge"
-                                              : "halted by SUMO";
+        state = v.state == State::kHeld       ? "held by the controller"
+                : v.state == State::kCrossing ? "released by the controller"
+                : v.state == State::kFree     ? "driven by SUMO"
+                                              : "nudging";
       }
-      out += "; lane " + ap.lane + ": " + std::to_string(ids.size()) + " vehicles, front " +
-             front + " " + Fmt(ap.length - sumo::LanePosition(front)) + " m before the line (" +
+      const net::Lane* l = net.FindLane(lane);
+      out += "; lane " + lane + ": " + std::to_string(halting) + " halted, front " + front + " " +
+             Fmt((l ? l->length : 0) - sumo::LanePosition(front)) + " m before the line (" +
              state + ")";
     }
-    for (int a : j.approaches) {
-      const int h = approaches[a].head;
-      if (h < 0 || vehs[h].state != State::kHeld) continue;
-      const Veh& v = vehs[h];
-      out += "; " + v.id + ": exit " +
-             (ExitHasRoom(j, v.movement, h) ? "has room" : "full (keep clear)");
-      if (j.logic->spec().rule == junction::Rule::kTwoWay)
-        out += MajorClear(j, v.movement) ? ", major road clear" : ", major road busy";
-    }
+    const std::string held = j.logic->Describe([&](int h) { return vehs[h].id; });
+    if (!held.empty()) out += "; " + held;
     return out;
   }
 
   // The safety net (every policy, sumo_native included): a junction with
-  // vehicles waiting at its stop lines through which nothing has moved for
-  // stall_limit seconds. Progress is a vehicle passing it (route progress,
-  // read each second), a release or a clear, or a gap refused because the
-  // major road is busy (traffic is flowing there). Checked each second.
+  // vehicles halted on its incoming lanes through which no vehicle has passed
+  // for stall_limit seconds (route progress, read each second). Checked each
+  // second at every controlled junction.
   void CheckStalls() {
     for (JunctionRt& j : junctions) {
-      const JunctionLogic& l = *j.logic;
       // A junction nobody waited at is idle, not stalled: the clock starts
       // when vehicles began to wait, or at the last progress after that.
       const double progress =
-          std::max({j.last_progress, l.LastActivity(), j.last_gap_refusal, j.waiting_since});
+          std::max({j.last_progress, j.logic->LastActivity(), j.waiting_since});
       if (!j.waiting || now - progress <= stall_limit) {
-        if (j.waiting) continue;
-        j.stall_recorded = false;
+        if (!j.waiting) j.stall_recorded = false;
         continue;
       }
       if (progress > j.stall_since) j.stall_recorded = false;
       if (j.stall_recorded) continue;
       const std::string what =
           "junction '" + j.info.id + "' (" + j.run.rule + "): traffic stalled, vehicles waiting " +
-          "at its stop lines and none passed it between t = " + Fmt(progress) + " s and t = " +
-          Fmt(now) + " s" +
+          "on its incoming lanes and none passed it between t = " + Fmt(progress) +
+          " s and t = " + Fmt(now) + " s" +
           (scenario.loop_length > 0
                ? " (scenario.loop_length = " + Fmt(scenario.loop_length) +
                      " m; try a longer track or fewer vehicles)"
                : " (gridlock: lower the demand, or set scenario.stall_action: record to measure "
                  "it)");
-      // SUMO's own logic (sumo_native) is the baseline, not the controller:
-      // its stalls are recorded, never an error.
-      if (sc.stall_action == "error" && policy)
-        throw ConfigError(what + "; " + l.Describe([&](int h) { return vehs[h].id; }) +
-                          StallDetail(j));
       j.stall_recorded = true;
       j.stall_since = progress;
       out.stalls.push_back({j.info.id, progress, now});
+      // SUMO's own logic (sumo_native) is the baseline, not the controller:
+      // its stalls are recorded, never an error.
+      if (sc.stall_action == "error" && policy) throw StallError(what + StallDetail(j));
     }
   }
 
   // Once a simulated second: route progress (junction crossings, the
-  // figure-8's circulation), queues, the demand waiting to depart, stalls.
+  // figure-8's circulation, which junctions each vehicle is near), queues,
+  // the demand waiting to depart, stalls.
   void Sample() {
     for (const auto& [id, h] : index) {
       CountProgress(h, sumo::RouteIndex(id));
       KeepCirculating(h);
+      UpdateNear(h);
     }
     std::vector<char> was_waiting(junctions.size());
     for (std::size_t i = 0; i < junctions.size(); ++i) {
-      was_waiting[i] = junctions[i].waiting;
-      junctions[i].waiting = junctions[i].logic->Waiting() > 0;
+      JunctionRt& j = junctions[i];
+      was_waiting[i] = j.waiting;
+      j.waiting = false;
+      for (const std::string& lane : j.incoming)
+        if (sumo::LaneHaltingNumber(lane) > 0) {
+          j.waiting = true;
+          break;
+        }
     }
     for (ApproachRt& ap : approaches) {
+      if (now < sc.warmup) break;
       const double q = sumo::LaneHaltingNumber(ap.lane);
-      if (q > 0) junctions[ap.junction].waiting = true;
-      if (now < sc.warmup) continue;
       ap.stats.queue_max = std::max(ap.stats.queue_max, q);
       ap.stats.queue_sum += q;
       ++ap.stats.samples;
@@ -955,7 +1068,7 @@ struct NetworkController::Impl : junction::EncounterModel {
   long steps = 0;
   double now = 0;
   double last_crossing = 0;
-  double stall_limit = 300;
+  double stall_limit = 120;
   static constexpr std::size_t kTrustListMax = 100000;
 
   std::vector<Veh> vehs;
@@ -969,6 +1082,8 @@ struct NetworkController::Impl : junction::EncounterModel {
   std::unordered_map<std::string, int> edge_index;
   std::vector<int> edge_junction;
   std::vector<std::string> edge_names;
+  std::vector<double> edge_length;
+  double reach = 60;  // m: farther than any vehicle drives in a second (UpdateNear)
   std::vector<int> crossing, nudging;
   std::set<std::pair<std::string, std::string>> colliding;
   std::map<std::pair<int, int>, bool> verdicts;  // (AV, HV) met: would both proceeding collide
@@ -1002,9 +1117,9 @@ void NetworkController::Start() {
     // Free flow crosses at least once per loop; allow a full lap, the
     // controller's own waits and a minute.
     s.stall_limit =
-        2 * s.scenario.loop_length / sc.cruise_speed + sc.confirm_delay + sc.arrival_window + 60.0;
+        2 * s.scenario.loop_length / sc.cruise_speed + sc.confirm_delay + 60.0;
   } else {
-    s.stall_limit = 300.0;
+    s.stall_limit = 120.0;
   }
   s.now = sumo::Time();
   s.last_crossing = s.now;
@@ -1022,14 +1137,14 @@ void NetworkController::Step() {
     for (const std::string& id : sumo::ArrivedIDs()) s.Unregister(id);
   if (sumo::CollidingNumber() > 0 || !s.colliding.empty()) s.AttributeCollisions();
   if (s.policy) {
-    s.DetectArrivals();
-    s.UpdateCrossing();
-    s.UpdateNudges();
-    for (JunctionRt& j : s.junctions) s.Decide(j);
-    s.out.longest_gap_without_crossing =
-        std::max(s.out.longest_gap_without_crossing, s.now - s.last_crossing);
+    if (!s.crossing.empty()) s.UpdateCrossing();
+    if (!s.nudging.empty()) s.UpdateNudges();
+    for (JunctionRt& j : s.junctions)
+      if (s.Watched(j)) s.Decide(j);
   }
   if (s.steps % s.sample_every == 0) s.Sample();
+  s.out.longest_gap_without_crossing =
+      std::max(s.out.longest_gap_without_crossing, s.now - s.last_crossing);
 }
 
 PolicyRun NetworkController::Finish() {

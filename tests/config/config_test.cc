@@ -77,7 +77,7 @@ TEST(ConfigLoad, PaperYamlHasTheDocumentedValues) {
   const ScenarioConfig defaults;
   EXPECT_EQ(s.vehicle_length, defaults.vehicle_length);
   EXPECT_EQ(s.vehicle_width, defaults.vehicle_width);
-  EXPECT_EQ(s.arrival_window, defaults.arrival_window);
+  EXPECT_EQ(s.meeting_distance, defaults.meeting_distance);
   EXPECT_EQ(s.network, "");
   std::string why;
   EXPECT_TRUE(c.IsValid(&why)) << why;

@@ -109,7 +109,7 @@ struct ScenarioConfig {
   double vehicle_width = 1.8;   // m
   double accel = 2.6;           // m/s^2
   double decel = 4.5;           // m/s^2
-  double arrival_window = 1.0;  // s: heads ready within this window form an encounter
+  double meeting_distance = 5.0;  // m: an AV and an HV meet when one waits at its line and the other is this near its own (README)
   double confirm_delay = 1.0;   // s: a DC HV facing a waiting AV waits this long
   double creep_speed = 1.0;     // m/s: top speed of a nudge
   double loop_length = 80.0;    // m per loop of the figure-8 (network generation)
@@ -164,7 +164,7 @@ struct ScenarioConfig {
     a->Visit("vehicle_width", &vehicle_width);
     a->Visit("accel", &accel);
     a->Visit("decel", &decel);
-    a->Visit("arrival_window", &arrival_window);
+    a->Visit("meeting_distance", &meeting_distance);
     a->Visit("confirm_delay", &confirm_delay);
     a->Visit("creep_speed", &creep_speed);
     a->Visit("loop_length", &loop_length);

@@ -24,12 +24,11 @@ struct RunOptions {
   bool colour_states = false;
   std::function<void()> after_start;   // SUMO started, vehicles added (e.g. frame the view)
   std::function<void()> before_close;  // after the last step, SUMO still open (e.g. screenshot)
-  // A safety net: the run stops with a ConfigError naming the junction when
-  // vehicles wait at one of its stop lines and nothing enters or leaves it
-  // for this many simulated seconds (< 0: on the figure-8 two loops at cruise
-  // speed + confirm_delay + arrival_window + 60 s; on a network 300 s). The
-  // keep-clear release rule prevents the controller's own gridlocks; this
-  // catches what it cannot foresee.
+  // A safety net: a stall is recorded (scenario.stall_action: error: the run
+  // stops with a StallError naming the junction) when vehicles are halted on
+  // one of a controlled junction's incoming lanes and no vehicle has passed
+  // it for this many simulated seconds (< 0: on the figure-8 two loops at
+  // cruise speed + confirm_delay + 60 s; on a network 120 s).
   double stall_limit = -1.0;
   // Called once every simulated minute with the policy and the simulated time
   // (e.g. `taebp run --rss-log` for tools/soak); nothing when empty.

@@ -1,15 +1,20 @@
-// The network controller: owns one JunctionLogic per controlled junction and
-// makes every per-step SUMO call (through the adapter): it registers vehicles
-// as they depart (AV or HV, the HV's trust and the AV's design for it),
-// notices heads coming to a halt at a stop line and holds them
-// (setSpeed 0), releases them (speed mode 55: SUMO's right of way off, car
-// following on), runs nudges (speed mode 0, exact creep), reads SUMO's
-// displacements and collisions, and collects the outputs.
+// The network controller: SUMO decides right of way everywhere; the
+// controller watches the stop lines of the controlled junctions and
+// intercepts AV-HV encounters only (junction/interception.h says when and
+// how). It registers vehicles as they depart (AV or HV, the HV's trust and
+// the AV's design for it), reads which vehicles are halted at the lines of
+// junctions where an AV and an HV may both be, holds the encounter's two
+// (setSpeed 0) and third vehicles that would cross them, runs the nudge
+// (speed mode 0, exact creep), lets the HV read SUMO's displacement,
+// releases the game's moves with SUMO's right of way off (speed mode 55) and
+// hands careful moves back to SUMO (speed mode 31), attributes SUMO's
+// collisions, and collects the outputs.
 //
-// Per-step work is proportional to what happens at controlled junctions:
-// one halting count per controlled approach lane without a held head, two
-// getters per vehicle crossing or nudging; every vehicle is read once per
-// simulated second (route progress), not every step.
+// Per-step work: nothing at a junction no AV or no HV can reach within a
+// second (so nothing at all at AV share 0 or 1); one halting count per
+// stop-controlled lane of the others; two getters per vehicle crossing or
+// nudging for an encounter. Every vehicle is read once per simulated second
+// (route progress).
 #pragma once
 
 #include "taebp/config/config.h"
@@ -24,6 +29,13 @@
 #include <string>
 
 namespace taebp {
+
+// Traffic stalled at a controlled junction under a policy with
+// scenario.stall_action: error (the stall is recorded in the run before).
+class StallError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // A nudge SUMO did not realise (scenario.nudge_check: error).
 class NudgeError : public std::runtime_error {

@@ -1,0 +1,209 @@
+// One controlled junction's interception logic, free of SUMO: when an AV and an
+// HV meet there, the paper's game between them, and the order in which the
+// two are handed back to SUMO. Everything else at the junction is SUMO's: its
+// own junction model (allway_stop, priority_stop) gives right of way to every
+// vehicle that is not part of an AV-HV encounter. The network controller
+// (controller/) reports what SUMO shows each step and executes the commands;
+// tests drive it with fake time and fake vehicles (README "Only AV-HV
+// encounters are the controller's").
+//
+// The rules:
+// - Meeting. An AV and an HV *meet* when, in one simulation step, both are
+//   the front vehicles of stop-controlled lanes of this junction whose
+//   movements conflict in SUMO's `<request foes>`, one of them waits at its
+//   line (front within 1 m of it, below 0.5 m/s) and the other waits at its
+//   own line too or is coming to a stop there (front within
+//   `meeting_distance` of it), and no encounter is running here. (SUMO's
+//   all-way stop lets a waiting head go in the very step a conflicting foe
+//   comes to a halt, so two heads are almost never halted together: the
+//   pair SUMO is about to order is one waiting and one arriving.) The
+//   controller holds nobody before that step, so a vehicle that meets nobody
+//   drives exactly as SUMO has it. Several candidate pairs: the head that
+//   came to its line first (then the lower approach index) picks its first
+//   conflicting partner of the other kind, waiting partners first.
+// - The game's premise. A meeting is an encounter only where "AV goes, HV
+//   drives recklessly" collides (EncounterModel::Game, conflict_geometry.h);
+//   other meetings are counted and left to SUMO.
+// - The encounter. The controller holds the waiting one at once and the
+//   arriving one when it has come to its line (a partner that has not within
+//   `kArrivalLimit` seconds, or that stops being its lane's front, ends the
+//   meeting: the held one is handed back, counted in AbandonedMeetings),
+//   then draws the AV's intent and signal, waits until no
+//   third vehicle is inside the conflict area of their movements
+//   (Environment::AreaClear), lets the AV nudge as drawn from its committed
+//   scheme, and the HV reads the displacement SUMO reports. Then, as the paper
+//   has it (EncounterSequence): an AV that goes and an HV that drives
+//   recklessly are released with SUMO's right of way off (they collide if both
+//   go: SUMO's collision check says whether they do); so is a careful move
+//   while its partner still stands yielding in the junction or at its line (an
+//   HV driving if clear past a still AV that may have nudged into the
+//   junction: SUMO's rules would make it wait for that AV for ever). A careful
+//   move whose partner has left the junction (the HV driving if clear after
+//   the AV went, the still AV after the HV) is handed back to SUMO's own
+//   rules, which decide when it enters. Moves of the game other than the
+//   reckless HV wait for room at their exits and, at a two-way stop, a gap in
+//   the major road.
+// - Third vehicles. While a meeting or an encounter runs, a vehicle waiting at a stop line
+//   of this junction on a movement that conflicts with the AV's or the HV's is
+//   held there; it is handed back when the encounter ends (both encounter
+//   vehicles have left the junction).
+#pragma once
+
+#include "taebp/junction/intersection.h"
+
+#include <functional>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace taebp::junction {
+
+enum class Rule { kAllWay, kTwoWay };
+const char* ToString(Rule rule);
+
+struct Movement {
+  int approach = 0;        // index of the approach (incoming lane) it starts from
+  bool controlled = true;  // a stop link: its vehicles halt at the line
+  char dir = 's';          // SUMO direction: s, l, r, t, ...
+  std::string from_lane, to_lane;  // for records
+};
+
+struct JunctionSpec {
+  std::string id;
+  Rule rule = Rule::kAllWay;
+  int approaches = 0;
+  std::vector<Movement> movements;
+  // conflict[i][j]: movements i and j cross or merge (from SUMO's foes).
+  std::vector<std::vector<bool>> conflict;
+  bool Conflict(int a, int b) const { return conflict[a][b] || conflict[b][a]; }
+  // Throws std::invalid_argument when sizes disagree.
+  void Validate() const;
+};
+
+struct Timing {
+  double confirm_delay = 1.0;  // s: an HV driving if clear facing a still AV waits this long
+};
+
+// What the logic asks of the world (SUMO, through the controller).
+class Environment {
+ public:
+  virtual ~Environment() = default;
+  // No vehicle other than the encounter's two inside the junction on these
+  // two movements or on any movement conflicting with them.
+  virtual bool AreaClear(int av_movement, int hv_movement) = 0;
+  // Keep clear for the AV that goes: its exit can take it with its rear off
+  // the junction.
+  virtual bool ExitHasRoom(int movement, int vehicle) = 0;
+  // Two-way stops: no major-road vehicle inside or within the critical gap
+  // on a movement conflicting with `movement`.
+  virtual bool MajorClear(int movement) = 0;
+};
+
+// The paper's game for one AV-HV pair: the AV's draw from its committed
+// scheme and the HV's reading of the displacement SUMO reports.
+class EncounterModel {
+ public:
+  virtual ~EncounterModel() = default;
+  virtual AvDraw Draw(int av, int hv) = 0;
+  virtual HvReading Read(int av, int hv, double observed) = 0;
+  // Is the meeting the paper's game: would the two collide if both
+  // proceeded (conflict_geometry.h BothProceedCollide)?
+  virtual bool Game(int av, int hv, int av_movement, int hv_movement) {
+    (void)av, (void)hv, (void)av_movement, (void)hv_movement;
+    return true;
+  }
+};
+
+// A vehicle halted at its stop line this step (SUMO's view).
+struct AtLine {
+  int vehicle = -1;
+  VehicleKind kind = VehicleKind::kHV;
+  int movement = -1;
+  bool waiting = true;  // at its line (else: coming to a stop there)
+  double since = 0;     // when it came to its line (waiting ones)
+};
+
+struct Command {
+  enum class Kind {
+    kHold,        // keep it where it is (setSpeed 0)
+    kStartNudge,  // the AV: creep `distance` m (0: stay), then report NudgeDone
+    kRelease,     // drive through with SUMO's right of way off (the game's go / DR)
+    kHandBack,    // SUMO's own rules again (a careful release, a held third vehicle)
+  };
+  Kind kind = Kind::kHold;
+  int vehicle = -1;
+  double distance = 0;
+  bool in_encounter = false;  // a release or hand-back of an encounter vehicle: report Cleared
+};
+
+// A finished AV-HV encounter (both vehicles have left the junction).
+struct EncounterOutcome {
+  int av = -1, hv = -1;
+  int av_movement = -1, hv_movement = -1;
+  double time = 0;        // formed
+  double decided_at = 0;  // the HV decided
+  AvDraw draw;
+  HvReading reading;
+  bool collision = false;
+};
+
+class Interception {
+ public:
+  Interception(JunctionSpec spec, Timing timing);
+
+  const JunctionSpec& spec() const { return spec_; }
+
+  static constexpr double kArrivalLimit = 10.0;  // s
+
+  // One step: `at_line` holds the front vehicle of every stop-controlled lane
+  // of this junction that waits at its line or is coming to a stop there
+  // (held ones included, as waiting). Returns the commands to execute.
+  std::vector<Command> Step(double now, const std::vector<AtLine>& at_line, Environment& env,
+                            EncounterModel& model);
+  // An encounter vehicle released or handed back has left the junction.
+  void Cleared(int vehicle, double now);
+  // The nudging AV finished its creep; `observed` is SUMO's displacement.
+  void NudgeDone(int av, double observed, double now, EncounterModel& model);
+  // SUMO reported a collision between two vehicles; true if they were the AV
+  // and HV of the encounter running here.
+  bool Collided(int a, int b);
+  // Encounters finished since the last call.
+  std::vector<EncounterOutcome> TakeFinished();
+
+  bool Busy() const { return encounter_.has_value(); }
+  int Encounters() const { return encounter_ && encounter_->drawn ? 1 : 0; }
+  int HeldThirds() const { return static_cast<int>(thirds_.size()); }
+  // AV-HV meetings that were not the game (each pair counted once).
+  long NonGameMeetings() const { return non_game_; }
+  // Meetings whose arriving partner never came to its line.
+  long AbandonedMeetings() const { return abandoned_; }
+  double LastActivity() const { return last_activity_; }
+  std::string Describe(const std::function<std::string(int)>& name) const;
+
+ private:
+  struct Active {
+    EncounterOutcome out;
+    bool av_held = false, hv_held = false;
+    bool drawn = false;  // both at their lines: the game has begun
+    bool nudge_started = false, nudged = false;
+    std::optional<EncounterSequence> sequence;
+    bool av_released = false, hv_released = false;
+    bool av_cleared = false, hv_cleared = false;
+  };
+  bool ConflictsWithEncounter(int movement) const;
+  void Form(double now, const AtLine& av, const AtLine& hv, EncounterModel& model,
+            std::vector<Command>* out);
+
+  JunctionSpec spec_;
+  Timing timing_;
+  std::optional<Active> encounter_;
+  std::vector<int> thirds_;                    // held for the running encounter
+  std::set<std::pair<int, int>> not_game_;     // (AV, HV) meeting now, judged not the game
+  std::vector<EncounterOutcome> finished_;
+  double last_activity_ = 0;
+  long non_game_ = 0, abandoned_ = 0;
+};
+
+}  // namespace taebp::junction

@@ -1,0 +1,235 @@
+#include "taebp/junction/interception.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace taebp::junction {
+
+const char* ToString(Rule rule) { return rule == Rule::kAllWay ? "all_way_stop" : "two_way_stop"; }
+
+void JunctionSpec::Validate() const {
+  const std::size_t n = movements.size();
+  if (conflict.size() != n)
+    throw std::invalid_argument("junction " + id + ": conflict matrix has " +
+                                std::to_string(conflict.size()) + " rows for " +
+                                std::to_string(n) + " movements");
+  for (const auto& row : conflict)
+    if (row.size() != n)
+      throw std::invalid_argument("junction " + id + ": conflict matrix is not square");
+  for (const Movement& m : movements)
+    if (m.approach < 0 || m.approach >= approaches)
+      throw std::invalid_argument("junction " + id + ": movement approach out of range");
+}
+
+Interception::Interception(JunctionSpec spec, Timing timing)
+    : spec_(std::move(spec)), timing_(timing) {
+  spec_.Validate();
+}
+
+bool Interception::ConflictsWithEncounter(int movement) const {
+  if (!encounter_) return false;
+  const EncounterOutcome& e = encounter_->out;
+  return movement == e.av_movement || movement == e.hv_movement ||
+         spec_.Conflict(movement, e.av_movement) || spec_.Conflict(movement, e.hv_movement);
+}
+
+void Interception::Form(double now, const AtLine& av, const AtLine& hv, EncounterModel& model,
+                        std::vector<Command>* out) {
+  (void)model;
+  Active e;
+  e.out.av = av.vehicle;
+  e.out.hv = hv.vehicle;
+  e.out.av_movement = av.movement;
+  e.out.hv_movement = hv.movement;
+  e.out.time = now;
+  e.av_held = av.waiting;
+  e.hv_held = hv.waiting;
+  encounter_ = std::move(e);
+  if (av.waiting) out->push_back({Command::Kind::kHold, av.vehicle});
+  if (hv.waiting) out->push_back({Command::Kind::kHold, hv.vehicle});
+  last_activity_ = now;
+}
+
+std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& at_line,
+                                        Environment& env, EncounterModel& model) {
+  std::vector<Command> out;
+  // The encounter ended: its held third vehicles go back to SUMO.
+  if (!encounter_ && !thirds_.empty()) {
+    for (int v : thirds_) out.push_back({Command::Kind::kHandBack, v});
+    thirds_.clear();
+  }
+  // Pairs judged not the game are forgotten once either left its line.
+  for (auto it = not_game_.begin(); it != not_game_.end();) {
+    auto here = [&](int v) {
+      return std::any_of(at_line.begin(), at_line.end(),
+                         [&](const AtLine& a) { return a.vehicle == v; });
+    };
+    it = here(it->first) && here(it->second) ? std::next(it) : not_game_.erase(it);
+  }
+
+  if (!encounter_) {
+    // Who meets whom: the head first at its line picks its earliest partner.
+    std::vector<const AtLine*> order;
+    for (const AtLine& a : at_line)
+      if (a.movement >= 0 && spec_.movements[a.movement].controlled) order.push_back(&a);
+    std::sort(order.begin(), order.end(), [&](const AtLine* x, const AtLine* y) {
+      if (x->waiting != y->waiting) return x->waiting;
+      if (x->waiting && x->since != y->since) return x->since < y->since;
+      const int ax = spec_.movements[x->movement].approach;
+      const int ay = spec_.movements[y->movement].approach;
+      if (ax != ay) return ax < ay;
+      return x->vehicle < y->vehicle;
+    });
+    for (std::size_t i = 0; i < order.size() && !encounter_ && order[i]->waiting; ++i) {
+      for (std::size_t k = 0; k < order.size(); ++k) {
+        const AtLine& a = *order[i];
+        const AtLine& b = *order[k];
+        if (a.kind == b.kind || !spec_.Conflict(a.movement, b.movement)) continue;
+        const AtLine& av = a.kind == VehicleKind::kAV ? a : b;
+        const AtLine& hv = a.kind == VehicleKind::kAV ? b : a;
+        if (not_game_.count({av.vehicle, hv.vehicle})) continue;
+        if (!model.Game(av.vehicle, hv.vehicle, av.movement, hv.movement)) {
+          not_game_.insert({av.vehicle, hv.vehicle});
+          ++non_game_;
+          continue;
+        }
+        Form(now, av, hv, model, &out);
+        break;
+      }
+    }
+  }
+  if (!encounter_) return out;
+
+  Active& e = *encounter_;
+  // Third vehicles at the line on conflicting movements wait for the encounter.
+  for (const AtLine& a : at_line) {
+    if (a.vehicle == e.out.av || a.vehicle == e.out.hv || a.movement < 0) continue;
+    if (std::find(thirds_.begin(), thirds_.end(), a.vehicle) != thirds_.end()) continue;
+    if (!a.waiting || !ConflictsWithEncounter(a.movement)) continue;
+    thirds_.push_back(a.vehicle);
+    out.push_back({Command::Kind::kHold, a.vehicle});
+  }
+  // The arriving partner: held once at its line; gone or too late, the
+  // meeting ends.
+  if (!e.drawn) {
+    for (bool av : {true, false}) {
+      bool& held = av ? e.av_held : e.hv_held;
+      if (held) continue;
+      const int who = av ? e.out.av : e.out.hv;
+      const auto it = std::find_if(at_line.begin(), at_line.end(),
+                                   [&](const AtLine& a) { return a.vehicle == who; });
+      if (it != at_line.end() && it->waiting) {
+        held = true;
+        out.push_back({Command::Kind::kHold, who});
+      } else if (it == at_line.end() || now - e.out.time > kArrivalLimit) {
+        ++abandoned_;
+        for (int v : {e.out.av, e.out.hv})
+          if (v != who) out.push_back({Command::Kind::kHandBack, v});
+        encounter_.reset();
+        return out;
+      }
+    }
+    if (!e.av_held || !e.hv_held) return out;  // still arriving
+    e.drawn = true;
+    e.out.time = now;
+    e.out.draw = model.Draw(e.out.av, e.out.hv);
+  }
+  // The nudge, once nobody else is inside the conflict area.
+  if (!e.nudge_started && env.AreaClear(e.out.av_movement, e.out.hv_movement)) {
+    e.nudge_started = true;
+    Command c{Command::Kind::kStartNudge, e.out.av};
+    c.distance = e.out.draw.nudge_distance;
+    out.push_back(c);
+  }
+  // After the HV decided: the releases as the paper orders them. A move of
+  // the game (the AV that goes, the HV that drives recklessly, a careful one
+  // while the other still stands in the junction or at its line, yielding)
+  // goes with SUMO's right of way off; a careful one whose partner has left
+  // is handed back to SUMO's rules. A careful move of the game waits for
+  // room at its exit and, at a two-way stop, a gap in the major road.
+  if (e.sequence) {
+    const bool av_goes = e.out.draw.goes_first;
+    auto may = [&](bool released, bool partner_cleared, int movement, int vehicle) {
+      if (released || partner_cleared) return true;
+      return env.ExitHasRoom(movement, vehicle) &&
+             (spec_.rule == Rule::kAllWay || env.MajorClear(movement));
+    };
+    const bool av_may = may(e.av_released, e.hv_cleared, e.out.av_movement, e.out.av);
+    const bool hv_may = may(e.hv_released, e.av_cleared, e.out.hv_movement, e.out.hv);
+    for (const auto& rel : e.sequence->Update(now, e.av_cleared, e.hv_cleared, av_may, hv_may)) {
+      (rel.av ? e.av_released : e.hv_released) = true;
+      const bool partner_cleared = rel.av ? e.hv_cleared : e.av_cleared;
+      const bool game = rel.reckless || (rel.av && av_goes) || !partner_cleared;
+      Command c{game ? Command::Kind::kRelease : Command::Kind::kHandBack,
+                rel.av ? e.out.av : e.out.hv};
+      c.in_encounter = true;
+      out.push_back(c);
+      last_activity_ = now;
+    }
+  }
+  return out;
+}
+
+void Interception::Cleared(int vehicle, double now) {
+  if (!encounter_) return;
+  Active& e = *encounter_;
+  if (e.out.av == vehicle) e.av_cleared = true;
+  if (e.out.hv == vehicle) e.hv_cleared = true;
+  last_activity_ = now;
+  if (e.av_cleared && e.hv_cleared) {
+    finished_.push_back(e.out);
+    encounter_.reset();
+  }
+}
+
+void Interception::NudgeDone(int av, double observed, double now, EncounterModel& model) {
+  if (!encounter_ || encounter_->out.av != av || encounter_->nudged)
+    throw std::logic_error("junction " + spec_.id + ": NudgeDone for a vehicle in no encounter");
+  Active& e = *encounter_;
+  e.nudged = true;
+  e.out.reading = model.Read(e.out.av, e.out.hv, observed);
+  e.out.decided_at = now;
+  e.sequence.emplace(e.out.draw.goes_first, e.out.reading.drives_if_clear, now,
+                     timing_.confirm_delay);
+}
+
+bool Interception::Collided(int a, int b) {
+  if (!encounter_) return false;
+  EncounterOutcome& e = encounter_->out;
+  if ((e.av == a && e.hv == b) || (e.av == b && e.hv == a)) {
+    e.collision = true;
+    return true;
+  }
+  return false;
+}
+
+std::vector<EncounterOutcome> Interception::TakeFinished() {
+  std::vector<EncounterOutcome> out;
+  out.swap(finished_);
+  return out;
+}
+
+std::string Interception::Describe(const std::function<std::string(int)>& name) const {
+  std::string out;
+  if (encounter_) {
+    const Active& e = *encounter_;
+    auto mv = [&](int m) {
+      const Movement& x = spec_.movements[m];
+      return x.from_lane + ">" + x.to_lane;
+    };
+    out += std::string(e.drawn ? "encounter" : "meeting (partner arriving)") + " AV " + name(e.out.av) + " (" + mv(e.out.av_movement) + ") / HV " +
+           name(e.out.hv) + " (" + mv(e.out.hv_movement) + ")" +
+           (!e.nudge_started ? ", waiting for the conflict area to clear"
+            : !e.nudged      ? ", nudging"
+                             : ", decided") +
+           (e.av_released ? ", AV released" : "") + (e.hv_released ? ", HV released" : "") +
+           (e.av_cleared ? ", AV cleared" : "") + (e.hv_cleared ? ", HV cleared" : "");
+  }
+  if (!thirds_.empty()) {
+    out += std::string(out.empty() ? "" : "; ") + "held for it:";
+    for (int v : thirds_) out += " " + name(v);
+  }
+  return out;
+}
+
+}  // namespace taebp::junction
