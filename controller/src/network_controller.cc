@@ -382,11 +382,20 @@ struct NetworkController::Impl : junction::EncounterModel {
     bool AreaClear(int av_movement, int hv_movement) override {
       return self->AreaClear(*j, av_movement, hv_movement);
     }
+    bool Standing(int vehicle) override { return self->Standing(vehicle); }
     bool ExitHasRoom(int movement, int vehicle) override {
       return self->ExitHasRoom(*j, movement, vehicle);
     }
     bool MajorClear(int movement) override { return self->MajorClear(*j, movement); }
   };
+
+  // A held vehicle has come to a standstill: the nudge is measured from here.
+  bool Standing(int h) {
+    Veh& v = vehs[h];
+    if (sumo::Speed(v.id) > 0.0) return false;
+    v.hold_odometer = sumo::Distance(v.id);
+    return true;
+  }
 
   // No vehicle inside the junction on the two movements or on any movement
   // conflicting with them (the encounter's two are still at their lines).
@@ -685,7 +694,6 @@ struct NetworkController::Impl : junction::EncounterModel {
     v.state = State::kHeld;
     v.junction = static_cast<int>(&j - junctions.data());
     v.held_since = now;
-    v.hold_odometer = sumo::Distance(v.id);  // the nudge is measured from here
   }
 
   void CountWait(JunctionRt& j, const Veh& v) {
@@ -903,8 +911,7 @@ struct NetworkController::Impl : junction::EncounterModel {
   // its lines, or while it holds vehicles; on leaving that, what it saw is
   // forgotten.
   bool Watched(JunctionRt& j) {
-    const bool watched = (j.near_av > 0 && j.near_hv > 0) || j.logic->Busy() ||
-                         j.logic->HeldThirds() > 0;
+    const bool watched = (j.near_av > 0 && j.near_hv > 0) || j.logic->Busy();
     if (!watched && j.watched) {
       for (int a : j.approaches) {
         if (approaches[a].front >= 0) LeftLine(approaches[a].front);

@@ -135,7 +135,8 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
     e.out.draw = model.Draw(e.out.av, e.out.hv);
   }
   // The nudge, once nobody else is inside the conflict area.
-  if (!e.nudge_started && env.AreaClear(e.out.av_movement, e.out.hv_movement)) {
+  if (!e.nudge_started && env.Standing(e.out.av) && env.Standing(e.out.hv) &&
+      env.AreaClear(e.out.av_movement, e.out.hv_movement)) {
     e.nudge_started = true;
     Command c{Command::Kind::kStartNudge, e.out.av};
     c.distance = e.out.draw.nudge_distance;
@@ -166,19 +167,37 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
       out.push_back(c);
       last_activity_ = now;
     }
+    // Both on their way: the game holds nobody any more; the junction is
+    // SUMO's again (third vehicles are handed back next step, and SUMO's own
+    // logic makes them yield to the two), the two are watched until they
+    // have left it (collisions, the record).
+    if (e.av_released && e.hv_released) {
+      if (e.av_cleared && e.hv_cleared) {
+        finished_.push_back(e.out);
+      } else {
+        leaving_.push_back(std::move(e));
+      }
+      encounter_.reset();
+    }
   }
   return out;
 }
 
 void Interception::Cleared(int vehicle, double now) {
-  if (!encounter_) return;
-  Active& e = *encounter_;
-  if (e.out.av == vehicle) e.av_cleared = true;
-  if (e.out.hv == vehicle) e.hv_cleared = true;
   last_activity_ = now;
-  if (e.av_cleared && e.hv_cleared) {
-    finished_.push_back(e.out);
-    encounter_.reset();
+  auto mark = [&](Active& e) {
+    if (e.out.av == vehicle) e.av_cleared = true;
+    if (e.out.hv == vehicle) e.hv_cleared = true;
+  };
+  if (encounter_) mark(*encounter_);  // its partner not yet released
+  for (auto it = leaving_.begin(); it != leaving_.end();) {
+    mark(*it);
+    if (it->av_cleared && it->hv_cleared) {
+      finished_.push_back(it->out);
+      it = leaving_.erase(it);
+    } else {
+      ++it;
+    }
   }
 }
 
@@ -194,12 +213,16 @@ void Interception::NudgeDone(int av, double observed, double now, EncounterModel
 }
 
 bool Interception::Collided(int a, int b) {
-  if (!encounter_) return false;
-  EncounterOutcome& e = encounter_->out;
-  if ((e.av == a && e.hv == b) || (e.av == b && e.hv == a)) {
-    e.collision = true;
-    return true;
-  }
+  auto pair = [&](EncounterOutcome& e) {
+    if ((e.av == a && e.hv == b) || (e.av == b && e.hv == a)) {
+      e.collision = true;
+      return true;
+    }
+    return false;
+  };
+  if (encounter_ && encounter_->drawn && pair(encounter_->out)) return true;
+  for (Active& e : leaving_)
+    if (pair(e.out)) return true;
   return false;
 }
 
@@ -225,6 +248,9 @@ std::string Interception::Describe(const std::function<std::string(int)>& name) 
            (e.av_released ? ", AV released" : "") + (e.hv_released ? ", HV released" : "") +
            (e.av_cleared ? ", AV cleared" : "") + (e.hv_cleared ? ", HV cleared" : "");
   }
+  for (const Active& e : leaving_)
+    out += std::string(out.empty() ? "" : "; ") + "encounter " + name(e.out.av) + "/" +
+           name(e.out.hv) + " leaving the junction";
   if (!thirds_.empty()) {
     out += std::string(out.empty() ? "" : "; ") + "held for it:";
     for (int v : thirds_) out += " " + name(v);

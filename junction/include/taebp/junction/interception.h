@@ -28,8 +28,8 @@
 //   arriving one when it has come to its line (a partner that has not within
 //   `kArrivalLimit` seconds, or that stops being its lane's front, ends the
 //   meeting: the held one is handed back, counted in AbandonedMeetings),
-//   then draws the AV's intent and signal, waits until no
-//   third vehicle is inside the conflict area of their movements
+//   then draws the AV's intent and signal, waits until both stand still and
+//   no third vehicle is inside the conflict area of their movements
 //   (Environment::AreaClear), lets the AV nudge as drawn from its committed
 //   scheme, and the HV reads the displacement SUMO reports. Then, as the paper
 //   has it (EncounterSequence): an AV that goes and an HV that drives
@@ -45,8 +45,10 @@
 //   the major road.
 // - Third vehicles. While a meeting or an encounter runs, a vehicle waiting at a stop line
 //   of this junction on a movement that conflicts with the AV's or the HV's is
-//   held there; it is handed back when the encounter ends (both encounter
-//   vehicles have left the junction).
+//   held there; it is handed back once both encounter vehicles are on their
+//   way (SUMO's own logic then makes it yield to them). A new meeting may
+//   form from then on; the encounter is recorded when both have left the
+//   junction.
 #pragma once
 
 #include "taebp/junction/intersection.h"
@@ -93,6 +95,8 @@ class Environment {
   // No vehicle other than the encounter's two inside the junction on these
   // two movements or on any movement conflicting with them.
   virtual bool AreaClear(int av_movement, int hv_movement) = 0;
+  // The vehicle stands still (a held vehicle may take a step or two to stop).
+  virtual bool Standing(int vehicle) = 0;
   // Keep clear for the AV that goes: its exit can take it with its rear off
   // the junction.
   virtual bool ExitHasRoom(int movement, int vehicle) = 0;
@@ -172,8 +176,13 @@ class Interception {
   // Encounters finished since the last call.
   std::vector<EncounterOutcome> TakeFinished();
 
-  bool Busy() const { return encounter_.has_value(); }
-  int Encounters() const { return encounter_ && encounter_->drawn ? 1 : 0; }
+  // A meeting or an encounter holds vehicles here, or encounter vehicles are
+  // still on their way out.
+  bool Busy() const { return encounter_.has_value() || !leaving_.empty() || !thirds_.empty(); }
+  // Encounters begun and not finished.
+  int Encounters() const {
+    return (encounter_ && encounter_->drawn ? 1 : 0) + static_cast<int>(leaving_.size());
+  }
   int HeldThirds() const { return static_cast<int>(thirds_.size()); }
   // AV-HV meetings that were not the game (each pair counted once).
   long NonGameMeetings() const { return non_game_; }
@@ -198,7 +207,8 @@ class Interception {
 
   JunctionSpec spec_;
   Timing timing_;
-  std::optional<Active> encounter_;
+  std::optional<Active> encounter_;             // holding vehicles
+  std::vector<Active> leaving_;                 // both released, not both out of the junction
   std::vector<int> thirds_;                    // held for the running encounter
   std::set<std::pair<int, int>> not_game_;     // (AV, HV) meeting now, judged not the game
   std::vector<EncounterOutcome> finished_;
