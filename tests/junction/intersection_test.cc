@@ -1,6 +1,6 @@
 // The SUMO-free pieces of an encounter: the AV's draws, the HV's reading of a
 // nudge, the release sequence and the creep profile of a nudge. (Right of way
-// at a junction: right_of_way_test.cc and the JunctionLogic tests.)
+// at a junction: interception_test.cc.)
 #include "taebp/junction/intersection.h"
 
 #include "taebp/persuasion/av_hv.h"

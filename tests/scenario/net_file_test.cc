@@ -230,7 +230,7 @@ TEST(NetFile, FourWayWithTurns) {
 }
 
 // ------------------------------------------------------------------ grids
-// B1 of the grid, as hard-coded in tests/junction/junction_logic_test.cc.
+// B1 of the grid, as hard-coded in tests/junction/interception_test.cc.
 const char* const kB1Foes[12] = {
     "000100010000", "111100110000", "110111110000", "100010000000",
     "100110000111", "111110000110", "010000000100", "110000111100",

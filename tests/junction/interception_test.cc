@@ -1,0 +1,400 @@
+// The SUMO-free interception logic of one controlled junction
+// (interception.h), driven with fake time, fake vehicles, a fake Environment
+// (conflict area, standstill, keep-clear, major road gaps) and a fake
+// EncounterModel (scripted AV draws and HV readings): who meets whom, that
+// nobody else is ever commanded, and the paper's order of releases.
+//
+// The junction is a real one: B1 of
+//   netgenerate --grid --grid.number 4 --default-junction-type allway_stop
+//               --no-turnarounds true
+// whose 12 links (request index = movement index) and <request foes> are
+// copied below; tests/scenario/net_file_test.cc reads the same junction from
+// a freshly generated net and checks these strings against it.
+#include "taebp/junction/interception.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <functional>
+#include <map>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace taebp::junction {
+namespace {
+
+using ::testing::HasSubstr;
+using Kind = Command::Kind;
+constexpr VehicleKind kAV = VehicleKind::kAV;
+constexpr VehicleKind kHV = VehicleKind::kHV;
+
+// ------------------------------------------------------------------ the junction
+// Approaches (incLanes order): 0 = from the north (B2B1_0), 1 = east (C1B1_0),
+// 2 = south (B0B1_0), 3 = west (A1B1_0). Exits: A1 (west), B0 (south),
+// C1 (east), B2 (north).
+enum Mv {
+  kNr = 0, kNs = 1, kNl = 2,   // north: right -> A1, straight -> B0, left -> C1
+  kEr = 3, kEs = 4, kEl = 5,   // east:  right -> B2, straight -> A1, left -> B0
+  kSr = 6, kSs = 7, kSl = 8,   // south: right -> C1, straight -> B2, left -> A1
+  kWr = 9, kWs = 10, kWl = 11  // west:  right -> B0, straight -> C1, left -> B2
+};
+// SUMO's <request index="i" foes="..."/>: the last character is link 0.
+const char* const kB1Foes[12] = {
+    "000100010000", "111100110000", "110111110000", "100010000000",
+    "100110000111", "111110000110", "010000000100", "110000111100",
+    "110000110111", "000000100010", "000111100110", "000110111110"};
+const char kDirs[12] = {'r', 's', 'l', 'r', 's', 'l', 'r', 's', 'l', 'r', 's', 'l'};
+
+JunctionSpec B1(Rule rule = Rule::kAllWay) {
+  JunctionSpec s;
+  s.id = "B1";
+  s.rule = rule;
+  s.approaches = 4;
+  for (int m = 0; m < 12; ++m) {
+    Movement mv;
+    mv.approach = m / 3;
+    mv.dir = kDirs[m];
+    s.movements.push_back(mv);
+  }
+  s.conflict.assign(12, std::vector<bool>(12, false));
+  for (int i = 0; i < 12; ++i)
+    for (int k = 0; k < 12; ++k) s.conflict[i][k] = kB1Foes[i][11 - k] == '1';
+  return s;
+}
+
+
+// Conflicts the tests rely on (the full matrix is checked against a freshly
+// generated net in tests/scenario/net_file_test.cc).
+TEST(B1Matrix, IsTheJunctionTheTestsAssume) {
+  const JunctionSpec s = B1();
+  EXPECT_FALSE(s.Conflict(kNs, kSs));  // opposite straights pass
+  EXPECT_FALSE(s.Conflict(kEs, kWs));
+  EXPECT_TRUE(s.Conflict(kNs, kEs));   // crossing straights
+  EXPECT_TRUE(s.Conflict(kNs, kWs));
+  EXPECT_TRUE(s.Conflict(kSs, kWs));
+  EXPECT_TRUE(s.Conflict(kNr, kEs));   // merge into A1
+  EXPECT_FALSE(s.Conflict(kNr, kSs));
+  for (int i = 0; i < 12; ++i)
+    for (int k = 0; k < 12; ++k)
+      if (s.movements[i].approach == s.movements[k].approach) EXPECT_FALSE(s.Conflict(i, k));
+}
+
+TEST(JunctionSpec, ValidateRejectsMismatchedSizes) {
+  JunctionSpec s = B1();
+  s.conflict.pop_back();
+  EXPECT_THROW(Interception(s, Timing{}), std::invalid_argument);
+  s = B1();
+  s.conflict[3].pop_back();
+  EXPECT_THROW(Interception(s, Timing{}), std::invalid_argument);
+  s = B1();
+  s.movements[5].approach = 4;
+  try {
+    Interception logic(s, Timing{});
+    ADD_FAILURE() << "accepted an approach out of range";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("B1"));
+  }
+}
+
+// ------------------------------------------------------------------ fakes
+struct FakeEnv : Environment {
+  bool area_clear = true;
+  std::set<int> moving;            // vehicles not yet standing
+  std::set<int> no_room_vehicles;  // keep clear
+  std::set<int> major_busy;        // movements whose major road is not clear
+  bool AreaClear(int, int) override { return area_clear; }
+  bool Standing(int v) override { return !moving.count(v); }
+  bool ExitHasRoom(int, int vehicle) override { return !no_room_vehicles.count(vehicle); }
+  bool MajorClear(int movement) override { return !major_busy.count(movement); }
+};
+
+struct FakeModel : EncounterModel {
+  std::map<int, AvDraw> draws;  // by AV; default: intent stop, no nudge
+  std::map<int, bool> dc;       // by HV; default: DR
+  std::set<std::pair<int, int>> not_game;
+  std::vector<std::pair<int, int>> drawn, games;
+  AvDraw Draw(int av, int hv) override {
+    drawn.emplace_back(av, hv);
+    const auto it = draws.find(av);
+    return it == draws.end() ? AvDraw{} : it->second;
+  }
+  HvReading Read(int, int hv, double obs) override {
+    HvReading r;
+    r.observed = obs;
+    const auto it = dc.find(hv);
+    r.drives_if_clear = it != dc.end() && it->second;
+    return r;
+  }
+  bool Game(int av, int hv, int, int) override {
+    games.emplace_back(av, hv);
+    return !not_game.count({av, hv});
+  }
+};
+
+AvDraw Draw(bool go, double nudge) {
+  AvDraw d;
+  d.intent_go = go;
+  d.goes_first = go;
+  d.nudge = nudge > 0;
+  d.nudge_distance = nudge;
+  return d;
+}
+
+using Cmd = std::pair<Kind, int>;
+std::vector<Cmd> Simple(const std::vector<Command>& cs) {
+  std::vector<Cmd> out;
+  for (const Command& c : cs) out.emplace_back(c.kind, c.vehicle);
+  return out;
+}
+Cmd Hold(int v) { return {Kind::kHold, v}; }
+Cmd Nudge(int v) { return {Kind::kStartNudge, v}; }
+Cmd Rel(int v) { return {Kind::kRelease, v}; }
+Cmd Back(int v) { return {Kind::kHandBack, v}; }
+const std::vector<Cmd> kNone;
+
+AtLine Wait(int v, VehicleKind k, int m, double since) { return {v, k, m, true, since}; }
+AtLine Coming(int v, VehicleKind k, int m) { return {v, k, m, false, 0}; }
+
+constexpr int kAv = 1, kHv = 2, kThird = 3, kAv2 = 4, kHv2 = 5;
+
+// ------------------------------------------------------------------ nobody meets
+// Where no AV and HV meet, the logic commands nothing at all: SUMO decides.
+TEST(Interception, NoCommandWhereNoAvHvPairMeets) {
+  Interception logic(B1(), Timing{});
+  FakeEnv env;
+  FakeModel model;
+  const std::vector<std::vector<AtLine>> cases = {
+      {},
+      {Wait(kAv, kAV, kNs, 0)},                           // alone
+      {Wait(kHv, kHV, kNs, 0), Wait(kHv2, kHV, kEs, 0)},  // two HVs crossing
+      {Wait(kAv, kAV, kNs, 0), Wait(kAv2, kAV, kEs, 0)},  // two AVs crossing
+      {Wait(kAv, kAV, kNs, 0), Wait(kHv, kHV, kSs, 0)},   // opposite straights
+      {Wait(kAv, kAV, kNr, 0), Wait(kHv, kHV, kSs, 0)},   // right turn, no conflict
+      {Coming(kAv, kAV, kNs), Coming(kHv, kHV, kEs)},     // both still arriving
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    for (int t = 0; t < 30; ++t)
+      EXPECT_TRUE(logic.Step(t / 10.0, cases[i], env, model).empty()) << "case " << i;
+  EXPECT_TRUE(model.drawn.empty());
+  EXPECT_FALSE(logic.Busy());
+}
+
+// ------------------------------------------------------------------ the game
+struct Sim {
+  Interception logic{B1(), Timing{1.0}};
+  FakeEnv env;
+  FakeModel model;
+  std::vector<Cmd> Step(double t, const std::vector<AtLine>& at) {
+    return Simple(logic.Step(t, at, env, model));
+  }
+};
+
+// Both waiting: held at once, drawn, the nudge once both stand and the area
+// is clear, the HV's reading, then the releases.
+TEST(Interception, BothWaitingAreHeldNudgeWhenStandingAndClearThenTheGame) {
+  Sim r;
+  r.model.draws[kAv] = Draw(true, 1.5);
+  const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 1.0), Wait(kHv, kHV, kSs, 1.2)};
+  r.env.moving = {kHv};
+  r.env.area_clear = false;
+  EXPECT_EQ(r.Step(1.2, at), (std::vector<Cmd>{Hold(kAv), Hold(kHv)}));
+  ASSERT_EQ(r.model.drawn.size(), 1u);
+  EXPECT_EQ(r.Step(1.3, at), kNone);  // the HV still rolls, a third vehicle inside
+  r.env.moving.clear();
+  EXPECT_EQ(r.Step(1.4, at), kNone);  // a third vehicle inside
+  r.env.area_clear = true;
+  EXPECT_EQ(r.Step(1.5, at), std::vector<Cmd>{Nudge(kAv)});
+  EXPECT_EQ(r.Step(1.6, at), kNone);  // nudging: nothing until NudgeDone
+  r.logic.NudgeDone(kAv, 1.5, 2.5, r.model);
+  // AV goes, HV drives recklessly: both released, right of way off.
+  EXPECT_EQ(r.Step(2.5, {}), (std::vector<Cmd>{Rel(kAv), Rel(kHv)}));
+  EXPECT_TRUE(r.logic.Collided(kHv, kAv));
+  EXPECT_FALSE(r.logic.Collided(kHv, kThird));
+  r.logic.Cleared(kAv, 4.0);
+  EXPECT_TRUE(r.logic.TakeFinished().empty());
+  r.logic.Cleared(kHv, 4.5);
+  const std::vector<EncounterOutcome> done = r.logic.TakeFinished();
+  ASSERT_EQ(done.size(), 1u);
+  EXPECT_EQ(done[0].av, kAv);
+  EXPECT_EQ(done[0].hv, kHv);
+  EXPECT_TRUE(done[0].collision);
+  EXPECT_DOUBLE_EQ(done[0].time, 1.2);
+  EXPECT_DOUBLE_EQ(done[0].decided_at, 2.5);
+  EXPECT_DOUBLE_EQ(done[0].reading.observed, 1.5);
+  EXPECT_FALSE(r.logic.Busy());
+}
+
+// The paper's order for each (intent, response), and which moves are the
+// game's (right of way off) and which go back to SUMO's rules.
+TEST(Interception, ReleaseOrderAndRightOfWayForEachIntentAndResponse) {
+  struct Case {
+    bool go, dc;
+    std::vector<Cmd> at_decision, after_confirm, after_first_cleared;
+    int first;  // who clears first
+  };
+  const std::vector<Case> cases = {
+      {true, false, {Rel(kAv), Rel(kHv)}, {}, {}, kAv},
+      {true, true, {Rel(kAv)}, {}, {Back(kHv)}, kAv},    // DC after the AV has left: SUMO's
+      {false, false, {Rel(kHv)}, {}, {Back(kAv)}, kHv},  // the still AV after the HV: SUMO's
+      {false, true, {}, {Rel(kHv)}, {Back(kAv)}, kHv},   // DC past the yielding AV: the game's
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(std::string(c.go ? "go" : "stop") + (c.dc ? "/DC" : "/DR"));
+    Sim r;
+    r.model.draws[kAv] = Draw(c.go, c.go ? 1.0 : 0.0);
+    r.model.dc[kHv] = c.dc;
+    const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+    EXPECT_EQ(r.Step(0.0, at), (std::vector<Cmd>{Hold(kAv), Hold(kHv), Nudge(kAv)}));
+    r.logic.NudgeDone(kAv, 0.0, 1.0, r.model);
+    EXPECT_EQ(r.Step(1.0, {}), c.at_decision);
+    EXPECT_EQ(r.Step(1.5, {}), kNone);
+    EXPECT_EQ(r.Step(2.0, {}), c.after_confirm);  // confirm_delay = 1 s
+    r.logic.Cleared(c.first, 3.0);
+    EXPECT_EQ(r.Step(3.0, {}), c.after_first_cleared);
+    r.logic.Cleared(c.first == kAv ? kHv : kAv, 4.0);
+    EXPECT_EQ(r.logic.TakeFinished().size(), 1u);
+  }
+}
+
+// Every release of an encounter vehicle says so: the controller watches it
+// out of the junction.
+TEST(Interception, EncounterReleasesAreMarkedSoTheControllerWatchesThem) {
+  Sim r;
+  r.model.draws[kAv] = Draw(true, 1.0);
+  const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+  r.logic.Step(0, at, r.env, r.model);
+  r.logic.NudgeDone(kAv, 1.0, 1.0, r.model);
+  const std::vector<Command> cs = r.logic.Step(1.0, {}, r.env, r.model);
+  ASSERT_EQ(cs.size(), 2u);
+  for (const Command& c : cs) EXPECT_TRUE(c.in_encounter);
+}
+
+// The AV that goes waits for room at its exit and, at a two-way stop, for a
+// gap in the major road; the reckless HV does not.
+TEST(Interception, TheAvThatGoesWaitsForRoomAndTheMajorRoadTheRecklessHvDoesNot) {
+  for (Rule rule : {Rule::kAllWay, Rule::kTwoWay}) {
+    SCOPED_TRACE(ToString(rule));
+    Interception logic(B1(rule), Timing{});
+    FakeEnv env;
+    FakeModel model;
+    model.draws[kAv] = Draw(true, 1.0);
+    const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+    logic.Step(0, at, env, model);
+    logic.NudgeDone(kAv, 1.0, 1.0, model);
+    env.no_room_vehicles = {kAv};
+    env.major_busy = {kWs};
+    EXPECT_EQ(Simple(logic.Step(1.0, {}, env, model)), std::vector<Cmd>{Rel(kHv)});
+    env.no_room_vehicles.clear();
+    const std::vector<Cmd> next = Simple(logic.Step(1.1, {}, env, model));
+    if (rule == Rule::kAllWay) {
+      EXPECT_EQ(next, std::vector<Cmd>{Rel(kAv)});
+    } else {
+      EXPECT_EQ(next, kNone);
+      env.major_busy.clear();
+      EXPECT_EQ(Simple(logic.Step(1.2, {}, env, model)), std::vector<Cmd>{Rel(kAv)});
+    }
+  }
+}
+
+// ------------------------------------------------------------------ arriving partners
+// One waiting, the other coming to a stop: the waiting one is held at once
+// (SUMO would let it go the step the other halts), the other when it waits
+// at its line; only then the draw.
+TEST(Interception, ArrivingPartnerIsHeldWhenItReachesItsLineThenTheDraw) {
+  Sim r;
+  EXPECT_EQ(r.Step(0.0, {Wait(kHv, kHV, kSs, 0), Coming(kAv, kAV, kWs)}),
+            std::vector<Cmd>{Hold(kHv)});
+  EXPECT_TRUE(r.model.drawn.empty());
+  EXPECT_EQ(r.logic.Encounters(), 0);
+  EXPECT_EQ(r.Step(0.1, {Wait(kHv, kHV, kSs, 0), Coming(kAv, kAV, kWs)}), kNone);
+  EXPECT_EQ(r.Step(0.5, {Wait(kHv, kHV, kSs, 0), Wait(kAv, kAV, kWs, 0.5)}),
+            (std::vector<Cmd>{Hold(kAv), Nudge(kAv)}));
+  ASSERT_EQ(r.model.drawn.size(), 1u);
+  EXPECT_EQ(r.logic.Encounters(), 1);
+}
+
+// A partner that never arrives (it left the lane's front, or took longer than
+// kArrivalLimit) ends the meeting: the held one goes back to SUMO, no draw.
+TEST(Interception, PartnerThatDoesNotArriveEndsTheMeetingWithoutADraw) {
+  for (bool leaves : {true, false}) {
+    SCOPED_TRACE(leaves ? "leaves" : "too late");
+    Sim r;
+    const std::vector<AtLine> at = {Wait(kHv, kHV, kSs, 0), Coming(kAv, kAV, kWs)};
+    r.Step(0.0, at);
+    std::vector<Cmd> last;
+    if (leaves) {
+      last = r.Step(0.1, {Wait(kHv, kHV, kSs, 0)});
+    } else {
+      int k = 1;
+      for (; k / 10.0 <= Interception::kArrivalLimit; ++k) EXPECT_EQ(r.Step(k / 10.0, at), kNone);
+      last = r.Step(k / 10.0, at);
+    }
+    EXPECT_EQ(last, std::vector<Cmd>{Back(kHv)});
+    EXPECT_TRUE(r.model.drawn.empty());
+    EXPECT_EQ(r.logic.AbandonedMeetings(), 1);
+    EXPECT_FALSE(r.logic.Busy());
+  }
+}
+
+// ------------------------------------------------------------------ premise, order, thirds
+// A meeting that is not the game is counted once and commands nothing.
+TEST(Interception, MeetingThatIsNotTheGameIsCountedOnceAndLeftToSumo) {
+  Sim r;
+  r.model.not_game = {{kAv, kHv}};
+  const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+  for (int t = 0; t < 10; ++t) EXPECT_EQ(r.Step(t / 10.0, at), kNone);
+  EXPECT_EQ(r.logic.NonGameMeetings(), 1);
+  EXPECT_EQ(r.model.games.size(), 1u);
+  r.Step(1.0, {Wait(kHv, kHV, kSs, 0)});  // the AV went: the pair is forgotten
+  r.Step(1.1, at);
+  EXPECT_EQ(r.logic.NonGameMeetings(), 2);
+}
+
+// The head first at its line picks; waiting partners before arriving ones.
+TEST(Interception, FirstAtItsLinePicksItsPartnerWaitingOnesFirst) {
+  Sim r;
+  const std::vector<AtLine> at = {Coming(kHv2, kHV, kEs), Wait(kHv, kHV, kNs, 2.0),
+                                  Wait(kAv, kAV, kWs, 1.0)};
+  EXPECT_EQ(r.Step(2.0, at), (std::vector<Cmd>{Hold(kAv), Hold(kHv), Nudge(kAv)}));
+  ASSERT_EQ(r.model.drawn.size(), 1u);
+  EXPECT_EQ(r.model.drawn[0], std::make_pair(kAv, kHv));
+}
+
+// A third vehicle waiting on a movement that conflicts with the encounter is
+// held; one that conflicts with neither is not; the held one goes back to
+// SUMO once the two encounter vehicles are on their way, before they have left.
+TEST(Interception, ThirdVehiclesOnConflictingMovementsWaitUntilBothAreOnTheirWay) {
+  Sim r;
+  r.model.draws[kAv] = Draw(true, 1.0);
+  // AV west straight, HV south straight; third: east straight (crosses the
+  // HV's path); kAv2 north right turn (conflicts with neither). Both AVs,
+  // so that they do not meet each other once handed back.
+  ASSERT_TRUE(r.logic.spec().Conflict(kEs, kSs));
+  ASSERT_FALSE(r.logic.spec().Conflict(kNr, kWs) || r.logic.spec().Conflict(kNr, kSs));
+  const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0),
+                                  Wait(kThird, kAV, kEs, 0.5), Wait(kAv2, kAV, kNr, 0.5)};
+  EXPECT_EQ(r.Step(0.0, at), (std::vector<Cmd>{Hold(kAv), Hold(kHv), Hold(kThird), Nudge(kAv)}));
+  r.logic.NudgeDone(kAv, 1.0, 1.0, r.model);
+  EXPECT_EQ(r.Step(1.0, {at[2], at[3]}), (std::vector<Cmd>{Rel(kAv), Rel(kHv)}));
+  EXPECT_EQ(r.logic.HeldThirds(), 1);
+  EXPECT_EQ(r.Step(1.1, {at[2], at[3]}), std::vector<Cmd>{Back(kThird)});
+  EXPECT_EQ(r.logic.Encounters(), 1);  // still leaving the junction
+  r.logic.Cleared(kAv, 2.0);
+  r.logic.Cleared(kHv, 2.0);
+  EXPECT_EQ(r.logic.TakeFinished().size(), 1u);
+}
+
+TEST(Interception, NudgeDoneWithoutEncounterThrows) {
+  Sim r;
+  EXPECT_THROW(r.logic.NudgeDone(kAv, 0, 0, r.model), std::logic_error);
+}
+
+}  // namespace
+}  // namespace taebp::junction
