@@ -448,21 +448,28 @@ struct NetworkController::Impl : junction::EncounterModel {
   // Two-way stops: no major vehicle inside or about to reach a conflicting
   // major movement within the critical gap.
   bool MajorClear(const JunctionRt& j, int movement) {
+    // A halted major vehicle is yielding (SUMO's rules, e.g. to the AV that
+    // nudged into the junction): it starts only when SUMO sees the way clear,
+    // so it counts as no traffic; waiting for it would wait for ever.
+    auto moving = [&](const std::string& id) { return sumo::Speed(id) >= kHaltSpeed; };
     for (int k : j.movements[movement].major_foes) {
       const MovementRt& mk = j.movements[k];
-      for (const std::string& in : mk.internal)
-        if (sumo::LaneVehicleNumber(in) > 0) return false;
+      for (const std::string& in : mk.internal) {
+        if (sumo::LaneVehicleNumber(in) == 0) continue;
+        for (const std::string& id : sumo::LaneVehicleIDs(in))
+          if (moving(id)) return false;
+      }
       for (const auto& [lane, offset] : mk.feeders) {
         const std::vector<std::string> ids = sumo::LaneVehicleIDs(lane);
         if (ids.empty()) continue;
         const std::string& front = ids.back();
+        const double speed = sumo::Speed(front);
+        if (speed < kHaltSpeed) continue;
         const net::Lane* l = net.FindLane(lane);
         const double dist = offset + (l ? l->length : 0) - sumo::LanePosition(front);
         if (dist < kMajorNear) return false;
-        // Time to reach the line accelerating from its speed now (a stopped
-        // major vehicle may start at any moment): within the critical gap,
-        // no gap.
-        const double speed = sumo::Speed(front);
+        // Time to reach the line accelerating from its speed now: within the
+        // critical gap, no gap.
         const double reach = (-speed + std::sqrt(speed * speed + 2.0 * sc.accel * dist)) / sc.accel;
         if (reach < sc.critical_gap) return false;
       }
