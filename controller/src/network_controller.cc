@@ -896,8 +896,7 @@ struct NetworkController::Impl : junction::EncounterModel {
       // SUMO's own logic (sumo_native) is the baseline, not the controller:
       // its stalls are recorded, never an error.
       if (sc.stall_action == "error" && policy)
-        throw ConfigError(what + "; " + l.Describe([&](int h) { return vehs[h].id; }) +
-                          StallDetail(j));
+        throw StallError(what + "; " + l.Describe([&](int h) { return vehs[h].id; }) + StallDetail(j), j.info.id, progress, now);
       j.stall_recorded = true;
       j.stall_since = progress;
       out.stalls.push_back({j.info.id, progress, now});

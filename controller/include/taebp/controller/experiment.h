@@ -24,9 +24,10 @@ struct RunOptions {
   bool colour_states = false;
   std::function<void()> after_start;   // SUMO started, vehicles added (e.g. frame the view)
   std::function<void()> before_close;  // after the last step, SUMO still open (e.g. screenshot)
-  // A safety net: the run stops with a ConfigError naming the junction when
+  // A safety net: a junction is stalled when
   // vehicles wait at one of its stop lines and nothing enters or leaves it
-  // for this many simulated seconds (< 0: on the figure-8 two loops at cruise
+  // for this many simulated seconds (scenario.stall_action: error stops the
+  // run there, record notes it; < 0: on the figure-8 two loops at cruise
   // speed + confirm_delay + arrival_window + 60 s; on a network 300 s). The
   // keep-clear release rule prevents the controller's own gridlocks; this
   // catches what it cannot foresee.
@@ -38,7 +39,10 @@ struct RunOptions {
 
 // Runs one policy (a persuasion policy name or "sumo_native") for
 // scenario.duration simulated seconds. Throws SumoError (SUMO failed),
-// ConfigError (the scenario does not fit, a stall) or NudgeError.
+// ConfigError (the scenario does not fit) or NudgeError. A stall under
+// scenario.stall_action: error ends the run early and returns it measured up
+// to the stall, with PolicyRun::stall_error set (the message) and the stall
+// in PolicyRun::stalls.
 PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
                     const Scenario& scenario, const RunOptions& options = {});
 
