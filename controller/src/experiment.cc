@@ -68,8 +68,9 @@ std::optional<persuasion::Policy> PolicyOf(const std::string& name) {
 
 // SUMO's tripinfo records of the vehicles that departed after the warm-up,
 // finished or not. SUMO 1.15 writes a vehicle still in the network at the
-// end with arrival="-1.00", vaporized="end" and its duration, timeLoss and
-// waitingTime up to the end; a vehicle never inserted has no record.
+// end with arrival="-1.00" and its duration, timeLoss and waitingTime up to
+// the end (vaporized="end" for some, empty for others: arrival is the
+// marker); a vehicle never inserted has no record.
 void ReadTripinfo(const std::string& path, double warmup, NetworkRun* net) {
   pugi::xml_document doc;
   if (!doc.load_file(path.c_str())) return;
