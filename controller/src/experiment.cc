@@ -48,7 +48,11 @@ std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario
   if (!scenario.additional_files.empty())
     args.insert(args.end(), {"-a", Join(scenario.additional_files)});
   if (scenario.scratch) {
-    args.insert(args.end(), {"--tripinfo-output", TripinfoPath(scenario, policy)});
+    // Vehicles still in the network at the end (or at a stall that stops the
+    // run) get a record too (arrival -1, their times so far): the delay
+    // counts them (ReadTripinfo).
+    args.insert(args.end(), {"--tripinfo-output", TripinfoPath(scenario, policy),
+                             "--tripinfo-output.write-unfinished", "true"});
     if (sc.summary_output)
       args.insert(args.end(),
                   {"--summary-output",
@@ -62,13 +66,18 @@ std::optional<persuasion::Policy> PolicyOf(const std::string& name) {
   return persuasion::ParsePolicy(name);
 }
 
-// SUMO's tripinfo records of the vehicles that departed after the warm-up.
+// SUMO's tripinfo records of the vehicles that departed after the warm-up,
+// finished or not. SUMO 1.15 writes a vehicle still in the network at the
+// end with arrival="-1.00" and its duration, timeLoss and waitingTime up to
+// the end (vaporized="end" for some, empty for others: arrival is the
+// marker); a vehicle never inserted has no record.
 void ReadTripinfo(const std::string& path, double warmup, NetworkRun* net) {
   pugi::xml_document doc;
   if (!doc.load_file(path.c_str())) return;
   for (pugi::xml_node t : doc.child("tripinfos").children("tripinfo")) {
     if (t.attribute("depart").as_double() < warmup) continue;
     ++net->trips;
+    if (t.attribute("arrival").as_double() < 0) ++net->trips_unfinished;
     net->duration_sum += t.attribute("duration").as_double();
     const double loss = t.attribute("timeLoss").as_double();
     net->time_loss_sum += loss;
@@ -94,13 +103,22 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     if (options.after_start) options.after_start();
     const long steps = std::lround(config.scenario.duration / config.scenario.step_length);
     const long minute = std::max(1L, std::lround(60.0 / config.scenario.step_length));
-    for (long k = 0; k < steps; ++k) {
-      sumo::Step();
-      controller.Step();
-      if (options.every_minute && (k + 1) % minute == 0) options.every_minute(policy, sumo::Time());
+    try {
+      for (long k = 0; k < steps; ++k) {
+        sumo::Step();
+        controller.Step();
+        if (options.every_minute && (k + 1) % minute == 0)
+          options.every_minute(policy, sumo::Time());
+      }
+      if (options.before_close) options.before_close();
+      run = controller.Finish();
+    } catch (const StallError& e) {
+      // scenario.stall_action: error. The run is measured up to the stall
+      // (SUMO's tripinfo with every vehicle still in the network, below);
+      // the runner stops the experiment after this policy.
+      run = controller.Finish();  // every junction stalled by then is in run.stalls
+      run.stall_error = e.what();
     }
-    if (options.before_close) options.before_close();
-    run = controller.Finish();
   } catch (...) {
     sumo::Close();
     throw;

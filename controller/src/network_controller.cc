@@ -995,6 +995,7 @@ struct NetworkController::Impl : junction::EncounterModel {
   // for stall_limit seconds (route progress, read each second). Checked each
   // second at every controlled junction.
   void CheckStalls() {
+    std::optional<StallError> error;  // the first, once every stalled junction is recorded
     for (JunctionRt& j : junctions) {
       // A junction nobody waited at is idle, not stalled: the clock starts
       // when vehicles began to wait, or at the last progress after that.
@@ -1020,8 +1021,10 @@ struct NetworkController::Impl : junction::EncounterModel {
       out.stalls.push_back({j.info.id, progress, now});
       // SUMO's own logic (sumo_native) is the baseline, not the controller:
       // its stalls are recorded, never an error.
-      if (sc.stall_action == "error" && policy) throw StallError(what + StallDetail(j));
+      if (sc.stall_action == "error" && policy && !error)
+        error.emplace(what + StallDetail(j), j.info.id, progress, now);
     }
+    if (error) throw *error;
   }
 
   // Once a simulated second: route progress (junction crossings, the

@@ -48,6 +48,10 @@ int RunTask(const std::string& config, const std::vector<std::string>& overrides
   try {
     const taebp::ExperimentResult result = taebp::RunExperiment(config, overrides);
     taebp::WriteExperiment(result, out);
+    if (!result.stopped.reason.empty()) {  // stall_action: error; what ran is written
+      std::fprintf(stderr, "taebp: stalled: %s\n", result.stopped.message.c_str());
+      return 4;
+    }
     return 0;
   } catch (const taebp::ConfigError& e) {
     std::fprintf(stderr, "taebp: config error: %s\n", e.what());
@@ -187,6 +191,10 @@ PYBIND11_MODULE(_taebp, m) {
         r["files"] = files;
         r["table"] = result.Table();
         r["warnings"] = result.warnings;
+        // A stall under stall_action: error: the files hold what ran;
+        // taebp.run raises StallError with them (the program exits 4).
+        r["stopped"] = result.stopped.reason;
+        r["error"] = result.stopped.message;
         return r;
       },
       py::arg("config"), py::arg("overrides"), py::arg("out"), py::arg("progress"));

@@ -23,8 +23,10 @@ Functions
     load_run(dir), load_sweep(dir)  results already written
 
 Errors are exceptions with the program's messages: ConfigError and
-InvalidArgument (both ValueError), SumoError, BusyError (RuntimeError) and
-SweepError (a sweep with failed tasks).
+InvalidArgument (both ValueError), SumoError, BusyError (RuntimeError),
+StallError (RuntimeError: a stall under scenario.stall_action: error, exit
+code 4 of the program, with the result of what ran) and SweepError (a sweep
+with failed tasks).
 
 One simulation per process: libsumo keeps one simulation per process, and
 run() releases the GIL while SUMO runs, so a second run() from another thread
@@ -44,7 +46,7 @@ from . import _taebp
 __all__ = [
     "theory", "design", "predict", "solve", "run", "sweep", "load_run", "load_sweep",
     "Table", "RunResult", "SweepResult", "to_pandas", "encounter_columns",
-    "ConfigError", "InvalidArgument", "SumoError", "BusyError", "SweepError",
+    "ConfigError", "InvalidArgument", "SumoError", "BusyError", "StallError", "SweepError",
     "__version__",
 ]
 
@@ -57,6 +59,18 @@ SumoError = _taebp.SumoError              # SUMO failed (RuntimeError)
 BusyError = _taebp.SimulationBusy         # a second simulation in this process (RuntimeError)
 for _e in (ConfigError, InvalidArgument, SumoError, BusyError):
     _e.__module__ = __name__
+
+
+class StallError(RuntimeError):
+    """Traffic stalled under scenario.stall_action: error (``taebp run`` exits 4).
+
+    The experiment stopped after the stalled policy; ``result`` is the
+    RunResult of the policies that ran, that one included (written to ``out``
+    when given), its stall in ``summary["policies"][policy]["stalls"]``."""
+
+    def __init__(self, message, result):
+        super().__init__(message)
+        self.result = result
 
 
 class SweepError(RuntimeError):
@@ -315,11 +329,16 @@ def run(config, overrides=(), out=None, progress=False):
     "policies=[ta_ebp]"]. With ``out`` the result files are written there (as
     ``--out``; atomically); without, nothing is written. ``progress`` prints
     each policy's wall time on stderr. The GIL is released while SUMO runs.
-    Raises ConfigError, InvalidArgument, SumoError or BusyError."""
+    Raises ConfigError, InvalidArgument, SumoError or BusyError; StallError
+    (with the result so far, written to ``out``) when a run stalled under
+    scenario.stall_action: error."""
     config, overrides = _paths(config, overrides)
     out = None if out is None else os.fspath(out)
     r = _taebp.run(config, overrides, out, bool(progress))
-    return RunResult(r["files"], table=r["table"], warnings=r["warnings"], out=out)
+    result = RunResult(r["files"], table=r["table"], warnings=r["warnings"], out=out)
+    if r["stopped"]:
+        raise StallError(r["error"], result)
+    return result
 
 
 def load_run(out_dir):

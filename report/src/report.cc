@@ -131,6 +131,7 @@ json NetworkJson(const PolicyRun& r) {
   j["waiting_to_depart"] = {{"max", n.pending_max}, {"end", n.pending_end}};
   j["vehicles_max"] = n.vehicles_max;
   j["trips"] = n.trips;
+  j["trips_unfinished"] = n.trips_unfinished;
   j["trip_duration_mean"] = n.trips ? n.duration_sum / n.trips : 0.0;
   j["time_loss_mean"] = n.trips ? n.time_loss_sum / n.trips : 0.0;
   j["time_loss_max"] = n.time_loss_max;
@@ -310,7 +311,8 @@ Interval Wilson95(long k, long n) {
 std::string BuildGitRevision() { return TAEBP_GIT_REVISION; }
 std::string TaebpVersion() { return TAEBP_VERSION; }
 
-std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& prov) {
+std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& prov,
+                        const Stopped& stopped) {
   json root;
   json& p = root["provenance"];
   p["tool"] = "taebp " + prov.taebp_version;
@@ -320,6 +322,12 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
   p["config_path"] = prov.config_path;
   p["config"] = json::parse(prov.config_json);
   p["warnings"] = prov.warnings;
+  if (!stopped.reason.empty()) {
+    root["stopped"] = stopped.reason;
+    root["stopped_policy"] = stopped.policy;
+    root["error"] = stopped.message;
+    root["policies_not_run"] = stopped.not_run;
+  }
   json& pol = root["policies"];
   pol = json::object();
   for (const PolicyRun& r : runs) {
@@ -373,6 +381,8 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
     for (const StallRecord& st : r.stalls)
       stalls.push_back({{"junction", st.junction}, {"since", st.since}, {"detected", st.detected}});
     j["stalls"] = stalls;
+    j["stalled"] = !r.stalls.empty();
+    j["stall_error"] = r.stall_error.empty() ? json(nullptr) : json(r.stall_error);
     json junctions = json::array();
     for (const JunctionRun& jr : r.junctions) junctions.push_back(JunctionJson(r, jr));
     j["junctions"] = junctions;
@@ -632,19 +642,28 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       for (const PolicyRun& r : runs) out << std::setw(w) << cell(r);
       out << "\n";
     };
-    row("Served flow (veh/h)", [](const PolicyRun& r) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%.0f (%ld in, %ld out)",
+    // A stalled run's flow and delay are those of a gridlock (see the
+    // footnote), not of the junction logic: marked.
+    auto mark = [](const PolicyRun& r) { return r.stalls.empty() ? "" : " stalled"; };
+    row("Served flow (veh/h)", [&](const PolicyRun& r) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%.0f (%ld in, %ld out)%s",
                     PerHour(static_cast<double>(r.network.arrived), r.measured_seconds),
-                    r.network.departed, r.network.arrived);
+                    r.network.departed, r.network.arrived, mark(r));
       return std::string(buf);
     });
-    row("Mean delay (s)", [](const PolicyRun& r) {
-      char buf[64];
+    row("Mean delay (s)", [&](const PolicyRun& r) {
+      char buf[96];
       const NetworkRun& n = r.network;
-      std::snprintf(buf, sizeof buf, "%.1f loss, %.1f waiting",
+      std::snprintf(buf, sizeof buf, "%.1f loss, %.1f waiting%s",
                     n.trips ? n.time_loss_sum / n.trips : 0.0,
-                    n.trips ? n.waiting_time_sum / n.trips : 0.0);
+                    n.trips ? n.waiting_time_sum / n.trips : 0.0, mark(r));
+      return std::string(buf);
+    });
+    row("Trips (unfinished)", [](const PolicyRun& r) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%ld (%ld unfinished)", r.network.trips,
+                    r.network.trips_unfinished);
       return std::string(buf);
     });
     row("Waiting to depart", [](const PolicyRun& r) {
@@ -689,7 +708,35 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       return std::string(buf);
     });
   }
+  const bool stalled = std::any_of(runs.begin(), runs.end(),
+                                   [](const PolicyRun& r) { return !r.stalls.empty(); });
+  if (stalled) {
+    out << std::setw(w0) << "Stalled junctions";
+    for (const PolicyRun& r : runs)
+      out << std::setw(w)
+          << (r.stalls.empty() ? std::string("none")
+                               : std::to_string(r.stalls.size()) +
+                                     (r.stall_error.empty() ? " (recorded)" : " (run stopped)"));
+    out << "\n";
+  }
   out << "(rate [95% Wilson interval] th = library theory for the same parameters)\n";
+  if (network)
+    out << "(delay: SUMO's tripinfo of every trip departed after the warm-up, finished or "
+           "still in the network at the end)\n";
+  for (const PolicyRun& r : runs) {
+    if (r.stalls.empty()) continue;
+    out << "stalled: " << PolicyLabel(r.policy) << " at";
+    for (std::size_t k = 0; k < r.stalls.size(); ++k) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, " since t = %.1f s", r.stalls[k].since);
+      out << (k ? ", " : " ") << r.stalls[k].junction << buf;
+    }
+    out << (r.stall_error.empty()
+                ? "; its figures are from a stalled run"
+                : "; the run stopped there (scenario.stall_action: error): its figures are up to "
+                  "the stall")
+        << "\n";
+  }
   if (AnyBeyond(runs))
     out << "(or = the oracle, TA-EBP for each HV's exact trust, on the same encounters; regret "
            "= DC lost + r x collisions against it)\n";

@@ -21,7 +21,7 @@ std::vector<std::pair<std::string, std::string>> ExperimentResult::Files() const
   nlohmann::ordered_json timing;
   timing["wall_seconds_total"] = wall_seconds;
   std::vector<std::pair<std::string, std::string>> files = {
-      {"summary.json", SummaryJson(runs, provenance)},
+      {"summary.json", SummaryJson(runs, provenance, stopped)},
       {"encounters.csv", EncountersCsv(runs)},
       {"junctions.csv", JunctionsCsv(runs)},
       {"config.yaml", ToYaml(config)},
@@ -93,6 +93,15 @@ ExperimentResult RunExperiment(const std::string& config_path,
                     name.c_str(), st.junction.c_str(), st.since);
       result.warnings.push_back(buf);
       if (observer.warning) observer.warning(buf);
+    }
+    // scenario.stall_action: error: stop here, keep what ran.
+    if (!result.runs.back().stall_error.empty()) {
+      result.stopped.reason = "stall";
+      result.stopped.policy = name;
+      result.stopped.message = name + ": " + result.runs.back().stall_error;
+      for (std::size_t k = result.runs.size(); k < config.policies.size(); ++k)
+        result.stopped.not_run.push_back(config.policies[k]);
+      break;
     }
   }
   Provenance& prov = result.provenance;

@@ -13,12 +13,14 @@
 #include <gtest/gtest.h>
 
 #include "../scenario/net_support.h"
+#include "stall_support.h"
 #include "test_support.h"
 
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <regex>
 #include <set>
 #include <string>
 #include <vector>
@@ -417,6 +419,87 @@ TEST(NetworkGame, EveryEncounterIsTheGameCollisionIffAvGoesAndHvDrivesRecklessly
     long not_game = 0;
     for (const JunctionRun& j : r.junctions) not_game += j.meetings_not_game;
     EXPECT_GT(not_game, 0) << "the grid has merges the AV leads";
+  }
+}
+
+// ------------------------------------------------------------------ delay of unfinished trips
+
+// The delay as an independent reader computes it from SUMO's tripinfo file
+// (a regex over the records, not the XML parser the run uses): every record of
+// a vehicle departed at or after `warmup`, finished or not (arrival -1).
+struct TripinfoDelay {
+  long trips = 0, unfinished = 0, finished = 0;
+  double loss = 0, waiting = 0, finished_loss = 0;
+};
+TripinfoDelay DelayFromTripinfo(const std::string& xml, double warmup) {
+  TripinfoDelay d;
+  const std::regex record("<tripinfo [^>]*>");
+  auto attr = [](const std::string& rec, const std::string& name) {
+    const std::regex a(" " + name + "=\"([^\"]*)\"");
+    std::smatch m;
+    if (!std::regex_search(rec, m, a)) ADD_FAILURE() << "no " << name << " in " << rec;
+    return std::stod(m[1].str());
+  };
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), record);
+       it != std::sregex_iterator(); ++it) {
+    const std::string rec = it->str();
+    if (attr(rec, "depart") < warmup) continue;
+    ++d.trips;
+    d.loss += attr(rec, "timeLoss");
+    d.waiting += attr(rec, "waitingTime");
+    if (attr(rec, "arrival") < 0) {
+      ++d.unfinished;
+    } else {
+      ++d.finished;
+      d.finished_loss += attr(rec, "timeLoss");
+    }
+  }
+  return d;
+}
+
+// Vehicles still in the network at the end count in the delay: on a short
+// grid run (trips in flight at the end) and on a gridlocked one (nothing
+// finishes), trips_unfinished > 0 and the mean time loss and waiting time are
+// those of every trip departed after the warm-up in SUMO's own tripinfo file.
+TEST(NetworkDelay, UnfinishedTripsCountInTheDelay) {
+  TempDir dir;
+  const std::string routes = dir.Write("blocked.rou.xml", test::BlockedGridRoutes());
+  const ExperimentConfig short_run =
+      GridConfig({"scenario.duration=240", "scenario.warmup=30", "scenario.tripinfo_output=true",
+                  "policies=[no_ebp]"});
+  const ExperimentConfig gridlock = ParseExperimentConfig(
+      test::BlockedGridConfig(routes), "network_test blocked grid",
+      {"scenario.duration=500", "scenario.warmup=20", "scenario.tripinfo_output=true",
+       "scenario.stall_action=record", "policies=[no_ebp]"});
+  for (const ExperimentConfig* cfg : {&short_run, &gridlock}) {
+    const bool stalled = cfg == &gridlock;
+    SCOPED_TRACE(stalled ? "gridlock" : "short run");
+    const PolicyRun r = RunPolicy(*cfg, "no_ebp", BuildScenario(*cfg, ""));
+    ASSERT_FALSE(r.sumo_tripinfo_xml.empty());
+    const TripinfoDelay d = DelayFromTripinfo(r.sumo_tripinfo_xml, cfg->scenario.warmup);
+    const NetworkRun& n = r.network;
+    EXPECT_GT(n.trips_unfinished, 0);
+    EXPECT_EQ(n.trips, d.trips);
+    EXPECT_EQ(n.trips_unfinished, d.unfinished);
+    ASSERT_GT(n.trips, 0);
+    EXPECT_NEAR(n.time_loss_sum / n.trips, d.loss / d.trips, 1e-9 * (1 + d.loss / d.trips));
+    EXPECT_NEAR(n.waiting_time_sum / n.trips, d.waiting / d.trips,
+                1e-9 * (1 + d.waiting / d.trips));
+    EXPECT_EQ(!r.stalls.empty(), stalled);
+    if (stalled) {
+      EXPECT_EQ(d.finished, 0) << "every trip heads for the blocked exit";
+      // Only the vehicles that never got in are missing: every departed one is a trip.
+      EXPECT_EQ(n.trips_unfinished, n.trips);
+      EXPECT_GT(n.time_loss_sum / n.trips, 100.0);
+    } else {
+      ASSERT_GT(d.finished, 0);
+      // Counted over finished trips only, the delay would differ.
+      EXPECT_NE(d.finished_loss / d.finished, d.loss / d.trips);
+    }
+    std::cout << (stalled ? "gridlock" : "short run") << ": " << n.trips << " trips, "
+              << n.trips_unfinished << " unfinished, mean time loss " << d.loss / d.trips
+              << " s (finished only: "
+              << (d.finished ? d.finished_loss / d.finished : 0.0) << " s)\n";
   }
 }
 

@@ -173,3 +173,38 @@ def test_a_sumo_failure_is_sumo_error_with_the_cli_message_and_the_process_runs_
     assert isinstance(e.value, RuntimeError)
     # libsumo was closed: the next simulation in this process runs normally.
     assert len(taebp.run(PAPER, overrides=SHORT + ["policies=[ta_ebp]"]).encounters) > 20
+
+
+def _blocked_grid(tmp_path):
+    """The C++ suites' gridlocking grid (tests/common/stall_support.h)."""
+    from conftest import ROOT
+    import re
+    with open(os.path.join(ROOT, "tests", "common", "stall_support.h"), encoding="utf-8") as f:
+        header = f.read()
+    (tmp_path / "blocked.rou.xml").write_text(re.search(r'R"\((.*?)\)"', header, re.S).group(1))
+    config = tmp_path / "blocked.yaml"
+    config.write_text("scenario:\n  kind: network\n"
+                      "  grid: {columns: 2, rows: 2, length: 100, attach_length: 100}\n"
+                      "  routes: [blocked.rou.xml]\n  av_share: 0.5\n  cruise_speed: 10\n"
+                      "  duration: 900\n  seed: 5\n"
+                      "model: {prior_go: 0.2, collision_penalty: 3.0, trust: 0.6}\n")
+    return config
+
+
+def test_a_stall_under_stall_action_error_is_stall_error_with_the_result_so_far(tmp_path):
+    config = _blocked_grid(tmp_path)
+    over = ["policies=[no_ebp, ta_ebp]", "scenario.stall_action=error"]
+    r = cli("run", config, *sum([["--set", o] for o in over], []), "--out", tmp_path / "cli",
+            check=False)
+    assert r.returncode == 4, r.stderr
+    message = r.stderr.splitlines()[-1]
+    assert message.startswith("taebp: stalled: no_ebp: junction 'B0'")
+    with pytest.raises(taebp.StallError) as e:
+        taebp.run(config, overrides=over, out=tmp_path / "py")
+    assert isinstance(e.value, RuntimeError)
+    assert "taebp: stalled: " + str(e.value) == message
+    s = e.value.result.summary
+    assert s["stopped"] == "stall" and list(s["policies"]) == ["no_ebp"]
+    assert s["policies"]["no_ebp"]["stalled"] and s["policies"]["no_ebp"]["stalls"]
+    assert s["policies"]["no_ebp"]["network"]["trips_unfinished"] > 0
+    assert (tmp_path / "py" / "summary.json").is_file()

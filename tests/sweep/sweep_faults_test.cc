@@ -5,6 +5,7 @@
 #include "sweep_fixture.h"
 
 #include "fault_support.h"
+#include "stall_support.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -190,6 +191,35 @@ TEST_F(SweepCli, KilledWorkerIsRecordedAndTheRerunCompletes) {
   EXPECT_THAT(journal.front()["error"].get<std::string>(), HasSubstr("killed by signal 9"));
   ASSERT_EQ(Sweep(cfg, out, "--set scenario.duration=900"), 0) << last_log_;
   ExpectSameTables(ref, out);
+}
+
+// A task that stalls under scenario.stall_action: error (`run` exits 4,
+// "stalled") is a failed task with the stall's message, not a config error:
+// the sweep runs the other tasks (the same gridlock recorded is ok), exits 1,
+// and the failed task's folder keeps what ran (summary.json says it stopped).
+TEST_F(SweepCli, StalledTaskFailsWithItsMessageAndTheOthersRun) {
+  std::ofstream(dir_ / "blocked.rou.xml") << taebp::test::BlockedGridRoutes();
+  const fs::path cfg = dir_ / "stall.yaml";
+  std::ofstream(cfg) << taebp::test::BlockedGridConfig("blocked.rou.xml")
+                     << "policies: [no_ebp]\n"
+                        "sweep:\n  replicates: 1\n  grid:\n"
+                        "    scenario.stall_action: [record, error]\n";
+  const fs::path out = dir_ / "out";
+  EXPECT_EQ(Sweep(cfg, out, "--set scenario.duration=500"), 1) << last_log_;
+  EXPECT_THAT(last_log_, Not(HasSubstr("config error"))) << last_log_;
+  const auto journal = Journal(out);
+  ASSERT_EQ(journal.size(), 2u) << last_log_;
+  for (const auto& e : journal) {
+    if (e["point"] == 0) {
+      EXPECT_EQ(e["status"], "ok") << e.dump();
+      continue;
+    }
+    EXPECT_EQ(e["status"], "failed") << e.dump();
+    EXPECT_THAT(e["error"].get<std::string>(), HasSubstr("stalled: no_ebp: junction 'B0'"))
+        << e.dump();
+    const std::string summary = ReadFile(out / "tasks" / "1-0" / "summary.json");
+    EXPECT_THAT(summary, HasSubstr("\"stopped\": \"stall\"")) << summary;
+  }
 }
 
 // A finished task whose folder is lost: `merge` reports it by name and exits

@@ -1,6 +1,7 @@
 // taebp: the command-line program. Subcommands: theory, solve, run, sweep, merge, snapshot.
 #include "taebp/config/config.h"
 #include "taebp/controller/experiment.h"
+#include "taebp/controller/network_controller.h"
 #include "taebp/report/output_dir.h"
 #include "taebp/report/report.h"
 #include "taebp/runner/runner.h"
@@ -34,6 +35,7 @@ namespace fs = std::filesystem;
 
 constexpr int kExitConfig = 2;
 constexpr int kExitSumo = 3;
+constexpr int kExitStall = 4;  // stall_action: error stopped a run; what ran is written
 
 // ------------------------------------------------------------------ theory
 struct TheoryOptions : taebp::TheoryRequest {
@@ -159,11 +161,21 @@ int RunExperimentCommand(const std::string& config_path, const std::vector<std::
   taebp::WriteExperiment(result, out_dir);
   std::cout << result.Table();
   if (!quiet) std::fprintf(stderr, "taebp: results in %s\n", out_dir.c_str());
+  // The files hold every policy up to and including the stalled one; the
+  // stall's message is the last line on stderr (a sweep records it).
+  if (!result.stopped.reason.empty()) {
+    std::string not_run;
+    for (const std::string& p : result.stopped.not_run) not_run += (not_run.empty() ? "" : ", ") + p;
+    std::fprintf(stderr, "taebp: the run stopped at the stall%s%s; results so far in %s\n",
+                 not_run.empty() ? "" : ", not run: ", not_run.c_str(), out_dir.c_str());
+    throw taebp::StallError(result.stopped.message);
+  }
   return 0;
 }
 
 // Runs `body`, turning an error into its message on stderr and the exit code
-// the README documents (2 bad configuration or argument, 3 SUMO, 1 other).
+// the README documents (2 bad configuration or argument, 3 SUMO, 4 stalled
+// under stall_action: error, 1 other).
 template <typename F>
 int ReportErrors(F&& body) {
   try {
@@ -180,6 +192,9 @@ int ReportErrors(F&& body) {
   } catch (const taebp::SumoError& e) {
     std::cerr << "taebp: " << e.what() << "\n";
     return kExitSumo;
+  } catch (const taebp::StallError& e) {
+    std::cerr << "taebp: stalled: " << e.what() << "\n";
+    return kExitStall;
   } catch (const std::exception& e) {
     std::cerr << "taebp: error: " << e.what() << "\n";
     return 1;

@@ -37,7 +37,10 @@ struct RunOptions {
 
 // Runs one policy (a persuasion policy name or "sumo_native") for
 // scenario.duration simulated seconds. Throws SumoError (SUMO failed),
-// ConfigError (the scenario does not fit, a stall) or NudgeError.
+// ConfigError (the scenario does not fit) or NudgeError. A stall under
+// scenario.stall_action: error ends the run early and returns it measured up
+// to the stall, with PolicyRun::stall_error set (the message) and the stall
+// in PolicyRun::stalls.
 PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
                     const Scenario& scenario, const RunOptions& options = {});
 

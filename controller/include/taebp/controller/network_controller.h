@@ -27,20 +27,34 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace taebp {
-
-// Traffic stalled at a controlled junction under a policy with
-// scenario.stall_action: error (the stall is recorded in the run before).
-class StallError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // A nudge SUMO did not realise (scenario.nudge_check: error).
 class NudgeError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// Traffic stalled at a junction under scenario.stall_action: error (a
+// controller policy; sumo_native's stalls are always recorded). what() names
+// the junction, what waits there and why; junction(), since() (the last
+// progress) and detected() are the stall's record. RunPolicy catches it and
+// returns the run measured up to the stall (PolicyRun::stall_error).
+class StallError : public std::runtime_error {
+ public:
+  explicit StallError(const std::string& what, std::string junction = {}, double since = 0,
+                      double detected = 0)
+      : std::runtime_error(what), junction_(std::move(junction)), since_(since),
+        detected_(detected) {}
+  const std::string& junction() const { return junction_; }
+  double since() const { return since_; }
+  double detected() const { return detected_; }
+
+ private:
+  std::string junction_;
+  double since_, detected_;
 };
 
 struct ControllerOptions {
@@ -61,7 +75,7 @@ class NetworkController {
 
   // SUMO has started: vehicle types and the figure-8's vehicles.
   void Start();
-  // After each sumo::Step(). Throws ConfigError (stall), NudgeError.
+  // After each sumo::Step(). Throws StallError, NudgeError.
   void Step();
   // After the last step, SUMO still running: the totals so far.
   PolicyRun Finish();

@@ -29,8 +29,20 @@ struct Provenance {
 std::string BuildGitRevision();
 std::string TaebpVersion();
 
-// summary.json text (pretty, stable key order).
-std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& provenance);
+// Why an experiment ended before its last policy: a stall under
+// scenario.stall_action: error (reason "stall") in `policy`, with the stall's
+// message; `not_run` the config's policies after it. Empty reason: every
+// policy ran.
+struct Stopped {
+  std::string reason, policy, message;
+  std::vector<std::string> not_run;
+};
+
+// summary.json text (pretty, stable key order). A stopped experiment adds the
+// top-level keys "stopped" (the reason), "stopped_policy", "error" (the
+// message) and "policies_not_run" after "provenance".
+std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& provenance,
+                        const Stopped& stopped = {});
 // encounters.csv text: the header (EncounterCsvColumns) on the first line, then
 // one row per AV-HV encounter, policy first. No comment lines: provenance is in
 // summary.json.
@@ -60,6 +72,8 @@ std::string FormatDouble(double v);
 // Paper-style table: one row per metric, one column per policy, theory beside
 // simulation. A rate whose theory value lies outside its 95% interval is
 // flagged with '!'; `warnings` (e.g. the geometry warning) are repeated below.
+// A policy whose run stalled has its flow and delay cells marked "stalled",
+// and a footnote names every stalled junction (id, since when) per policy.
 void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
                 const std::vector<std::string>& warnings = {});
 

@@ -87,12 +87,17 @@ struct NetworkRun {
   long pending_max = 0;              // most vehicles waiting to be inserted at once
   long vehicles_max = 0;             // most vehicles in the network at once (sampled each second)
   long pending_end = 0;              // waiting to be inserted at the end (demand not served)
-  long trips = 0;                    // SUMO tripinfo records of the vehicles that arrived
+  // SUMO's tripinfo records (--tripinfo-output.write-unfinished) of the
+  // vehicles that departed after the warm-up, finished or not: a trip still
+  // in the network at the end (arrival -1) counts with its time so far.
+  long trips = 0;
+  long trips_unfinished = 0;         // of those, still in the network at the end
   double duration_sum = 0, time_loss_sum = 0, waiting_time_sum = 0;  // their sums (s)
   double time_loss_max = 0;
 };
 
-// A junction where traffic stalled (scenario.stall_action: record).
+// A junction where traffic stalled (scenario.stall_action: record, or the
+// stall that stopped a run under stall_action: error).
 struct StallRecord {
   std::string junction;
   double since = 0;     // last time a vehicle passed it
@@ -174,7 +179,11 @@ struct PolicyRun {
   // the end: encounters.size() == formed - unfinished (tools/soak checks it).
   long encounters_formed = 0, encounters_unfinished = 0;
   std::vector<JunctionRun> junctions;     // every controlled junction
-  std::vector<StallRecord> stalls;        // scenario.stall_action: record
+  std::vector<StallRecord> stalls;        // every stall found (the run is "stalled")
+  // Under scenario.stall_action: error, the stall that stopped this run (its
+  // message; the run's figures are up to then, its last stall in `stalls`).
+  // Empty: the run went to its end.
+  std::string stall_error;
   NetworkRun network;
   std::string scenario_kind = "figure8";
   // SUMO's own outputs when the config asks for them (scenario.tripinfo_output,

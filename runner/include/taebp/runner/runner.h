@@ -21,6 +21,11 @@ struct ExperimentResult {
   Provenance provenance;
   std::vector<std::string> warnings;   // also printed by the CLI on stderr
   double wall_seconds = 0;             // total, for timing.json only
+  // A policy stalled under scenario.stall_action: error: the experiment
+  // stopped after it (runs holds the policies up to and including it; the
+  // files say so). Empty reason: every policy ran. Callers write the files,
+  // then report the stall (taebp run: exit code 4).
+  Stopped stopped;
   // The result files (name -> content), as WriteExperiment writes them.
   std::vector<std::pair<std::string, std::string>> Files() const;
   // The Table I printout of `taebp run` (PrintTable with the warnings).
@@ -55,7 +60,9 @@ struct ExperimentObserver {
 // Loads the config (with --set style overrides), resolves its network and
 // runs every listed policy. Throws ConfigError (bad config, scenario does not
 // fit), persuasion::InvalidArgument, SumoError (SUMO failed), SimulationBusy
-// (another simulation is running in this process).
+// (another simulation is running in this process). A stall under
+// scenario.stall_action: error is no exception here: the experiment stops
+// after that policy and returns what ran, with `stopped` set.
 ExperimentResult RunExperiment(const std::string& config_path,
                                const std::vector<std::string>& overrides,
                                const RunOptions& options = {},

@@ -1,0 +1,141 @@
+// A gridlock under scenario.stall_action: error, run as a user would: the
+// experiment stops after the stalled policy, writes everything measured up to
+// the stall (summary.json saying so, encounters.csv, junctions.csv, SUMO's
+// tripinfo) and exits 4 ("stalled", README), never 2 (config error). A
+// gridlock under stall_action: record runs every policy to its end, each
+// stalled junction flagged in the table and summary.json.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_support.h"
+#include "stall_support.h"
+#include "test_support.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+using ::testing::StartsWith;
+namespace fs = std::filesystem;
+using taebp::test::CliResult;
+using taebp::test::ReadText;
+using taebp::test::TempDir;
+
+const std::string kCli = TAEBP_CLI;
+constexpr int kExitStall = 4;  // README: 4 stalled under stall_action: error
+
+CliResult RunCli(const std::vector<std::string>& args) {
+  return taebp::test::RunProgram(kCli, args);
+}
+
+std::string LastLine(const std::string& text) {
+  std::string t = text;
+  while (!t.empty() && t.back() == '\n') t.pop_back();
+  const std::size_t nl = t.rfind('\n');
+  return nl == std::string::npos ? t : t.substr(nl + 1);
+}
+
+std::string Config(const TempDir& dir) {
+  dir.Write("blocked.rou.xml", taebp::test::BlockedGridRoutes());
+  return dir.Write("blocked.yaml", taebp::test::BlockedGridConfig("blocked.rou.xml"));
+}
+
+TEST(CliStall, GridlockUnderStallActionErrorWritesWhatRanAndExitsFour) {
+  TempDir dir;
+  const std::string config = Config(dir);
+  const fs::path out = dir.path() / "out";
+  const CliResult r = RunCli({"run", config, "--set", "policies=[sumo_native, no_ebp, ta_ebp]",
+                              "--set", "scenario.stall_action=error", "--set",
+                              "scenario.tripinfo_output=true", "--out", out.string()});
+  ASSERT_EQ(r.exit_code, kExitStall) << r.Describe();
+  EXPECT_THAT(r.err, Not(HasSubstr("config error"))) << r.Describe();
+  // The stall's message is the last line on stderr (a sweep records it).
+  EXPECT_THAT(LastLine(r.err), StartsWith("taebp: stalled: no_ebp: junction '")) << r.Describe();
+  EXPECT_THAT(LastLine(r.err), HasSubstr("traffic stalled")) << r.Describe();
+  EXPECT_THAT(r.err, HasSubstr("not run: ta_ebp")) << r.Describe();
+
+  // Everything of what ran, through the usual writer.
+  for (const char* name : {"summary.json", "encounters.csv", "junctions.csv", "config.yaml",
+                           "timing.json", "tripinfo-sumo_native.xml", "tripinfo-no_ebp.xml"})
+    EXPECT_TRUE(fs::is_regular_file(out / name)) << name << "\n" << r.Describe();
+  EXPECT_FALSE(fs::exists(out / "tripinfo-ta_ebp.xml"));
+  const nlohmann::json s = nlohmann::json::parse(ReadText(out / "summary.json"));
+  EXPECT_EQ(s.value("stopped", ""), "stall");
+  EXPECT_EQ(s.value("stopped_policy", ""), "no_ebp");
+  EXPECT_THAT(s.value("error", ""), HasSubstr("traffic stalled"));
+  EXPECT_EQ(s["policies_not_run"], nlohmann::json::array({"ta_ebp"}));
+  ASSERT_TRUE(s["policies"].contains("sumo_native"));
+  ASSERT_TRUE(s["policies"].contains("no_ebp"));
+  EXPECT_FALSE(s["policies"].contains("ta_ebp"));
+
+  const nlohmann::json& native = s["policies"]["sumo_native"];
+  EXPECT_TRUE(native["stalled"].get<bool>()) << "SUMO's own logic gridlocks too (recorded)";
+  EXPECT_TRUE(native["stall_error"].is_null());
+  EXPECT_DOUBLE_EQ(native["simulated_seconds"].get<double>(), 900.0);
+
+  const nlohmann::json& p = s["policies"]["no_ebp"];
+  EXPECT_TRUE(p["stalled"].get<bool>());
+  ASSERT_TRUE(p["stall_error"].is_string());
+  ASSERT_FALSE(p["stalls"].empty());
+  const nlohmann::json& last = p["stalls"].back();
+  const std::string junction = last["junction"].get<std::string>();
+  EXPECT_THAT(s.value("error", ""), HasSubstr("junction '" + junction + "'"));
+  EXPECT_LE(last["since"].get<double>(), last["detected"].get<double>());
+  // Measured up to the stall: the run ended there, not at scenario.duration.
+  EXPECT_NEAR(p["simulated_seconds"].get<double>(), last["detected"].get<double>(), 1.0);
+  EXPECT_LT(p["simulated_seconds"].get<double>(), 900.0);
+  EXPECT_GT(p["network"]["departed"].get<long>(), 20);
+  EXPECT_GT(p["network"]["trips_unfinished"].get<long>(), 10) << "the queue is still there";
+  EXPECT_EQ(p["network"]["trips"].get<long>(), p["network"]["departed"].get<long>());
+
+  // junctions.csv: rows of both policies run; encounters.csv: its header.
+  const std::string junctions = ReadText(out / "junctions.csv");
+  EXPECT_THAT(junctions, HasSubstr("\nno_ebp,A0,"));
+  EXPECT_THAT(junctions, HasSubstr("\nsumo_native,B0,"));
+  EXPECT_THAT(junctions, Not(HasSubstr("\nta_ebp,")));
+  EXPECT_THAT(ReadText(out / "encounters.csv"), StartsWith("policy,time,junction,"));
+  // SUMO's tripinfo of the stopped run has the vehicles still in the network.
+  EXPECT_THAT(ReadText(out / "tripinfo-no_ebp.xml"), HasSubstr("arrival=\"-1.00\""));
+
+  // The table flags the stalls.
+  EXPECT_THAT(r.out, HasSubstr("Stalled junctions")) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("(run stopped)")) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("stalled: No EBP at")) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("stalled: sumo_native at")) << r.out;
+  EXPECT_THAT(r.out, HasSubstr(" stalled ")) << r.out;  // flow / delay cells marked
+}
+
+// stall_action: record: every policy to its end (exit 0), each stall in
+// summary.json and the table, no "stopped".
+TEST(CliStall, GridlockUnderStallActionRecordRunsEveryPolicyFlagged) {
+  TempDir dir;
+  const std::string config = Config(dir);
+  const fs::path out = dir.path() / "out";
+  const CliResult r =
+      RunCli({"run", config, "--set", "policies=[no_ebp, ta_ebp]", "--set",
+              "scenario.stall_action=record", "--set", "scenario.duration=500", "--out",
+              out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const nlohmann::json s = nlohmann::json::parse(ReadText(out / "summary.json"));
+  EXPECT_FALSE(s.contains("stopped"));
+  for (const char* policy : {"no_ebp", "ta_ebp"}) {
+    SCOPED_TRACE(policy);
+    const nlohmann::json& p = s["policies"][policy];
+    EXPECT_TRUE(p["stalled"].get<bool>());
+    EXPECT_FALSE(p["stalls"].empty());
+    EXPECT_TRUE(p["stall_error"].is_null());
+    EXPECT_DOUBLE_EQ(p["simulated_seconds"].get<double>(), 500.0);
+    for (const auto& st : p["stalls"])
+      EXPECT_THAT(r.out, HasSubstr(st["junction"].get<std::string>() + " since t = "));
+  }
+  EXPECT_THAT(r.out, HasSubstr("stalled: TA-EBP at")) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("(recorded)")) << r.out;
+}
+
+}  // namespace
