@@ -421,16 +421,27 @@ struct NetworkController::Impl : junction::EncounterModel {
   // - open networks: vehicles on the exit move on through the next junction,
   //   so the exit needs room behind its last vehicle now, less the vehicles
   //   already released towards it (SUMO's own keepClear does the same).
-  bool ExitHasRoom(const JunctionRt& j, int movement, int vehicle, int also = 0) {
+  bool ExitHasRoom(const JunctionRt& j, int movement, int vehicle) {
     const MovementRt& m = j.movements[movement];
     const Chain& c = chains[m.chain];
     const Veh& v = vehs[vehicle];
     const double unit = v.length + v.min_gap;
-    long inflight = also;  // released into this exit, not yet on it
+    // Headed into this exit, not yet on it: inside the junction on a
+    // movement into it (whoever drives them), and encounter vehicles released
+    // towards it still on their approach lanes.
+    long inflight = 0;
+    for (const MovementRt& k : j.movements) {
+      if (k.chain != m.chain) continue;
+      for (const std::string& in : k.internal) {
+        if (sumo::LaneVehicleNumber(in) == 0) continue;
+        for (const std::string& id : sumo::LaneVehicleIDs(in)) inflight += id != v.id;  // a nudged AV
+      }
+    }
     for (int h : crossing) {
       const Veh& w = vehs[h];
-      if (w.junction < 0 || junctions[w.junction].movements[w.movement].chain != m.chain) continue;
-      if (std::find(c.lanes.begin(), c.lanes.end(), w.lane) == c.lanes.end()) ++inflight;
+      if (w.junction < 0) continue;
+      const MovementRt& wm = junctions[w.junction].movements[w.movement];
+      if (wm.chain == m.chain && w.lane == wm.from_lane) ++inflight;
     }
     if (scenario.lap.empty()) {
       const std::vector<std::string> ids = sumo::LaneVehicleIDs(m.to_lane);

@@ -88,6 +88,10 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
         const AtLine& av = a.kind == VehicleKind::kAV ? a : b;
         const AtLine& hv = a.kind == VehicleKind::kAV ? b : a;
         if (not_game_.count({av.vehicle, hv.vehicle})) continue;
+        // Keep clear: a head whose exit cannot take it does not enter under
+        // SUMO's rules either; it meets nobody until there is room.
+        if (!env.ExitHasRoom(av.movement, av.vehicle) || !env.ExitHasRoom(hv.movement, hv.vehicle))
+          continue;
         if (!model.Game(av.vehicle, hv.vehicle, av.movement, hv.movement)) {
           not_game_.insert({av.vehicle, hv.vehicle});
           ++non_game_;
@@ -244,7 +248,9 @@ std::string Interception::Describe(const std::function<std::string(int)>& name) 
            name(e.out.hv) + " (" + mv(e.out.hv_movement) + ")" +
            (!e.nudge_started ? ", waiting for the conflict area to clear"
             : !e.nudged      ? ", nudging"
-                             : ", decided") +
+                             : std::string(", decided: AV ") +
+                                   (e.out.draw.goes_first ? "goes" : "stays") + ", HV " +
+                                   (e.out.reading.drives_if_clear ? "drives if clear" : "drives recklessly")) +
            (e.av_released ? ", AV released" : "") + (e.hv_released ? ", HV released" : "") +
            (e.av_cleared ? ", AV cleared" : "") + (e.hv_cleared ? ", HV cleared" : "");
   }

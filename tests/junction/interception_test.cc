@@ -83,7 +83,9 @@ TEST(B1Matrix, IsTheJunctionTheTestsAssume) {
   EXPECT_FALSE(s.Conflict(kNr, kSs));
   for (int i = 0; i < 12; ++i)
     for (int k = 0; k < 12; ++k)
-      if (s.movements[i].approach == s.movements[k].approach) EXPECT_FALSE(s.Conflict(i, k));
+      if (s.movements[i].approach == s.movements[k].approach) {
+        EXPECT_FALSE(s.Conflict(i, k));
+      }
 }
 
 TEST(JunctionSpec, ValidateRejectsMismatchedSizes) {
@@ -355,6 +357,19 @@ TEST(Interception, MeetingThatIsNotTheGameIsCountedOnceAndLeftToSumo) {
   r.Step(1.0, {Wait(kHv, kHV, kSs, 0)});  // the AV went: the pair is forgotten
   r.Step(1.1, at);
   EXPECT_EQ(r.logic.NonGameMeetings(), 2);
+}
+
+// Keep clear: a head whose exit has no room meets nobody (it would not enter
+// under SUMO's rules either) until there is room.
+TEST(Interception, HeadWithoutRoomAtItsExitMeetsNobodyUntilThereIsRoom) {
+  Sim r;
+  const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+  for (int who : {kAv, kHv}) {
+    r.env.no_room_vehicles = {who};
+    EXPECT_EQ(r.Step(0.0, at), kNone);
+  }
+  r.env.no_room_vehicles.clear();
+  EXPECT_EQ(r.Step(0.1, at), (std::vector<Cmd>{Hold(kAv), Hold(kHv), Nudge(kAv)}));
 }
 
 // The head first at its line picks; waiting partners before arriving ones.

@@ -13,7 +13,8 @@
 //   movements conflict in SUMO's `<request foes>`, one of them waits at its
 //   line (front within 1 m of it, below 0.5 m/s) and the other waits at its
 //   own line too or is coming to a stop there (front within
-//   `meeting_distance` of it), and no encounter is running here. (SUMO's
+//   `meeting_distance` of it), both exits have room for them (keep clear:
+//   Environment::ExitHasRoom), and no encounter is running here. (SUMO's
 //   all-way stop lets a waiting head go in the very step a conflicting foe
 //   comes to a halt, so two heads are almost never halted together: the
 //   pair SUMO is about to order is one waiting and one arriving.) The
@@ -97,8 +98,9 @@ class Environment {
   virtual bool AreaClear(int av_movement, int hv_movement) = 0;
   // The vehicle stands still (a held vehicle may take a step or two to stop).
   virtual bool Standing(int vehicle) = 0;
-  // Keep clear for the AV that goes: its exit can take it with its rear off
-  // the junction.
+  // Keep clear: the vehicle's exit on `movement` can take it with its rear
+  // off the junction (asked of both before a meeting, and of a move of the
+  // game before it is released).
   virtual bool ExitHasRoom(int movement, int vehicle) = 0;
   // Two-way stops: no major-road vehicle inside or within the critical gap
   // on a movement conflicting with `movement`.
