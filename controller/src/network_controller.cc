@@ -884,7 +884,15 @@ struct NetworkController::Impl : junction::EncounterModel {
           }
         }
       }
-      if (!matched && now >= sc.warmup) ++out.other_collisions;
+      if (!matched && now >= sc.warmup) {
+        ++out.other_collisions;
+        auto game_move = [&](const auto& it) {
+          if (it == index.end()) return false;
+          const Veh& w = vehs[it->second];
+          return w.state == State::kCrossing && w.reckless;
+        };
+        if (game_move(a) || game_move(b)) ++out.other_collisions_game_move;
+      }
     }
     colliding = std::move(pairs);
   }

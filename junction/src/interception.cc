@@ -150,17 +150,17 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
   // the game (the AV that goes, the HV that drives recklessly, a careful one
   // while the other still stands in the junction or at its line, yielding)
   // goes with SUMO's right of way off; a careful one whose partner has left
-  // is handed back to SUMO's rules. A careful move of the game waits for
-  // room at its exit and, at a two-way stop, a gap in the major road.
+  // is handed back to SUMO's rules. Every move but the reckless HV's waits
+  // for room at its exit and, at a two-way stop, a gap in the major road (a
+  // vehicle nudged into the junction is not protected by SUMO's rules).
   if (e.sequence) {
     const bool av_goes = e.out.draw.goes_first;
-    auto may = [&](bool released, bool partner_cleared, int movement, int vehicle) {
-      if (released || partner_cleared) return true;
-      return env.ExitHasRoom(movement, vehicle) &&
-             (spec_.rule == Rule::kAllWay || env.MajorClear(movement));
+    auto may = [&](bool released, int movement, int vehicle) {
+      return released || (env.ExitHasRoom(movement, vehicle) &&
+                           (spec_.rule == Rule::kAllWay || env.MajorClear(movement)));
     };
-    const bool av_may = may(e.av_released, e.hv_cleared, e.out.av_movement, e.out.av);
-    const bool hv_may = may(e.hv_released, e.av_cleared, e.out.hv_movement, e.out.hv);
+    const bool av_may = may(e.av_released, e.out.av_movement, e.out.av);
+    const bool hv_may = may(e.hv_released, e.out.hv_movement, e.out.hv);
     for (const auto& rel : e.sequence->Update(now, e.av_cleared, e.hv_cleared, av_may, hv_may)) {
       (rel.av ? e.av_released : e.hv_released) = true;
       const bool partner_cleared = rel.av ? e.hv_cleared : e.av_cleared;

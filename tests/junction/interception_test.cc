@@ -278,29 +278,33 @@ TEST(Interception, EncounterReleasesAreMarkedSoTheControllerWatchesThem) {
   for (const Command& c : cs) EXPECT_TRUE(c.in_encounter);
 }
 
-// The AV that goes waits for room at its exit and, at a two-way stop, for a
-// gap in the major road; the reckless HV does not.
-TEST(Interception, TheAvThatGoesWaitsForRoomAndTheMajorRoadTheRecklessHvDoesNot) {
+// Every move but the reckless HV's waits for room at its exit and, at a
+// two-way stop, a gap in the major road on its own movement; handing back to
+// SUMO too (a vehicle nudged into the junction is not protected by SUMO's
+// rules).
+TEST(Interception, MovesWaitForRoomAndTheMajorRoadTheRecklessHvDoesNot) {
   for (Rule rule : {Rule::kAllWay, Rule::kTwoWay}) {
     SCOPED_TRACE(ToString(rule));
     Interception logic(B1(rule), Timing{});
     FakeEnv env;
     FakeModel model;
-    model.draws[kAv] = Draw(true, 1.0);
+    model.draws[kAv] = Draw(false, 1.0);  // nudges, then stays
     const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
     logic.Step(0, at, env, model);
     logic.NudgeDone(kAv, 1.0, 1.0, model);
-    env.no_room_vehicles = {kAv};
-    env.major_busy = {kWs};
-    EXPECT_EQ(Simple(logic.Step(1.0, {}, env, model)), std::vector<Cmd>{Rel(kHv)});
+    env.no_room_vehicles = {kAv, kHv};
+    env.major_busy = {kSs, kWs};
+    EXPECT_EQ(Simple(logic.Step(1.0, {}, env, model)), std::vector<Cmd>{Rel(kHv)});  // DR
+    logic.Cleared(kHv, 2.0);
+    EXPECT_EQ(Simple(logic.Step(2.0, {}, env, model)), kNone);  // no room
     env.no_room_vehicles.clear();
-    const std::vector<Cmd> next = Simple(logic.Step(1.1, {}, env, model));
+    const std::vector<Cmd> next = Simple(logic.Step(2.1, {}, env, model));
     if (rule == Rule::kAllWay) {
-      EXPECT_EQ(next, std::vector<Cmd>{Rel(kAv)});
+      EXPECT_EQ(next, std::vector<Cmd>{Back(kAv)});
     } else {
-      EXPECT_EQ(next, kNone);
+      EXPECT_EQ(next, kNone);  // the major road
       env.major_busy.clear();
-      EXPECT_EQ(Simple(logic.Step(1.2, {}, env, model)), std::vector<Cmd>{Rel(kAv)});
+      EXPECT_EQ(Simple(logic.Step(2.2, {}, env, model)), std::vector<Cmd>{Back(kAv)});
     }
   }
 }

@@ -41,9 +41,9 @@
 //   junction: SUMO's rules would make it wait for that AV for ever). A careful
 //   move whose partner has left the junction (the HV driving if clear after
 //   the AV went, the still AV after the HV) is handed back to SUMO's own
-//   rules, which decide when it enters. Moves of the game other than the
-//   reckless HV wait for room at their exits and, at a two-way stop, a gap in
-//   the major road.
+//   rules, which decide when it enters. Every move but the reckless HV's
+//   waits for room at its exit and, at a two-way stop, a gap in the major
+//   road.
 // - Third vehicles. While a meeting or an encounter runs, a vehicle waiting at a stop line
 //   of this junction on a movement that conflicts with the AV's or the HV's is
 //   held there; it is handed back once both encounter vehicles are on their

@@ -170,6 +170,10 @@ struct PolicyRun {
   long held = 0;                          // vehicles held at a stop line and released
   double wait_sum = 0, wait_max = 0;      // their stop-line waits (s)
   long other_collisions = 0;              // collisions outside AV-HV encounters
+  // ... of which one vehicle was an encounter's, released with SUMO's right
+  // of way off (the HV driving recklessly, the AV that goes) and the other a
+  // third vehicle (at a two-way stop: the major road)
+  long other_collisions_game_move = 0;
   long teleports = 0;
   double longest_gap_without_crossing = 0;  // s, a deadlock indicator
   std::string sumo_version;
