@@ -64,7 +64,8 @@ std::vector<std::string> PaperRows(const PolicyRun& run) {
 TEST(Beyond, PaperEncountersAreByteIdenticalToThoseBeforeTheBeyondFeatures) {
   // tests/data/paper_encounters.csv is `taebp run configs/paper.yaml`'s
   // encounters.csv from the revision before the beyond-the-paper code
-  // (HvPopulation) existed. If the controller's behaviour changes on purpose
+  // (HvPopulation) existed, regenerated when SUMO came to decide right of way
+  // (the controller intercepting AV-HV encounters only). If the controller's behaviour changes on purpose
   // (e.g. junction logic), regenerate it with:
   //   build/taebp run configs/paper.yaml --out /tmp/p && cp /tmp/p/encounters.csv tests/data/paper_encounters.csv
   const ExperimentResult r = RunExperiment(kPaper, {});
