@@ -509,3 +509,100 @@ TEST(NetworkDelay, UnfinishedTripsCountInTheDelay) {
 
 }  // namespace
 }  // namespace taebp
+
+namespace taebp {
+namespace {
+
+// ------------------------------------------------------------------ SUMO decides
+// Where no AV-HV pair meets, every controller policy leaves SUMO's traffic
+// exactly as SUMO makes it: the same tripinfo records (same vehicles, same
+// departure, arrival, time loss, waiting) as sumo_native, byte for byte. On
+// the grid study's all-way grid and on a priority_stop grid with
+// randomTrips.py demand, at AV share 0 and 1; and on a corridor where AVs
+// drive east and HVs west (opposite straights never conflict, so the
+// junctions are watched but nobody meets). A controller that held a vehicle
+// meeting nobody (a lone head looking both ways, a pair that does not
+// conflict) changes some trip and turns this red.
+struct IdentityCase {
+  std::string name;
+  std::string yaml;
+  std::vector<std::string> shares;  // scenario.av_share values; empty: by type
+};
+
+std::string Tripinfo(const ExperimentConfig& cfg, const Scenario& sc, const std::string& policy,
+                     long* trips) {
+  const PolicyRun r = RunPolicy(cfg, policy, sc);
+  *trips = r.network.trips;
+  EXPECT_EQ(r.encounters_formed, 0) << policy;
+  EXPECT_TRUE(r.stalls.empty()) << policy;
+  return r.sumo_tripinfo_xml;
+}
+
+TEST(SumoDecides, WhereNoAvHvPairMeetsEveryPolicyGivesSumoNativesTripinfo) {
+  const TempDir dir("identity");
+  // A priority_stop grid with randomTrips.py demand from its fringe.
+  const std::string pnet = test::Netgenerate(dir, "prio", 3, "priority_stop", 100);
+  const std::string trips = (dir.path() / "prio.trips.xml").string();
+  const std::string tools = std::string(std::getenv("SUMO_HOME") ? std::getenv("SUMO_HOME")
+                                                                 : "/usr/share/sumo") +
+                            "/tools";
+  ASSERT_EQ(test::Shell("python3 " + tools + "/randomTrips.py -n " + pnet + " -o " + trips +
+                            " --fringe-factor 1000 -p 2.5 -e 500 --seed 3",
+                        (dir.path() / "trips.log").string()),
+            0)
+      << test::ReadText((dir.path() / "trips.log").string());
+  // The corridor: a 3 x 3 all-way grid, AVs west to east along the middle
+  // row, HVs east to west.
+  const std::string cnet = test::Netgenerate(dir, "corr", 3, "allway_stop", 100);
+  const std::string croutes = dir.Write(
+      "corr.rou.xml",
+      "<routes>\n"
+      "  <vType id=\"AV\" length=\"5\" minGap=\"2\" maxSpeed=\"13.89\" speedDev=\"0\"/>\n"
+      "  <vType id=\"HV\" length=\"5\" minGap=\"2\" maxSpeed=\"13.89\" speedDev=\"0\"/>\n"
+      "  <flow id=\"av\" type=\"AV\" begin=\"0\" end=\"500\" period=\"4\" from=\"left1A1\" "
+      "to=\"C1right1\"/>\n"
+      "  <flow id=\"hv\" type=\"HV\" begin=\"0\" end=\"500\" period=\"4\" from=\"right1C1\" "
+      "to=\"A1left1\"/>\n"
+      "</routes>\n");
+  const std::string common =
+      "  duration: 500\n  warmup: 0\n  tripinfo_output: true\n  stall_action: record\n";
+  const std::vector<IdentityCase> cases = {
+      {"all-way grid (the grid study's)",
+       "scenario:\n  kind: network\n  grid: {columns: 4, rows: 4, length: 100, attach_length: 100,"
+       " lanes: 1, speed: 13.89, junction_type: allway_stop}\n  demand: {flow: 200}\n"
+       "  cruise_speed: 13.89\n" + common,
+       {"0", "1"}},
+      {"priority_stop grid, randomTrips.py demand",
+       "scenario:\n  kind: network\n  network: " + pnet + "\n  routes: [" + trips + "]\n" + common,
+       {"0", "1"}},
+      {"corridor, AVs east and HVs west",
+       "scenario:\n  kind: network\n  network: " + cnet + "\n  routes: [" + croutes + "]\n" +
+           common,
+       {}},
+  };
+  for (const IdentityCase& c : cases) {
+    const std::vector<std::string> shares =
+        c.shares.empty() ? std::vector<std::string>{""} : c.shares;
+    for (const std::string& share : shares) {
+      SCOPED_TRACE(c.name + (share.empty() ? "" : ", AV share " + share));
+      std::vector<std::string> overrides;
+      if (!share.empty()) overrides.push_back("scenario.av_share=" + share);
+      const ExperimentConfig cfg =
+          ParseExperimentConfig(c.yaml + kModel + "policies: [sumo_native]\n", c.name, overrides);
+      const Scenario sc = BuildScenario(cfg, "");
+      long native_trips = 0;
+      const std::string native = Tripinfo(cfg, sc, "sumo_native", &native_trips);
+      EXPECT_GT(native_trips, 100);
+      ASSERT_NE(native.find("<tripinfo "), std::string::npos);
+      for (const char* policy : {"no_ebp", "no_trust", "ta_ebp"}) {
+        long trips_policy = 0;
+        const std::string mine = Tripinfo(cfg, sc, policy, &trips_policy);
+        EXPECT_EQ(trips_policy, native_trips) << policy;
+        EXPECT_TRUE(mine == native) << policy << ": tripinfo differs from sumo_native's";
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace taebp
