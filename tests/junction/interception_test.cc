@@ -222,6 +222,7 @@ TEST(Interception, BothWaitingAreHeldNudgeWhenStandingAndClearThenTheGame) {
   r.logic.Cleared(kAv, 4.0);
   EXPECT_TRUE(r.logic.TakeFinished().empty());
   r.logic.Cleared(kHv, 4.5);
+  EXPECT_TRUE(r.logic.Busy()) << "a finished encounter not yet taken keeps the junction watched";
   const std::vector<EncounterOutcome> done = r.logic.TakeFinished();
   ASSERT_EQ(done.size(), 1u);
   EXPECT_EQ(done[0].av, kAv);

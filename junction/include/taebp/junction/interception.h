@@ -178,9 +178,11 @@ class Interception {
   // Encounters finished since the last call.
   std::vector<EncounterOutcome> TakeFinished();
 
-  // A meeting or an encounter holds vehicles here, or encounter vehicles are
-  // still on their way out.
-  bool Busy() const { return encounter_.has_value() || !leaving_.empty() || !thirds_.empty(); }
+  // A meeting or an encounter holds vehicles here, encounter vehicles are
+  // still on their way out, or a finished encounter waits to be taken.
+  bool Busy() const {
+    return encounter_.has_value() || !leaving_.empty() || !thirds_.empty() || !finished_.empty();
+  }
   // Encounters begun and not finished.
   int Encounters() const {
     return (encounter_ && encounter_->drawn ? 1 : 0) + static_cast<int>(leaving_.size());
