@@ -905,7 +905,10 @@ struct NetworkController::Impl : junction::EncounterModel {
     Env env;
     env.self = this;
     env.j = &j;
-    for (const junction::Command& c : j.logic->Step(now, j.at_line, env, *this)) {
+    const long abandoned = j.logic->AbandonedMeetings();
+    const std::vector<junction::Command> commands = j.logic->Step(now, j.at_line, env, *this);
+    if (now >= sc.warmup) j.run.meetings_abandoned += j.logic->AbandonedMeetings() - abandoned;
+    for (const junction::Command& c : commands) {
       switch (c.kind) {
         case Command::Kind::kHold:
           Hold(j, c.vehicle);

@@ -117,6 +117,7 @@ json JunctionJson(const PolicyRun& r, const JunctionRun& jr) {
                           {"queue_mean", a.samples ? a.queue_sum / a.samples : 0.0}});
   j["approaches"] = approaches;
   j["meetings_not_game"] = jr.meetings_not_game;
+  j["meetings_abandoned"] = jr.meetings_abandoned;
   const json rates = RatesJson(ComputeAt(r, jr.id));
   for (auto it = rates.begin(); it != rates.end(); ++it) j[it.key()] = it.value();
   return j;
@@ -260,7 +261,7 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
   out << "policy,junction,type,original_type,rule,crossings_av,crossings_hv,"
          "throughput_per_hour,held,wait_mean,wait_max,queue_max,queue_mean,encounters,dc,"
          "dc_rate,collisions,collision_rate,theory_dc_rate,theory_collision_rate,"
-         "meetings_not_game\n";
+         "meetings_not_game,meetings_abandoned\n";
   for (const PolicyRun& r : runs) {
     for (const JunctionRun& jr : r.junctions) {
       const Stats s = ComputeAt(r, jr.id);
@@ -285,7 +286,7 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
           << FormatDouble(Rate(s.collisions, s.n)) << ','
           << FormatDouble(s.n ? s.theory_dc_sum / s.n : 0.0) << ','
           << FormatDouble(s.n ? s.theory_collision_sum / s.n : 0.0) << ','
-          << jr.meetings_not_game << '\n';
+          << jr.meetings_not_game << ',' << jr.meetings_abandoned << '\n';
     }
   }
   return out.str();

@@ -109,7 +109,7 @@ struct ScenarioConfig {
   double vehicle_width = 1.8;   // m
   double accel = 2.6;           // m/s^2
   double decel = 4.5;           // m/s^2
-  double meeting_distance = 5.0;  // m: an AV and an HV meet when one waits at its line and the other is this near its own (README)
+  double meeting_distance = 2.0;  // m: an AV and an HV meet when one waits at its line and the other is this near its own (README)
   double confirm_delay = 1.0;   // s: a DC HV facing a waiting AV waits this long
   double creep_speed = 1.0;     // m/s: top speed of a nudge
   double loop_length = 80.0;    // m per loop of the figure-8 (network generation)

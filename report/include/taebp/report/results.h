@@ -79,6 +79,9 @@ struct JunctionRun {
   // collide (a merge the AV leads, ...): not the paper's game, they went by
   // arrival (scenario.encounter_pairs: colliding).
   long meetings_not_game = 0;
+  // Meetings whose arriving partner never came to its line (the waiting one,
+  // held for it, went back to SUMO; no game was drawn).
+  long meetings_abandoned = 0;
   std::vector<ApproachStats> approaches;
 };
 // Network-wide totals over the measured time (kind: network).
