@@ -159,8 +159,17 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
       return released || (env.ExitHasRoom(movement, vehicle) &&
                            (spec_.rule == Rule::kAllWay || env.MajorClear(movement)));
     };
-    const bool av_may = may(e.av_released, e.out.av_movement, e.out.av);
+    bool av_may = may(e.av_released, e.out.av_movement, e.out.av);
     const bool hv_may = may(e.hv_released, e.out.hv_movement, e.out.hv);
+    // The AV goes and the HV drives recklessly: the game's premise is that
+    // both start together, so at a two-way stop the HV waits with the AV for
+    // the major road to clear on both movements.
+    const bool together = av_goes && !e.out.reading.drives_if_clear && !e.av_released &&
+                          !e.hv_released;
+    if (together && spec_.rule == Rule::kTwoWay) {
+      av_may = av_may && env.MajorClear(e.out.hv_movement);
+      if (!av_may) return out;
+    }
     for (const auto& rel : e.sequence->Update(now, e.av_cleared, e.hv_cleared, av_may, hv_may)) {
       (rel.av ? e.av_released : e.hv_released) = true;
       const bool partner_cleared = rel.av ? e.hv_cleared : e.av_cleared;

@@ -310,6 +310,25 @@ TEST(Interception, MovesWaitForRoomAndTheMajorRoadTheRecklessHvDoesNot) {
   }
 }
 
+// The AV goes and the HV drives recklessly: at a two-way stop the two start
+// together once the major road is clear on both movements (the game's
+// premise is that both proceed at once); at an all-way stop at once.
+TEST(Interception, AvThatGoesAndRecklessHvStartTogetherAtATwoWayStop) {
+  for (int busy : {kWs, kSs}) {
+    Interception logic(B1(Rule::kTwoWay), Timing{});
+    FakeEnv env;
+    FakeModel model;
+    model.draws[kAv] = Draw(true, 1.0);
+    const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+    logic.Step(0, at, env, model);
+    logic.NudgeDone(kAv, 1.0, 1.0, model);
+    env.major_busy = {busy};
+    EXPECT_EQ(Simple(logic.Step(1.0, {}, env, model)), kNone) << busy;
+    env.major_busy.clear();
+    EXPECT_EQ(Simple(logic.Step(1.1, {}, env, model)), (std::vector<Cmd>{Rel(kAv), Rel(kHv)}));
+  }
+}
+
 // ------------------------------------------------------------------ arriving partners
 // One waiting, the other coming to a stop: the waiting one is held at once
 // (SUMO would let it go the step the other halts), the other when it waits

@@ -43,7 +43,9 @@
 //   the AV went, the still AV after the HV) is handed back to SUMO's own
 //   rules, which decide when it enters. Every move but the reckless HV's
 //   waits for room at its exit and, at a two-way stop, a gap in the major
-//   road.
+//   road; when the AV goes and the HV drives recklessly, the two start
+//   together (the game's premise), so there the HV waits with the AV for the
+//   major road to clear on both movements.
 // - Third vehicles. While a meeting or an encounter runs, a vehicle waiting at a stop line
 //   of this junction on a movement that conflicts with the AV's or the HV's is
 //   held there; it is handed back once both encounter vehicles are on their
