@@ -90,7 +90,6 @@ struct Veh {
   double held_since = 0, hold_odometer = 0;
   double line_since = -1;  // halted at its stop line since (-1: not there)
   double line_gap = 0;     // m from its front to the stop line when halted there
-  bool encounter = false;  // in an AV-HV encounter (not a held third vehicle)
   bool reckless = false;   // released with SUMO's right of way off
   std::vector<int> near;   // controlled junctions whose stop line it may reach within a second
   double target = 0, creep_speed = 0, commanded = 0;
@@ -753,7 +752,6 @@ struct NetworkController::Impl : junction::EncounterModel {
     v.state = State::kFree;
     v.junction = v.movement = -1;
     v.line_since = -1;
-    v.encounter = false;
     if (!v.alive) return;
     if (v.reckless) sumo::SetSpeedMode(v.id, kModeDefault);
     v.reckless = false;
