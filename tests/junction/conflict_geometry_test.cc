@@ -1,5 +1,4 @@
-// Conflict geometry without SUMO: where a crossing movement is cleared
-// (ClearDistance, against its closed form), and whether two vehicles released
+// Conflict geometry without SUMO: whether two vehicles released
 // together collide on the junction (BothProceedCollide): symmetric crossings
 // do, a crossing one vehicle has passed before the other comes does not, lanes
 // side by side do only when closer than a vehicle's width, a merge the leader
@@ -26,20 +25,6 @@ Mover Straight(double dx, double dy, double front_offset = 0.0) {
   m.exit = 35;
   m.front = m.entry + front_offset;
   return m;
-}
-
-TEST(ClearDistance, PerpendicularCrossingIsTheCrossingPointPlusHalfTheOtherLane) {
-  const std::vector<Point2> a = {{-5, 0}, {5, 0}}, b = {{0, -5}, {0, 5}};
-  // Crossing at 5 m along a; at 90 degrees b's band is half its width; a's own
-  // width adds nothing (cos 90 = 0); then the margin.
-  EXPECT_NEAR(ClearDistance(a, 3.2, b, 3.0, 0.5), 5 + 1.5 + 0.5, 1e-12);
-  // At 45 degrees: wb/2 / sin + wa/2 * cos / sin.
-  const std::vector<Point2> c = {{-5, -5}, {5, 5}};
-  const double s45 = std::sqrt(0.5);
-  EXPECT_NEAR(ClearDistance(a, 3.2, c, 3.0, 0.5), 5 + 1.5 / s45 + 1.6 * s45 / s45 + 0.5, 1e-9);
-  // Paths that do not cross: the whole of a.
-  const std::vector<Point2> far = {{-5, 10}, {5, 10}};
-  EXPECT_NEAR(ClearDistance(a, 3.2, far, 3.2), 10.0, 1e-12);
 }
 
 TEST(BothProceedCollide, SymmetricCrossingCollides) {
