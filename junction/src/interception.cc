@@ -33,9 +33,8 @@ bool Interception::ConflictsWithEncounter(int movement) const {
          spec_.Conflict(movement, e.av_movement) || spec_.Conflict(movement, e.hv_movement);
 }
 
-void Interception::Form(double now, const AtLine& av, const AtLine& hv, EncounterModel& model,
+void Interception::Form(double now, const AtLine& av, const AtLine& hv,
                         std::vector<Command>* out) {
-  (void)model;
   Active e;
   e.out.av = av.vehicle;
   e.out.hv = hv.vehicle;
@@ -97,7 +96,7 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
           ++non_game_;
           continue;
         }
-        Form(now, av, hv, model, &out);
+        Form(now, av, hv, &out);
         break;
       }
     }

@@ -208,8 +208,8 @@ class Interception {
     bool av_cleared = false, hv_cleared = false;
   };
   bool ConflictsWithEncounter(int movement) const;
-  void Form(double now, const AtLine& av, const AtLine& hv, EncounterModel& model,
-            std::vector<Command>* out);
+  // A meeting: the waiting ones held (the draw comes once both are).
+  void Form(double now, const AtLine& av, const AtLine& hv, std::vector<Command>* out);
 
   JunctionSpec spec_;
   Timing timing_;
