@@ -522,9 +522,11 @@ namespace {
 // the grid study's all-way grid and on a priority_stop grid with
 // randomTrips.py demand, at AV share 0 and 1; and on a corridor where AVs
 // drive east and HVs west (opposite straights never conflict, so the
-// junctions are watched but nobody meets). A controller that held a vehicle
-// meeting nobody (a lone head looking both ways, a pair that does not
-// conflict) changes some trip and turns this red.
+// junctions are watched but nobody meets), also with every conflicting
+// meeting taken for an encounter (encounter_pairs: all). A controller that
+// held a vehicle meeting nobody (a lone head looking both ways, a pair that
+// does not conflict) changes some trip and turns this red (mutation
+// pair-that-does-not-conflict-meets).
 struct IdentityCase {
   std::string name;
   std::string yaml;
@@ -580,6 +582,14 @@ TEST(SumoDecides, WhereNoAvHvPairMeetsEveryPolicyGivesSumoNativesTripinfo) {
       {"corridor, AVs east and HVs west",
        "scenario:\n  kind: network\n  network: " + cnet + "\n  routes: [" + croutes + "]\n" +
            common,
+       {}},
+      // Every conflicting AV-HV meeting an encounter, premise or not: the
+      // corridor's pairs still do not conflict, so still nobody meets (a
+      // non-conflicting pair that met would be held here: no premise check
+      // stops it).
+      {"corridor, encounter_pairs: all",
+       "scenario:\n  kind: network\n  network: " + cnet + "\n  routes: [" + croutes + "]\n" +
+           "  encounter_pairs: all\n" + common,
        {}},
   };
   for (const IdentityCase& c : cases) {

@@ -15,6 +15,10 @@
 // stop-controlled lane of the others; two getters per vehicle crossing or
 // nudging for an encounter. Every vehicle is read once per simulated second
 // (route progress).
+//
+// Its parts live in controller/src, one job each (network_controller.cc
+// lists them in the order a step runs them); SUMO is reached only through
+// SumoWorld (sumo_world.h), which a test can fake.
 #pragma once
 
 #include "taebp/config/config.h"
@@ -30,6 +34,8 @@
 #include <utility>
 
 namespace taebp {
+
+class SumoWorld;
 
 // A nudge SUMO did not realise (scenario.nudge_check: error).
 class NudgeError : public std::runtime_error {
@@ -65,10 +71,11 @@ struct ControllerOptions {
 class NetworkController {
  public:
   // `policy` empty: sumo_native (SUMO's own junction logic; the controller
-  // only observes and measures).
+  // only observes and measures). `world`: the simulation it reads and
+  // commands (default: this process's SUMO, LibsumoWorld()); not owned.
   NetworkController(const ExperimentConfig& config, std::optional<persuasion::Policy> policy,
                     const Scenario& scenario, const net::NetFile& net,
-                    const ControllerOptions& options);
+                    const ControllerOptions& options, SumoWorld* world = nullptr);
   ~NetworkController();
   NetworkController(const NetworkController&) = delete;
   NetworkController& operator=(const NetworkController&) = delete;

@@ -1,0 +1,87 @@
+#include "encounter_game.h"
+
+#include "figure8.h"
+#include "vehicle_commands.h"
+
+namespace taebp::control {
+
+EncounterGame::EncounterGame(RunState& s) : s_(s), rng_(s.sc.seed) {
+  params_.prior_go = s.cfg.model.prior_go;
+  params_.collision_penalty = s.cfg.model.collision_penalty;
+}
+
+AvDraw EncounterGame::Draw(int av, int hv) {
+  ++s_.vehicles[av].open_encounters;
+  ++s_.vehicles[hv].open_encounters;
+  return DrawAv(s_.population->Commit(s_.vehicles[av].id, s_.vehicles[hv].id), params_.prior_go,
+                rng_);
+}
+
+// The paper's game needs "AV goes, HV drives recklessly" to be a collision:
+// predicted on the two movements' geometry from where the two vehicles would
+// start, the AV from its Go signal (s* ahead of where it is held when its
+// scheme nudges on Go). The figure-8's crossing is always the game.
+bool EncounterGame::Game(int av, int hv, int av_movement, int hv_movement) {
+  if (figure8::IsFigure8(s_)) return true;
+  const Vehicle& a = s_.vehicles[av];
+  const Vehicle& h = s_.vehicles[hv];
+  const JunctionInfo& info = s_.topo.junctions()[a.junction];
+  junction::Mover ma = info.movements[av_movement].mover;
+  junction::Mover mh = info.movements[hv_movement].mover;
+  for (auto [m, v] : {std::pair{&ma, &a}, std::pair{&mh, &h}}) {
+    m->length = v->length;
+    m->width = v->width;
+    m->accel = v->accel;
+    m->max_speed = v->max_speed;
+  }
+  ma.front = ma.entry - a.line_gap + s_.population->GoSignal(h.id);
+  mh.front = mh.entry - h.line_gap;
+  const bool collides = junction::BothProceedCollide(ma, mh, s_.dt);
+  verdicts_[{av, hv}] = collides;
+  if (collides || s_.sc.encounter_pairs == "all") return true;
+  if (s_.measuring()) ++s_.junctions[a.junction].run.meetings_not_game;
+  return false;
+}
+
+HvReading EncounterGame::Read(int av, int hv, double observed) {
+  const HvReading r = s_.population->Read(s_.vehicles[av].id, s_.vehicles[hv].id, observed);
+  if (commands_) commands_->SetPaint(hv, r.drives_if_clear ? Paint::kDc : Paint::kDr);
+  return r;
+}
+
+void EncounterGame::Record(const JunctionState& j, const junction::EncounterOutcome& e) {
+  EncounterRecord r;
+  if (const auto it = verdicts_.find({e.av, e.hv}); it != verdicts_.end()) {
+    r.both_proceed_collides = it->second;
+    verdicts_.erase(it);
+  }
+  // The HV's trust (before), the theory, and the updates of trust and beliefs.
+  s_.population->Finish(s_.vehicles[e.av].id, s_.vehicles[e.hv].id, e.draw, e.reading,
+                        e.collision, e.time >= s_.sc.warmup, &r);
+  if (e.time >= s_.sc.warmup) {
+    const JunctionInfo& info = s_.topo.junctions()[s_.Index(j)];
+    r.time = e.time;
+    r.junction = info.info.id;
+    r.av = s_.vehicles[e.av].id;
+    r.hv = s_.vehicles[e.hv].id;
+    const MovementInfo& am = info.movements[e.av_movement];
+    const MovementInfo& hm = info.movements[e.hv_movement];
+    r.av_movement = am.from_lane + ">" + am.to_lane;
+    r.hv_movement = hm.from_lane + ">" + hm.to_lane;
+    r.av_dir = am.dir;
+    r.hv_dir = hm.dir;
+    r.intent_go = e.draw.intent_go;
+    r.commanded = e.draw.nudge_distance;
+    r.observed = e.reading.observed;
+    r.posterior = e.reading.posterior;
+    r.hv_dc = e.reading.drives_if_clear;
+    r.av_first = e.draw.goes_first;
+    r.collision = e.collision;
+    r.decided_at = e.decided_at;
+    s_.out.encounters.push_back(r);
+  }
+  s_.vehicles.EncounterDone(e.av);
+  s_.vehicles.EncounterDone(e.hv);
+}
+
+}  // namespace taebp::control

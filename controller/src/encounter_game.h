@@ -1,0 +1,42 @@
+// The paper's game for the AV-HV pairs the interception logic forms
+// (junction::EncounterModel): the AV's draw from the scheme it committed to
+// for this HV, whether the meeting is the game at all (would "AV goes, HV
+// drives recklessly" collide on the junction's geometry:
+// conflict_geometry.h BothProceedCollide), and the HV's reading of the
+// displacement SUMO reported, through the HV population (trust, designs,
+// learning: junction/hv_population.h). Record turns a finished encounter
+// into its row of encounters.csv.
+#pragma once
+
+#include "run_state.h"
+
+#include <map>
+#include <random>
+#include <utility>
+
+namespace taebp::control {
+
+class VehicleCommands;
+
+class EncounterGame : public junction::EncounterModel {
+ public:
+  explicit EncounterGame(RunState& s);
+  void set_commands(VehicleCommands* commands) { commands_ = commands; }
+
+  AvDraw Draw(int av, int hv) override;
+  bool Game(int av, int hv, int av_movement, int hv_movement) override;
+  HvReading Read(int av, int hv, double observed) override;
+
+  // A finished encounter of junction j: its record (after the warm-up), the
+  // population's trust and belief updates, and the two vehicles' slots.
+  void Record(const JunctionState& j, const junction::EncounterOutcome& e);
+
+ private:
+  RunState& s_;
+  VehicleCommands* commands_ = nullptr;  // the HV's colour once it decided
+  persuasion::AvHvParams params_;
+  std::mt19937_64 rng_;
+  std::map<std::pair<int, int>, bool> verdicts_;  // (AV, HV) met: would both proceeding collide
+};
+
+}  // namespace taebp::control

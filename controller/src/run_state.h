@@ -1,0 +1,88 @@
+// What the parts of the network controller share during one policy run: the
+// config, the SUMO world, the topology, the vehicles, each controlled
+// junction's interception logic and counters, the clock and the outputs.
+// Data only; each part (route_progress.h, stop_lines.h, vehicle_commands.h,
+// encounter_game.h, collisions.h, stalls.h, figure8.h) does one job on it,
+// and network_controller.cc runs them in the order of a step.
+#pragma once
+
+#include "taebp/controller/network_controller.h"
+#include "taebp/controller/sumo_world.h"
+#include "taebp/junction/hv_population.h"
+#include "taebp/junction/interception.h"
+#include "topology.h"
+#include "vehicles.h"
+
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace taebp::control {
+
+// Speed modes (bits: 1 safe speed, 2 max accel, 4 max decel, 8 right of way,
+// 16 red light, 32 ignore foes already in the junction).
+constexpr int kModeDefault = 31;   // SUMO's own rules (stop signs included)
+constexpr int kModeReleased = 55;  // the controller decided the junction; keep car-following
+constexpr int kModeCreep = 0;      // exact commanded speeds during a nudge
+
+constexpr double kHaltSpeed = 0.1;  // m/s: SUMO's halting threshold
+
+struct ApproachState {
+  int front = -1;  // the vehicle at its front last time it was looked at
+  ApproachStats stats;
+};
+
+struct JunctionState {
+  std::unique_ptr<junction::Interception> logic;
+  JunctionRun run;
+  int near_av = 0, near_hv = 0;  // vehicles that may reach its stop lines before the next sample
+  std::vector<junction::AtLine> at_line;  // this step
+  double last_progress = 0;     // a vehicle last passed it (route progress)
+  bool waiting = false;         // vehicles halted on its incoming lanes (last sample)
+  bool watched = false;         // looked at this step
+  double waiting_since = 0;     // since when (an idle junction is not stalled)
+  bool stall_recorded = false;  // this stall episode is in the outputs
+  double stall_since = -1;
+};
+
+struct RunState {
+  RunState(const ExperimentConfig& config, std::optional<persuasion::Policy> policy,
+           const Scenario& scenario, const net::NetFile& net, const ControllerOptions& options,
+           SumoWorld& world);
+
+  bool measuring() const { return now >= sc.warmup; }
+  int Index(const JunctionState& j) const { return static_cast<int>(&j - junctions.data()); }
+
+  const ExperimentConfig& cfg;
+  const ScenarioConfig& sc;
+  std::optional<persuasion::Policy> policy;  // empty: sumo_native
+  const Scenario& scenario;
+  const net::NetFile& net;
+  ControllerOptions opts;
+  SumoWorld& sumo;
+  double dt = 0.1;
+  long sample_every = 10;  // steps between two samples (about a second)
+  double now = 0;
+  double last_crossing = 0;
+  double stall_limit = 120;
+
+  Topology topo;
+  VehicleRegistry vehicles;
+  std::vector<JunctionState> junctions;    // as topo.junctions()
+  std::vector<ApproachState> approaches;   // as topo.approaches()
+  std::vector<int> crossing, nudging;      // vehicles released and not out / creeping
+  std::unique_ptr<HvPopulation> population;  // policy runs only
+  PolicyRun out;
+};
+
+inline std::string Fmt(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+}  // namespace taebp::control

@@ -1,0 +1,173 @@
+#include "stop_lines.h"
+
+#include "figure8.h"
+#include "route_progress.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace taebp::control {
+namespace {
+
+constexpr double kMajorNear = 3.0;  // m: a major-road vehicle this near the line is entering
+
+// A free vehicle that was the front of a watched lane is no longer (SUMO let
+// it go, or the junction is no longer watched).
+void LeftLine(RunState& s, int h) {
+  Vehicle& v = s.vehicles[h];
+  if (v.state != State::kFree) return;
+  v.line_since = -1;
+  v.movement = v.junction = -1;
+}
+
+}  // namespace
+
+bool Watched(RunState& s, JunctionState& j) {
+  const bool watched = (j.near_av > 0 && j.near_hv > 0) || j.logic->Busy();
+  if (!watched && j.watched) {
+    for (int a : s.topo.junctions()[s.Index(j)].approaches) {
+      if (s.approaches[a].front >= 0) LeftLine(s, s.approaches[a].front);
+      s.approaches[a].front = -1;
+    }
+  }
+  j.watched = watched;
+  return watched;
+}
+
+void Observe(RunState& s, JunctionState& j) {
+  j.at_line.clear();
+  const int jx = s.Index(j);
+  for (int a : s.topo.junctions()[jx].approaches) {
+    const ApproachInfo& info = s.topo.approaches()[a];
+    ApproachState& ap = s.approaches[a];
+    int h = -1;
+    if (s.sumo.LaneVehicleNumber(info.lane) > 0) {
+      const std::vector<std::string> ids = s.sumo.LaneVehicleIDs(info.lane);
+      if (!ids.empty()) h = s.vehicles.Find(ids.back());
+    }
+    if (ap.front >= 0 && ap.front != h) LeftLine(s, ap.front);
+    ap.front = h;
+    if (h < 0) continue;
+    Vehicle& v = s.vehicles[h];
+    if (v.state == State::kHeld) {
+      if (v.movement >= 0) j.at_line.push_back({h, v.kind, v.movement, true, v.line_since});
+      continue;
+    }
+    if (v.state != State::kFree) continue;
+    if (v.junction != jx) {  // new at the front of this lane
+      v.junction = jx;
+      CountProgress(s, h, s.sumo.RouteIndex(v.id));
+      figure8::KeepCirculating(s, h);
+      const int next = v.route_pos + 1;
+      v.movement = next < static_cast<int>(v.route.size())
+                       ? s.topo.MovementFor(jx, info.lane, s.topo.EdgeName(v.route[next]))
+                       : -1;
+      v.line_since = -1;
+    }
+    if (v.movement < 0) continue;  // e.g. needs another lane for its next edge
+    const double gap = info.length - s.sumo.LanePosition(v.id);
+    if (gap > s.sc.meeting_distance && gap > kAtLine) continue;
+    const bool waiting = gap <= kAtLine && s.sumo.Speed(v.id) < kSlow;
+    if (waiting && v.line_since < 0) v.line_since = s.now;
+    if (!waiting) v.line_since = -1;
+    v.line_gap = waiting ? gap : kStopGap;
+    j.at_line.push_back({h, v.kind, v.movement, waiting, v.line_since});
+  }
+}
+
+StopLineEnvironment::StopLineEnvironment(RunState& s, const JunctionState& j)
+    : s_(s), info_(s.topo.junctions()[s.Index(j)]) {}
+
+// A held vehicle has come to a standstill: the nudge is measured from here.
+bool StopLineEnvironment::Standing(int h) {
+  Vehicle& v = s_.vehicles[h];
+  if (s_.sumo.Speed(v.id) > 0.0) return false;
+  v.hold_odometer = s_.sumo.Distance(v.id);
+  return true;
+}
+
+// No vehicle inside the junction on the two movements or on any movement
+// conflicting with them (the encounter's two are still at their lines).
+bool StopLineEnvironment::AreaClear(int av_movement, int hv_movement) {
+  const junction::JunctionSpec& spec = info_.spec;
+  for (std::size_t k = 0; k < info_.movements.size(); ++k) {
+    const int m = static_cast<int>(k);
+    if (m != av_movement && m != hv_movement && !spec.Conflict(m, av_movement) &&
+        !spec.Conflict(m, hv_movement))
+      continue;
+    for (const std::string& in : info_.movements[k].internal)
+      if (s_.sumo.LaneVehicleNumber(in) > 0) return false;
+  }
+  return true;
+}
+
+// Keep clear: a head enters only if its exit can take it with its rear off
+// the junction. Two forms of one rule, by what the exit can be relied on to
+// do: closed loops (the figure-8: figure8::ExitHasRoom) and open networks,
+// where vehicles on the exit move on through the next junction, so the exit
+// needs room behind its last vehicle now, less the vehicles already released
+// towards it (SUMO's own keepClear does the same). Either way, the vehicles
+// headed into this exit and not yet on it count: those inside the junction on
+// a movement into it (whoever drives them), and encounter vehicles released
+// towards it still on their approach lanes.
+bool StopLineEnvironment::ExitHasRoom(int movement, int vehicle) {
+  const MovementInfo& m = info_.movements[movement];
+  const Vehicle& v = s_.vehicles[vehicle];
+  long inflight = 0;
+  for (const MovementInfo& k : info_.movements) {
+    if (k.exit != m.exit) continue;
+    for (const std::string& in : k.internal) {
+      if (s_.sumo.LaneVehicleNumber(in) == 0) continue;
+      for (const std::string& id : s_.sumo.LaneVehicleIDs(in)) inflight += id != v.id;  // a nudged AV
+    }
+  }
+  for (int h : s_.crossing) {
+    const Vehicle& w = s_.vehicles[h];
+    if (w.junction < 0) continue;
+    const MovementInfo& wm = s_.topo.junctions()[w.junction].movements[w.movement];
+    if (wm.exit == m.exit && w.lane == wm.from_lane) ++inflight;
+  }
+  if (figure8::IsFigure8(s_)) return figure8::ExitHasRoom(s_, s_.topo.exit(m.exit), inflight, vehicle);
+  const double unit = v.length + v.min_gap;
+  const std::vector<std::string> ids = s_.sumo.LaneVehicleIDs(m.to_lane);
+  const net::Lane* exit = s_.net.FindLane(m.to_lane);
+  double free = exit ? exit->length : 0;
+  if (ids.empty() && inflight == 0) return true;  // an empty exit, however short
+  if (!ids.empty()) free = s_.sumo.LanePosition(ids.front()) - s_.sumo.Length(ids.front());
+  return free - inflight * unit >= unit;
+}
+
+// Two-way stops: no major vehicle inside or about to reach a conflicting
+// major movement within the critical gap.
+bool StopLineEnvironment::MajorClear(int movement) {
+  // A halted major vehicle is yielding (SUMO's rules, e.g. to the AV that
+  // nudged into the junction): it starts only when SUMO sees the way clear,
+  // so it counts as no traffic; waiting for it would wait for ever.
+  auto moving = [&](const std::string& id) { return s_.sumo.Speed(id) >= kHaltSpeed; };
+  for (int k : info_.movements[movement].major_foes) {
+    const MovementInfo& mk = info_.movements[k];
+    for (const std::string& in : mk.internal) {
+      if (s_.sumo.LaneVehicleNumber(in) == 0) continue;
+      for (const std::string& id : s_.sumo.LaneVehicleIDs(in))
+        if (moving(id)) return false;
+    }
+    for (const auto& [lane, offset] : mk.feeders) {
+      const std::vector<std::string> ids = s_.sumo.LaneVehicleIDs(lane);
+      if (ids.empty()) continue;
+      const std::string& front = ids.back();
+      const double speed = s_.sumo.Speed(front);
+      if (speed < kHaltSpeed) continue;
+      const net::Lane* l = s_.net.FindLane(lane);
+      const double dist = offset + (l ? l->length : 0) - s_.sumo.LanePosition(front);
+      if (dist < kMajorNear) return false;
+      // Time to reach the line accelerating from its speed now: within the
+      // critical gap, no gap.
+      const double reach =
+          (-speed + std::sqrt(speed * speed + 2.0 * s_.sc.accel * dist)) / s_.sc.accel;
+      if (reach < s_.sc.critical_gap) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace taebp::control

@@ -1,0 +1,39 @@
+// What SUMO shows at a controlled junction's stop lines, for its
+// interception logic (junction/interception.h):
+// - Watched: a junction is looked at in a step only while an AV and an HV may
+//   both be at its lines (route_progress.h), or while its logic is busy;
+// - Observe: the front vehicles of its stop-controlled lanes that wait at
+//   their lines (front within kAtLine, below kSlow) or are coming to a stop
+//   there (front within scenario.meeting_distance);
+// - StopLineEnvironment: the logic's questions about the world (is the
+//   conflict area clear, does a vehicle stand, has its exit room, is the
+//   major road clear).
+#pragma once
+
+#include "run_state.h"
+
+namespace taebp::control {
+
+constexpr double kAtLine = 1.0;   // m: a front this near the lane end is at the line
+constexpr double kSlow = 0.5;     // m/s: a front at its line slower than this waits there
+constexpr double kStopGap = 0.1;  // m: SUMO halts a front this far before the lane end
+
+// Is junction `j` looked at this step? On leaving that, what it saw is forgotten.
+bool Watched(RunState& s, JunctionState& j);
+// Fills j.at_line with SUMO's view of its stop lines this step.
+void Observe(RunState& s, JunctionState& j);
+
+class StopLineEnvironment : public junction::Environment {
+ public:
+  StopLineEnvironment(RunState& s, const JunctionState& j);
+  bool AreaClear(int av_movement, int hv_movement) override;
+  bool Standing(int vehicle) override;
+  bool ExitHasRoom(int movement, int vehicle) override;
+  bool MajorClear(int movement) override;
+
+ private:
+  RunState& s_;
+  const JunctionInfo& info_;
+};
+
+}  // namespace taebp::control

@@ -1,0 +1,166 @@
+#include "vehicle_commands.h"
+
+#include <algorithm>
+#include <array>
+
+namespace taebp::control {
+namespace {
+
+using junction::Command;
+
+constexpr std::array<std::array<int, 3>, 5> kPaintRgb = {
+    {{0, 0, 0}, {255, 220, 0}, {255, 140, 0}, {0, 200, 0}, {255, 0, 255}}};
+
+}  // namespace
+
+void VehicleCommands::Execute(JunctionState& j, const Command& c) {
+  switch (c.kind) {
+    case Command::Kind::kHold:
+      Hold(j, c.vehicle);
+      break;
+    case Command::Kind::kStartNudge:
+      if (s_.measuring()) ++s_.out.encounters_formed;
+      StartNudge(c.vehicle, c.distance);
+      break;
+    case Command::Kind::kRelease:
+      Release(j, c.vehicle, true);
+      break;
+    case Command::Kind::kHandBack:
+      if (c.in_encounter) {
+        Release(j, c.vehicle, false);
+      } else {
+        HandBack(j, c.vehicle);
+      }
+      break;
+  }
+}
+
+void VehicleCommands::SetPaint(int h, Paint paint) {
+  Vehicle& v = s_.vehicles[h];
+  if (!s_.opts.colour_states || v.paint == paint) return;
+  const int* rgb = paint != Paint::kType ? kPaintRgb[static_cast<int>(paint)].data()
+                   : v.kind == VehicleKind::kAV ? kAvRgb
+                                                : kHvRgb;
+  s_.sumo.SetColor(v.id, rgb[0], rgb[1], rgb[2]);
+  v.paint = paint;
+}
+
+void VehicleCommands::Hold(JunctionState& j, int h) {
+  Vehicle& v = s_.vehicles[h];
+  s_.sumo.SetSpeed(v.id, 0.0);
+  v.state = State::kHeld;
+  v.junction = s_.Index(j);
+  v.held_since = s_.now;
+}
+
+void VehicleCommands::CountWait(JunctionState& j, const Vehicle& v) {
+  if (!s_.measuring()) return;
+  const double wait = s_.now - v.held_since;
+  j.run.wait_sum += wait;
+  j.run.wait_max = std::max(j.run.wait_max, wait);
+  ++j.run.held;
+}
+
+void VehicleCommands::Release(JunctionState& j, int h, bool reckless) {
+  Vehicle& v = s_.vehicles[h];
+  s_.sumo.SetSpeedMode(v.id, reckless ? kModeReleased : kModeDefault);
+  s_.sumo.SetSpeed(v.id, -1);
+  CountWait(j, v);
+  v.state = State::kCrossing;
+  v.reckless = reckless;
+  v.lane = s_.topo.junctions()[s_.Index(j)].movements[v.movement].from_lane;
+  s_.crossing.push_back(h);
+}
+
+void VehicleCommands::HandBack(JunctionState& j, int h) {
+  Vehicle& v = s_.vehicles[h];
+  s_.sumo.SetSpeed(v.id, -1);
+  CountWait(j, v);
+  v.state = State::kFree;  // still its lane's front: Observe goes on looking
+}
+
+void VehicleCommands::Clear(int h) {
+  Vehicle& v = s_.vehicles[h];
+  s_.junctions[v.junction].logic->Cleared(h, s_.now);
+  s_.crossing.erase(std::remove(s_.crossing.begin(), s_.crossing.end(), h), s_.crossing.end());
+  v.state = State::kFree;
+  v.junction = v.movement = -1;
+  v.line_since = -1;
+  if (!v.alive) return;
+  if (v.reckless) s_.sumo.SetSpeedMode(v.id, kModeDefault);
+  v.reckless = false;
+  SetPaint(h, Paint::kType);
+}
+
+bool VehicleCommands::ClearedJunction(const Vehicle& v, const std::string& lane) {
+  const MovementInfo& m = s_.topo.junctions()[v.junction].movements[v.movement];
+  if (lane == m.from_lane) return false;
+  if (std::find(m.internal.begin(), m.internal.end(), lane) != m.internal.end()) return false;
+  if (!lane.empty() && lane[0] == ':') return false;  // some other internal lane
+  if (lane == m.to_lane) return s_.sumo.LanePosition(v.id) >= v.length;
+  return true;
+}
+
+void VehicleCommands::UpdateCrossing() {
+  const std::vector<int> now_crossing = s_.crossing;
+  for (int h : now_crossing) {
+    Vehicle& v = s_.vehicles[h];
+    v.lane = s_.sumo.LaneID(v.id);
+    if (ClearedJunction(v, v.lane)) Clear(h);
+  }
+}
+
+void VehicleCommands::StartNudge(int h, double distance) {
+  Vehicle& v = s_.vehicles[h];
+  v.commanded = distance;
+  if (distance <= 0.0) {
+    v.state = State::kNudged;
+    FinishNudge(h, s_.sumo.Distance(v.id) - v.hold_odometer);
+    return;
+  }
+  v.target = distance + kNudgeOvershoot;
+  s_.sumo.SetSpeedMode(v.id, kModeCreep);
+  v.state = State::kNudging;
+  SetPaint(h, Paint::kNudging);
+  v.creep_speed =
+      CreepSpeed(v.target, 0.0, 0.0, s_.dt, s_.sc.accel, s_.sc.decel, s_.sc.creep_speed);
+  s_.sumo.SetSpeed(v.id, v.creep_speed);
+  s_.nudging.push_back(h);
+}
+
+void VehicleCommands::UpdateNudges() {
+  const std::vector<int> now_nudging = s_.nudging;
+  for (int h : now_nudging) {
+    Vehicle& v = s_.vehicles[h];
+    const double covered = s_.sumo.Distance(v.id) - v.hold_odometer;
+    const double speed = CreepSpeed(v.target, covered, v.creep_speed, s_.dt, s_.sc.accel,
+                                    s_.sc.decel, s_.sc.creep_speed);
+    if (speed <= 0.0 && v.creep_speed <= 0.0) {
+      s_.nudging.erase(std::remove(s_.nudging.begin(), s_.nudging.end(), h), s_.nudging.end());
+      v.state = State::kNudged;
+      FinishNudge(h, covered);
+    } else {
+      v.creep_speed = speed;
+      s_.sumo.SetSpeed(v.id, speed);
+    }
+  }
+}
+
+// The run checks every realised nudge: s <= d <= s + tolerance (a still AV:
+// |d| <= tolerance). The HV reads what SUMO reported.
+void VehicleCommands::FinishNudge(int h, double observed) {
+  Vehicle& v = s_.vehicles[h];
+  const double s = v.commanded;
+  if (!NudgeRealised(s, observed, kNudgeTolerance)) {
+    if (s_.sc.nudge_check == "error")
+      throw NudgeError("junction '" + s_.topo.junctions()[v.junction].info.id + "', AV " + v.id +
+                       " at t = " + Fmt(s_.now) + " s: commanded nudge " + Fmt(s) +
+                       " m, SUMO reported " + Fmt(observed) + " m (tolerance " +
+                       Fmt(kNudgeTolerance) +
+                       " m); set scenario.nudge_check: count to record it and go on");
+    ++s_.out.nudges_unrealised;
+  }
+  s_.junctions[v.junction].logic->NudgeDone(h, observed, s_.now, model_);
+}
+
+}  // namespace taebp::control
