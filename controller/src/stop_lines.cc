@@ -170,4 +170,11 @@ bool StopLineEnvironment::MajorClear(int movement) {
   return true;
 }
 
+// SUMO moves a vehicle onto the junction's internal lane when its front
+// passes the end of its approach lane (the stop line).
+bool StopLineEnvironment::PastLine(int vehicle) {
+  const Vehicle& v = s_.vehicles[vehicle];
+  return s_.sumo.LaneID(v.id) != info_.movements[v.movement].from_lane;
+}
+
 }  // namespace taebp::control

@@ -7,7 +7,7 @@
 //   there (front within scenario.meeting_distance);
 // - StopLineEnvironment: the logic's questions about the world (is the
 //   conflict area clear, does a vehicle stand, has its exit room, is the
-//   major road clear).
+//   major road clear, is a vehicle's front past its line).
 #pragma once
 
 #include "run_state.h"
@@ -30,6 +30,7 @@ class StopLineEnvironment : public junction::Environment {
   bool Standing(int vehicle) override;
   bool ExitHasRoom(int movement, int vehicle) override;
   bool MajorClear(int movement) override;
+  bool PastLine(int vehicle) override;
 
  private:
   RunState& s_;

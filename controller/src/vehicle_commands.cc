@@ -68,6 +68,7 @@ void VehicleCommands::Release(JunctionState& j, int h, bool reckless) {
   CountWait(j, v);
   v.state = State::kCrossing;
   v.reckless = reckless;
+  v.entered = false;
   v.lane = s_.topo.junctions()[s_.Index(j)].movements[v.movement].from_lane;
   s_.crossing.push_back(h);
 }
@@ -106,7 +107,13 @@ void VehicleCommands::UpdateCrossing() {
   for (int h : now_crossing) {
     Vehicle& v = s_.vehicles[h];
     v.lane = s_.sumo.LaneID(v.id);
-    if (ClearedJunction(v, v.lane)) Clear(h);
+    if (ClearedJunction(v, v.lane)) {
+      Clear(h);
+    } else if (!v.entered &&
+               v.lane != s_.topo.junctions()[v.junction].movements[v.movement].from_lane) {
+      v.entered = true;  // inside the junction: a careful partner may follow it under SUMO's rules
+      s_.junctions[v.junction].logic->Entered(h, s_.now);
+    }
   }
 }
 

@@ -7,7 +7,8 @@
 // - Release: an encounter vehicle drives on, with SUMO's right of way off
 //   (a move of the game: speed mode 55, car-following kept) or under SUMO's
 //   own rules (a careful move: mode 31); watched until it has left the
-//   junction (UpdateCrossing), then SUMO's again;
+//   junction (UpdateCrossing: the logic learns when it has entered the
+//   junction and when it has left it), then SUMO's again;
 // - HandBack: a third vehicle held for an encounter is SUMO's again;
 // - colours by state under colour_states (sumo-gui).
 #pragma once

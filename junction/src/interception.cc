@@ -169,10 +169,17 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
       av_may = av_may && env.MajorClear(e.out.hv_movement);
       if (!av_may) return out;
     }
-    for (const auto& rel : e.sequence->Update(now, e.av_cleared, e.hv_cleared, av_may, hv_may)) {
+    // The AV follows the HV under SUMO's rules once the HV is inside the
+    // junction, unless its nudge took it past its own line (then SUMO would
+    // not make it yield): once the HV has left.
+    const bool hv_ahead =
+        e.hv_cleared || (e.hv_entered && (e.av_released || !env.PastLine(e.out.av)));
+    for (const auto& rel : e.sequence->Update(now, e.av_entered, hv_ahead, av_may, hv_may)) {
+      // A careful move after its partner (released, inside the junction) is
+      // SUMO's; before it (the partner still standing), the game's.
+      const bool partner_released = rel.av ? e.hv_released : e.av_released;
       (rel.av ? e.av_released : e.hv_released) = true;
-      const bool partner_cleared = rel.av ? e.hv_cleared : e.av_cleared;
-      const bool game = rel.reckless || (rel.av && av_goes) || !partner_cleared;
+      const bool game = rel.reckless || (rel.av && av_goes) || !partner_released;
       Command c{game ? Command::Kind::kRelease : Command::Kind::kHandBack,
                 rel.av ? e.out.av : e.out.hv};
       c.in_encounter = true;
@@ -195,11 +202,18 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
   return out;
 }
 
+void Interception::Entered(int vehicle, double now) {
+  last_activity_ = now;
+  if (!encounter_) return;  // both released already: nothing waits for it
+  if (encounter_->out.av == vehicle) encounter_->av_entered = true;
+  if (encounter_->out.hv == vehicle) encounter_->hv_entered = true;
+}
+
 void Interception::Cleared(int vehicle, double now) {
   last_activity_ = now;
   auto mark = [&](Active& e) {
-    if (e.out.av == vehicle) e.av_cleared = true;
-    if (e.out.hv == vehicle) e.hv_cleared = true;
+    if (e.out.av == vehicle) e.av_entered = e.av_cleared = true;
+    if (e.out.hv == vehicle) e.hv_entered = e.hv_cleared = true;
   };
   if (encounter_) mark(*encounter_);  // its partner not yet released
   for (auto it = leaving_.begin(); it != leaving_.end();) {

@@ -39,8 +39,8 @@ EncounterSequence::EncounterSequence(bool av_goes, bool hv_drives_if_clear, doub
       decided_at_(decided_at),
       confirm_delay_(confirm_delay) {}
 
-std::vector<EncounterSequence::Release> EncounterSequence::Update(double now, bool av_cleared,
-                                                                  bool hv_cleared,
+std::vector<EncounterSequence::Release> EncounterSequence::Update(double now, bool av_entered,
+                                                                  bool hv_entered,
                                                                   bool av_may_enter,
                                                                   bool hv_may_enter) {
   std::vector<Release> out;
@@ -53,14 +53,14 @@ std::vector<EncounterSequence::Release> EncounterSequence::Update(double now, bo
     if (!av_released_) release(true, false);
     if (!hv_released_) {
       if (!hv_dc_) release(false, true);
-      else if (av_cleared) release(false, false);
+      else if (av_entered) release(false, false);
     }
   } else {
     if (!hv_released_) {
       if (!hv_dc_) release(false, true);
       else if (now >= decided_at_ + confirm_delay_ - 1e-9) release(false, false);
     }
-    if (!av_released_ && hv_cleared) release(true, false);
+    if (!av_released_ && hv_entered) release(true, false);
   }
   return out;
 }

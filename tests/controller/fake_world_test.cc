@@ -8,8 +8,8 @@
 // - an AV and an HV waiting at conflicting lines are held, the game runs and
 //   the two are released in the paper's order (the reckless HV with SUMO's
 //   right of way off, speed mode 55; the AV handed back under SUMO's rules,
-//   mode 31, once the HV has left), and a third vehicle on a conflicting
-//   movement is held meanwhile and handed back afterwards.
+//   mode 31, once the HV is inside the junction), and a third vehicle on a
+//   conflicting movement is held meanwhile and handed back afterwards.
 #include "taebp/config/config.h"
 #include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_world.h"
@@ -256,19 +256,20 @@ TEST_F(FakeJunction, TheGameIsExecutedInTheWorldAndBothAreHandedBackInThePapersO
   // The reckless HV goes with SUMO's right of way off; the AV waits.
   EXPECT_THAT(world_.CommandsFor("h1"), ElementsAre("speed h1 0", "mode h1 55", "speed h1 -1"));
   EXPECT_THAT(world_.CommandsFor("a1"), ElementsAre("speed a1 0"));
-  // The HV crosses: inside the junction, then its rear off it.
+  // The HV enters the junction: the AV is handed back to SUMO's rules (SUMO
+  // makes it yield to the HV at their crossing point); both are on their way,
+  // so the third vehicle is SUMO's again at the next step.
   world_.Move("h1", Internal("SC_0", "CN_0"), 2.0, 3.0);
   Step(*c);
-  EXPECT_THAT(world_.CommandsFor("a1"), ElementsAre("speed a1 0")) << "the HV is still inside";
-  world_.Move("h1", "CN_0", 6.0, 5.0);
-  Step(*c);  // the HV cleared: SUMO's rules again; the AV is handed back to SUMO's rules
-  EXPECT_THAT(world_.CommandsFor("h1"),
-              ElementsAre("speed h1 0", "mode h1 55", "speed h1 -1", "mode h1 31"));
   EXPECT_THAT(world_.CommandsFor("a1"), ElementsAre("speed a1 0", "mode a1 31", "speed a1 -1"));
   EXPECT_THAT(world_.CommandsFor("h2"), ElementsAre("speed h2 0"));
-  // Both on their way: the third vehicle is SUMO's again.
   Step(*c);
   EXPECT_THAT(world_.CommandsFor("h2"), ElementsAre("speed h2 0", "speed h2 -1"));
+  // The HV's rear leaves the junction: SUMO's rules again for it.
+  world_.Move("h1", "CN_0", 6.0, 5.0);
+  Step(*c);
+  EXPECT_THAT(world_.CommandsFor("h1"),
+              ElementsAre("speed h1 0", "mode h1 55", "speed h1 -1", "mode h1 31"));
   // The AV leaves; the encounter is recorded.
   world_.Move("a1", "CE_0", 6.0, 5.0);
   Step(*c);

@@ -115,6 +115,8 @@ struct FakeEnv : Environment {
   bool Standing(int v) override { return !moving.count(v); }
   bool ExitHasRoom(int, int vehicle) override { return !no_room_vehicles.count(vehicle); }
   bool MajorClear(int movement) override { return !major_busy.count(movement); }
+  std::set<int> past_line;  // vehicles whose front is past their line
+  bool PastLine(int vehicle) override { return past_line.count(vehicle); }
 };
 
 struct FakeModel : EncounterModel {
@@ -239,12 +241,14 @@ TEST(Interception, BothWaitingAreHeldNudgeWhenStandingAndClearThenTheGame) {
 TEST(Interception, ReleaseOrderAndRightOfWayForEachIntentAndResponse) {
   struct Case {
     bool go, dc;
-    std::vector<Cmd> at_decision, after_confirm, after_first_cleared;
-    int first;  // who clears first
+    std::vector<Cmd> at_decision, after_confirm, after_first_entered;
+    int first;  // who enters the junction first
   };
+  // The second move, once the first is inside the junction, is SUMO's (it
+  // yields to the first at their crossing point).
   const std::vector<Case> cases = {
       {true, false, {Rel(kAv), Rel(kHv)}, {}, {}, kAv},
-      {true, true, {Rel(kAv)}, {}, {Back(kHv)}, kAv},    // DC after the AV has left: SUMO's
+      {true, true, {Rel(kAv)}, {}, {Back(kHv)}, kAv},    // DC after the AV: SUMO's
       {false, false, {Rel(kHv)}, {}, {Back(kAv)}, kHv},  // the still AV after the HV: SUMO's
       {false, true, {}, {Rel(kHv)}, {Back(kAv)}, kHv},   // DC past the yielding AV: the game's
   };
@@ -259,10 +263,36 @@ TEST(Interception, ReleaseOrderAndRightOfWayForEachIntentAndResponse) {
     EXPECT_EQ(r.Step(1.0, {}), c.at_decision);
     EXPECT_EQ(r.Step(1.5, {}), kNone);
     EXPECT_EQ(r.Step(2.0, {}), c.after_confirm);  // confirm_delay = 1 s
-    r.logic.Cleared(c.first, 3.0);
-    EXPECT_EQ(r.Step(3.0, {}), c.after_first_cleared);
+    EXPECT_EQ(r.Step(2.5, {}), kNone) << "the first has not entered the junction";
+    r.logic.Entered(c.first, 3.0);
+    EXPECT_EQ(r.Step(3.0, {}), c.after_first_entered);
+    r.logic.Cleared(c.first, 3.5);
+    EXPECT_EQ(r.Step(3.5, {}), kNone);
+    EXPECT_TRUE(r.logic.TakeFinished().empty());
     r.logic.Cleared(c.first == kAv ? kHv : kAv, 4.0);
     EXPECT_EQ(r.logic.TakeFinished().size(), 1u);
+  }
+}
+
+// A still AV whose nudge took its front past its line is inside the junction,
+// where SUMO no longer makes it yield (it has passed its link): it follows the
+// HV only once the HV has left the junction, not once it has entered.
+TEST(Interception, AStillAvNudgedPastItsLineFollowsOnlyOnceTheHvHasLeft) {
+  for (bool dc : {false, true}) {
+    SCOPED_TRACE(dc ? "DC" : "DR");
+    Sim r;
+    r.model.draws[kAv] = Draw(false, 1.0);  // nudges, then stays
+    r.model.dc[kHv] = dc;
+    const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+    EXPECT_EQ(r.Step(0.0, at), (std::vector<Cmd>{Hold(kAv), Hold(kHv), Nudge(kAv)}));
+    r.logic.NudgeDone(kAv, 1.0, 1.0, r.model);
+    r.env.past_line = {kAv};
+    EXPECT_EQ(r.Step(1.0, {}), dc ? kNone : std::vector<Cmd>{Rel(kHv)});
+    EXPECT_EQ(r.Step(2.0, {}), dc ? std::vector<Cmd>{Rel(kHv)} : kNone);
+    r.logic.Entered(kHv, 3.0);
+    EXPECT_EQ(r.Step(3.0, {}), kNone) << "the HV is inside; the AV too";
+    r.logic.Cleared(kHv, 4.0);
+    EXPECT_EQ(r.Step(4.0, {}), std::vector<Cmd>{Back(kAv)});
   }
 }
 

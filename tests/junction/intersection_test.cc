@@ -192,16 +192,14 @@ TEST(EncounterSequence, AvGoesHvDrivesRecklesslyBothAtOnce) {
   EXPECT_EQ(std::count_if(out.begin(), out.end(), [](const Release& r) { return IsHv(r, true); }), 1);
   EXPECT_TRUE(seq.Update(10.1, false, false).empty());
   EXPECT_TRUE(seq.Update(15.0, true, true).empty());
-  EXPECT_TRUE(seq.Done(true, true));
-  EXPECT_FALSE(seq.Done(true, false));
 }
 
-TEST(EncounterSequence, AvGoesHvDrivesIfClearAfterTheAvCleared) {
+TEST(EncounterSequence, AvGoesHvDrivesIfClearOnceTheAvEnteredTheJunction) {
   EncounterSequence seq(true, true, 10.0, 1.0);
   auto out = seq.Update(10.0, false, false);
   ASSERT_EQ(out.size(), 1u);
   EXPECT_TRUE(IsAv(out[0]));
-  // The HV waits as long as the AV is in the junction, confirm delay or not.
+  // The HV waits until the AV is inside the junction, confirm delay or not.
   for (double t : {10.1, 11.0, 12.0, 30.0}) EXPECT_TRUE(seq.Update(t, false, false).empty()) << t;
   out = seq.Update(30.1, true, false);
   ASSERT_EQ(out.size(), 1u);

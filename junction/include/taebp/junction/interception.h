@@ -39,9 +39,14 @@
 //   while its partner still stands yielding in the junction or at its line (an
 //   HV driving if clear past a still AV that may have nudged into the
 //   junction: SUMO's rules would make it wait for that AV for ever). A careful
-//   move whose partner has left the junction (the HV driving if clear after
-//   the AV went, the still AV after the HV) is handed back to SUMO's own
-//   rules, which decide when it enters. Every move but the reckless HV's
+//   move whose partner is on its way and inside the junction (the HV driving
+//   if clear after the AV went, the still AV after the HV) is handed back to
+//   SUMO's own rules, which make it yield to the partner at their crossing
+//   point (as SUMO does for any foe already in the junction: crossing-point
+//   following) and decide when it enters. A still AV whose nudge took its
+//   front past its line is inside the junction itself, where SUMO no longer
+//   makes it yield (it has passed its link): it is handed back only once the
+//   HV has left the junction. Every move but the reckless HV's
 //   waits for room at its exit and, at a two-way stop, a gap in the major
 //   road; when the AV goes and the HV drives recklessly, the two start
 //   together (the game's premise), so there the HV waits with the AV for the
@@ -107,6 +112,9 @@ class Environment {
   // Two-way stops: no major-road vehicle inside or within the critical gap
   // on a movement conflicting with `movement`.
   virtual bool MajorClear(int movement) = 0;
+  // The vehicle's front is past its stop line, inside the junction (a nudge
+  // can take a held AV there).
+  virtual bool PastLine(int vehicle) = 0;
 };
 
 // The paper's game for one AV-HV pair: the AV's draw from its committed
@@ -170,6 +178,9 @@ class Interception {
   // (held ones included, as waiting). Returns the commands to execute.
   std::vector<Command> Step(double now, const std::vector<AtLine>& at_line, Environment& env,
                             EncounterModel& model);
+  // An encounter vehicle released has entered the junction (its front past
+  // its stop line).
+  void Entered(int vehicle, double now);
   // An encounter vehicle released or handed back has left the junction.
   void Cleared(int vehicle, double now);
   // The nudging AV finished its creep; `observed` is SUMO's displacement.
@@ -205,6 +216,7 @@ class Interception {
     bool nudge_started = false, nudged = false;
     std::optional<EncounterSequence> sequence;
     bool av_released = false, hv_released = false;
+    bool av_entered = false, hv_entered = false;
     bool av_cleared = false, hv_cleared = false;
   };
   bool ConflictsWithEncounter(int movement) const;

@@ -51,8 +51,13 @@ bool NudgeRealised(double commanded, double observed, double tolerance = 1e-3);
 
 // ---------------------------------------------------------------- encounter
 // The order of releases once the HV has decided.
-//   AV goes:  AV at once; HV DR at once (they collide), HV DC after the AV cleared.
-//   AV waits: HV DR at once; HV DC after `confirm_delay`; the AV after the HV cleared.
+//   AV goes:  AV at once; HV DR at once (they collide), HV DC once the AV has
+//             entered the junction.
+//   AV waits: HV DR at once; HV DC after `confirm_delay`; the AV once the HV has
+//             entered the junction.
+// The second of two moves is handed back to SUMO's own rules once the first is
+// inside the junction (interception.h): SUMO makes it yield to the first at
+// their crossing point, as it does for any foe already in the junction.
 class EncounterSequence {
  public:
   struct Release {
@@ -61,12 +66,12 @@ class EncounterSequence {
   };
   EncounterSequence(bool av_goes, bool hv_drives_if_clear, double decided_at,
                     double confirm_delay);
-  // Releases due at `now`, given which vehicles have cleared the junction.
-  // A careful release (not a reckless HV) also needs its exit to have room
-  // (`av_may_enter`, `hv_may_enter`: keep clear); until then it stays due.
-  std::vector<Release> Update(double now, bool av_cleared, bool hv_cleared,
+  // Releases due at `now`, given which vehicles have entered the junction
+  // (released and past their stop lines). A careful release (not a reckless
+  // HV) also needs its exit to have room (`av_may_enter`, `hv_may_enter`:
+  // keep clear); until then it stays due.
+  std::vector<Release> Update(double now, bool av_entered, bool hv_entered,
                               bool av_may_enter = true, bool hv_may_enter = true);
-  bool Done(bool av_cleared, bool hv_cleared) const { return av_cleared && hv_cleared; }
 
  private:
   bool av_goes_, hv_dc_;
