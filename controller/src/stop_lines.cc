@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace taebp::control {
 namespace {
@@ -86,17 +87,35 @@ bool StopLineEnvironment::Standing(int h) {
   return true;
 }
 
-// No vehicle inside the junction on the two movements or on any movement
-// conflicting with them (the encounter's two are still at their lines).
-bool StopLineEnvironment::AreaClear(int av_movement, int hv_movement) {
-  const junction::JunctionSpec& spec = info_.spec;
+// Every vehicle inside the junction on a movement conflicting with the
+// vehicle's own (SUMO's foes: crossing or merging) has passed its way, or
+// stands still clear of it (its body where it stands). Vehicles ahead on its
+// own movement are its leaders: car-following keeps it behind them, whatever
+// its speed mode.
+bool StopLineEnvironment::WayClear(int vehicle, int partner, bool moving_only) {
+  const int movement = s_.vehicles[vehicle].movement;
+  std::optional<junction::Mover> mine;  // read once someone is inside
   for (std::size_t k = 0; k < info_.movements.size(); ++k) {
-    const int m = static_cast<int>(k);
-    if (m != av_movement && m != hv_movement && !spec.Conflict(m, av_movement) &&
-        !spec.Conflict(m, hv_movement))
-      continue;
-    for (const std::string& in : info_.movements[k].internal)
-      if (s_.sumo.LaneVehicleNumber(in) > 0) return false;
+    if (!info_.spec.Conflict(static_cast<int>(k), movement)) continue;
+    const MovementInfo& mk = info_.movements[k];
+    for (const std::string& in : mk.internal) {
+      if (s_.sumo.LaneVehicleNumber(in) == 0) continue;
+      for (const std::string& id : s_.sumo.LaneVehicleIDs(in)) {
+        const int h = s_.vehicles.Find(id);
+        if (h == partner || h == vehicle) continue;
+        if (h < 0) return false;
+        const Vehicle& w = s_.vehicles[h];
+        junction::Mover other = mk.mover;
+        other.length = w.length;
+        other.width = w.width;
+        other.front = mk.ArcOf(in, s_.sumo.LanePosition(id));
+        if (other.front < 0) return false;
+        if (!mine) mine = MoverNow(vehicle);
+        const bool still = s_.sumo.Speed(id) < kHaltSpeed;
+        if (still && moving_only) continue;
+        if (!junction::PassedWay(other, *mine, still ? 0.0 : -1.0)) return false;
+      }
+    }
   }
   return true;
 }
@@ -175,6 +194,22 @@ bool StopLineEnvironment::MajorClear(int movement) {
 bool StopLineEnvironment::PastLine(int vehicle) {
   const Vehicle& v = s_.vehicles[vehicle];
   return s_.sumo.LaneID(v.id) != info_.movements[v.movement].from_lane;
+}
+
+junction::Mover StopLineEnvironment::MoverNow(int vehicle) {
+  const Vehicle& v = s_.vehicles[vehicle];
+  const MovementInfo& m = info_.movements[v.movement];
+  junction::Mover mv = m.mover;
+  mv.length = v.length;
+  mv.width = v.width;
+  const double arc = m.ArcOf(s_.sumo.LaneID(v.id), s_.sumo.LanePosition(v.id));
+  // Off its path (e.g. already behind the exit lane): past everything.
+  mv.front = arc >= 0 ? arc : mv.exit + mv.length;
+  return mv;
+}
+
+bool StopLineEnvironment::Passed(int first, int second) {
+  return junction::PassedWay(MoverNow(first), MoverNow(second));
 }
 
 }  // namespace taebp::control

@@ -5,9 +5,10 @@
 // - Observe: the front vehicles of its stop-controlled lanes that wait at
 //   their lines (front within kAtLine, below kSlow) or are coming to a stop
 //   there (front within scenario.meeting_distance);
-// - StopLineEnvironment: the logic's questions about the world (is the
-//   conflict area clear, does a vehicle stand, has its exit room, is the
-//   major road clear, is a vehicle's front past its line).
+// - StopLineEnvironment: the logic's questions about the world (is a
+//   vehicle's way through the junction clear, does a vehicle stand, has its exit room, is the
+//   major road clear, is a vehicle's front past its line, has one passed the
+//   other's way).
 #pragma once
 
 #include "run_state.h"
@@ -26,13 +27,17 @@ void Observe(RunState& s, JunctionState& j);
 class StopLineEnvironment : public junction::Environment {
  public:
   StopLineEnvironment(RunState& s, const JunctionState& j);
-  bool AreaClear(int av_movement, int hv_movement) override;
+  bool WayClear(int vehicle, int partner, bool moving_only) override;
   bool Standing(int vehicle) override;
   bool ExitHasRoom(int movement, int vehicle) override;
   bool MajorClear(int movement) override;
   bool PastLine(int vehicle) override;
+  bool Passed(int first, int second) override;
 
  private:
+  // The vehicle's path through the junction with its front where it is now.
+  junction::Mover MoverNow(int vehicle);
+
   RunState& s_;
   const JunctionInfo& info_;
 };

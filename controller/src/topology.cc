@@ -89,7 +89,7 @@ Topology::Topology(const ScenarioConfig& sc, const Scenario& scenario, const net
     for (std::size_t a = 0; a < n; ++a)
       for (std::size_t b = 0; b < n; ++b)
         spec.conflict[a][b] = nj->foes[link_of[a]][link_of[b]];
-    for (std::size_t a = 0; a < n; ++a) rt.movements[a].mover = MoverFor(rt.movements[a]);
+    for (std::size_t a = 0; a < n; ++a) rt.movements[a].mover = MoverFor(&rt.movements[a]);
     const int jx = static_cast<int>(junctions_.size());
     for (std::size_t a = 0; a < n; ++a) {
       MovementInfo& m = rt.movements[a];
@@ -205,22 +205,31 @@ int Topology::ExitFor(const std::string& to_lane) {
 
 // A movement's centreline: the approach lane, the internal lanes, the exit
 // lane, with their speed limits; the stop line and the junction's end on it
-// (the vehicle's size and kinematics are filled in per meeting).
-junction::Mover Topology::MoverFor(const MovementInfo& m) const {
+// (the vehicle's size and kinematics are filled in per meeting); where each
+// lane lies on it.
+junction::Mover Topology::MoverFor(MovementInfo* m) const {
   junction::Mover mv;
   double arc = 0;
   auto add = [&](const std::string& lane_id) {
     const net::Lane* l = net_.FindLane(lane_id);
     if (!l) return;
     mv.limits.emplace_back(arc, l->speed);
+    const double start = arc;
     arc += AppendShape(*l, &mv.path);
+    m->lanes_on_path.push_back({lane_id, start, l->length > 0 ? (arc - start) / l->length : 1.0});
   };
-  add(m.from_lane);
+  add(m->from_lane);
   mv.entry = arc;
-  for (const std::string& in : m.internal) add(in);
+  for (const std::string& in : m->internal) add(in);
   mv.exit = arc;
-  add(m.to_lane);
+  add(m->to_lane);
   return mv;
+}
+
+double MovementInfo::ArcOf(const std::string& lane, double pos) const {
+  for (const LaneOnPath& l : lanes_on_path)
+    if (l.lane == lane) return l.start + pos * l.scale;
+  return -1;
 }
 
 }  // namespace taebp::control

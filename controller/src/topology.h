@@ -42,6 +42,15 @@ struct MovementInfo {
   // Its path from the approach lane through the junction onto the exit lane
   // (front, length and kinematics filled per vehicle by the game's premise).
   junction::Mover mover;
+  // Where each lane of the path begins on it, and how the lane's positions
+  // (SUMO's lane length) scale onto the path's arc (the shape's length).
+  struct LaneOnPath {
+    std::string lane;
+    double start = 0, scale = 1;
+  };
+  std::vector<LaneOnPath> lanes_on_path;
+  // The arc of a front at `pos` on `lane` (-1: the lane is not on the path).
+  double ArcOf(const std::string& lane, double pos) const;
 };
 
 struct ApproachInfo {  // a stop-controlled lane into a controlled junction
@@ -91,7 +100,7 @@ class Topology {
  private:
   bool Controlled(const std::string& junction_id) const { return junction_index_.count(junction_id); }
   int ExitFor(const std::string& to_lane);
-  junction::Mover MoverFor(const MovementInfo& m) const;
+  junction::Mover MoverFor(MovementInfo* m) const;
 
   const net::NetFile& net_;
   std::vector<JunctionInfo> junctions_;

@@ -106,4 +106,41 @@ bool BothProceedCollide(const Mover& a, const Mover& b, double dt) {
   return false;
 }
 
+bool PassedWay(const Mover& first, const Mover& second, double first_reach, double second_reach,
+               double step) {
+  const Arcs arcs_a(first.path), arcs_b(second.path);
+  auto bodies = [&](const Mover& m, const Arcs& arcs, double reach) {
+    std::vector<Box> out;
+    // Until the rear is off the junction, or `reach` ahead.
+    const double end = reach >= 0 ? m.front + reach : std::max(m.front, m.exit + m.length);
+    for (double x = m.front;; x = std::min(x + step, end)) {
+      out.push_back(BoxOf(arcs.PointAt(x - m.length), arcs.PointAt(x), m.width));
+      if (x >= end) break;
+    }
+    return out;
+  };
+  const std::vector<Box> a = bodies(first, arcs_a, first_reach),
+                         b = bodies(second, arcs_b, second_reach);
+  struct Bounds {
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    void Add(const Box& box) {
+      for (const Point2& p : box.c) {
+        x0 = std::min(x0, p.x), y0 = std::min(y0, p.y);
+        x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+      }
+    }
+    bool Meets(const Bounds& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
+  };
+  auto bounds = [](const std::vector<Box>& boxes) {
+    std::vector<Bounds> out(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i) out[i].Add(boxes[i]);
+    return out;
+  };
+  const std::vector<Bounds> ba = bounds(a), bb = bounds(b);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t k = 0; k < b.size(); ++k)
+      if (ba[i].Meets(bb[k]) && Overlap(a[i], b[k])) return false;
+  return true;
+}
+
 }  // namespace taebp::junction

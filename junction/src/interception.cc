@@ -66,7 +66,14 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
     it = here(it->first) && here(it->second) ? std::next(it) : not_game_.erase(it);
   }
 
-  if (!encounter_) {
+  // A new meeting only once every vehicle of the encounters before is inside
+  // the junction or out of it: one still at its line (a move not yet begun)
+  // is not at the lines the meeting looks at, nor yet inside where the new
+  // moves' ways are checked.
+  const bool all_inside = std::all_of(leaving_.begin(), leaving_.end(), [](const Active& e) {
+    return e.av_entered && e.hv_entered;
+  });
+  if (!encounter_ && all_inside) {
     // Who meets whom: the head first at its line picks its earliest partner.
     std::vector<const AtLine*> order;
     for (const AtLine& a : at_line)
@@ -137,9 +144,16 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
     e.out.time = now;
     e.out.draw = model.Draw(e.out.av, e.out.hv);
   }
-  // The nudge, once nobody else is inside the conflict area.
+  // The nudge, once nobody inside the junction can touch the AV on its way
+  // and, at a two-way stop, the major road is clear on both movements for
+  // the critical gap: SUMO makes every vehicle that reaches the AV nudged
+  // into the junction stop for it, inside the junction too, where it could
+  // block the moves of the game for good. A still AV: at once.
+  const bool creeps = e.out.draw.nudge_distance > 0;
   if (!e.nudge_started && env.Standing(e.out.av) && env.Standing(e.out.hv) &&
-      env.AreaClear(e.out.av_movement, e.out.hv_movement)) {
+      (!creeps || env.WayClear(e.out.av, e.out.hv)) &&
+      (!creeps || spec_.rule == Rule::kAllWay ||
+       (env.MajorClear(e.out.av_movement) && env.MajorClear(e.out.hv_movement)))) {
     e.nudge_started = true;
     Command c{Command::Kind::kStartNudge, e.out.av};
     c.distance = e.out.draw.nudge_distance;
@@ -148,33 +162,49 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
   // After the HV decided: the releases as the paper orders them. A move of
   // the game (the AV that goes, the HV that drives recklessly, a careful one
   // while the other still stands in the junction or at its line, yielding)
-  // goes with SUMO's right of way off; a careful one whose partner has left
-  // is handed back to SUMO's rules. Every move but the reckless HV's waits
-  // for room at its exit and, at a two-way stop, a gap in the major road (a
-  // vehicle nudged into the junction is not protected by SUMO's rules).
+  // goes with SUMO's right of way off once nobody inside the junction can
+  // touch it on its way; a careful one whose partner is on its way is handed
+  // back to SUMO's rules. Every move but the reckless HV's waits for room at
+  // its exit and, at a two-way stop, a gap in the major road (a vehicle
+  // nudged into the junction is not protected by SUMO's rules).
   if (e.sequence) {
     const bool av_goes = e.out.draw.goes_first;
-    auto may = [&](bool released, int movement, int vehicle) {
-      return released || (env.ExitHasRoom(movement, vehicle) &&
-                           (spec_.rule == Rule::kAllWay || env.MajorClear(movement)));
+    const bool hv_dc = e.out.reading.drives_if_clear;
+    // SUMO's once released: a careful move after its partner from its line
+    // (the still AV after the HV, the HV driving if clear after the AV).
+    // SUMO's rules decide when it enters (its own gap acceptance and keep
+    // clear). A still AV that its nudge took past its line has passed its
+    // link, where SUMO no longer makes it yield: the controller checks for it.
+    const bool av_sumos = !e.av_released && !av_goes && !env.PastLine(e.out.av);
+    const bool hv_sumos = !e.hv_released && av_goes && hv_dc;
+    // The others: room at the exit (not the reckless HV: EncounterSequence)
+    // and, at a two-way stop, a gap in the major road; and the way.
+    auto may = [&](int movement, int vehicle) {
+      return env.ExitHasRoom(movement, vehicle) &&
+             (spec_.rule == Rule::kAllWay || env.MajorClear(movement));
     };
-    bool av_may = may(e.av_released, e.out.av_movement, e.out.av);
-    const bool hv_may = may(e.hv_released, e.out.hv_movement, e.out.hv);
+    bool av_may = e.av_released || av_sumos || may(e.out.av_movement, e.out.av);
+    const bool hv_may = e.hv_released || hv_sumos || may(e.out.hv_movement, e.out.hv);
+    const bool av_way = e.av_released || av_sumos ||
+                        env.WayClear(e.out.av, e.out.hv, /*moving_only=*/!av_goes);
+    const bool hv_way = e.hv_released || hv_sumos || env.WayClear(e.out.hv, e.out.av);
     // The AV goes and the HV drives recklessly: the game's premise is that
-    // both start together, so at a two-way stop the HV waits with the AV for
-    // the major road to clear on both movements.
-    const bool together = av_goes && !e.out.reading.drives_if_clear && !e.av_released &&
-                          !e.hv_released;
-    if (together && spec_.rule == Rule::kTwoWay) {
-      av_may = av_may && env.MajorClear(e.out.hv_movement);
-      if (!av_may) return out;
+    // both start together, so each waits with the other for both ways and,
+    // at a two-way stop, the major road on both movements.
+    const bool together = av_goes && !hv_dc && !e.av_released && !e.hv_released;
+    if (together) {
+      if (spec_.rule == Rule::kTwoWay) av_may = av_may && env.MajorClear(e.out.hv_movement);
+      if (!av_may || !av_way || !hv_way) return out;
     }
-    // The AV follows the HV under SUMO's rules once the HV is inside the
-    // junction, unless its nudge took it past its own line (then SUMO would
-    // not make it yield): once the HV has left.
+    // The AV follows the HV once the HV is inside the junction (SUMO makes
+    // it yield at the crossing point), unless its nudge took it past its own
+    // line: once the HV has passed its way or left.
     const bool hv_ahead =
-        e.hv_cleared || (e.hv_entered && (e.av_released || !env.PastLine(e.out.av)));
-    for (const auto& rel : e.sequence->Update(now, e.av_entered, hv_ahead, av_may, hv_may)) {
+        e.hv_cleared || (e.hv_entered && (e.av_released || !env.PastLine(e.out.av) ||
+                                          env.Passed(e.out.hv, e.out.av)));
+    for (const auto& rel :
+         e.sequence->Update(now, e.av_entered, hv_ahead, av_may, hv_may, av_way, hv_way)) {
+
       // A careful move after its partner (released, inside the junction) is
       // SUMO's; before it (the partner still standing), the game's.
       const bool partner_released = rel.av ? e.hv_released : e.av_released;
@@ -204,9 +234,12 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
 
 void Interception::Entered(int vehicle, double now) {
   last_activity_ = now;
-  if (!encounter_) return;  // both released already: nothing waits for it
-  if (encounter_->out.av == vehicle) encounter_->av_entered = true;
-  if (encounter_->out.hv == vehicle) encounter_->hv_entered = true;
+  auto mark = [&](Active& e) {
+    if (e.out.av == vehicle) e.av_entered = true;
+    if (e.out.hv == vehicle) e.hv_entered = true;
+  };
+  if (encounter_) mark(*encounter_);
+  for (Active& e : leaving_) mark(e);
 }
 
 void Interception::Cleared(int vehicle, double now) {

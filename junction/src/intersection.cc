@@ -42,9 +42,12 @@ EncounterSequence::EncounterSequence(bool av_goes, bool hv_drives_if_clear, doub
 std::vector<EncounterSequence::Release> EncounterSequence::Update(double now, bool av_entered,
                                                                   bool hv_entered,
                                                                   bool av_may_enter,
-                                                                  bool hv_may_enter) {
+                                                                  bool hv_may_enter,
+                                                                  bool av_may_go,
+                                                                  bool hv_may_go) {
   std::vector<Release> out;
   auto release = [&](bool av, bool reckless) {
+    if (!(av ? av_may_go : hv_may_go)) return;                     // its way: later
     if (!reckless && !(av ? av_may_enter : hv_may_enter)) return;  // keep clear: later
     out.push_back({av, reckless});
     (av ? av_released_ : hv_released_) = true;

@@ -130,5 +130,43 @@ TEST(BothProceedCollide, SumoGridLeftTurnsOppositePassPerpendicularCollide) {
   }
 }
 
+// PassedWay: b stands at its line on a straight crossing a's. a has passed
+// b's way once its rear is past the band b's body sweeps (a's path runs
+// along y = 0, b's along x = 0, each 1.8 m wide: the band |x| <= 0.9 m, at
+// arc 29.1..30.9 of a's path). Exactly then, to the sampling step, and for
+// good after.
+TEST(PassedWay, ACrossingIsPassedOnceTheRearIsPastTheOthersBand) {
+  Mover b = Straight(0, 1);
+  for (double front = 25.0; front <= 45.0; front += 0.1) {
+    Mover a = Straight(1, 0);
+    a.front = front;
+    const double rear = front - a.length;
+    if (rear < 30.9 - 0.26) {
+      EXPECT_FALSE(PassedWay(a, b)) << front;
+    }
+    if (rear > 30.9 + 0.01) {
+      EXPECT_TRUE(PassedWay(a, b)) << front;
+    }
+  }
+  // b's own position matters only through where its way begins: a b that has
+  // itself crept past the band can no longer be touched by a behind it.
+  Mover a = Straight(1, 0);
+  a.front = 28;  // rear at 23: before the crossing
+  b.front = 30.9 + 5 + 0.2;  // b's rear past a's band (|y| <= 0.9: arc 29.1..30.9)
+  EXPECT_TRUE(PassedWay(a, b));
+}
+
+// Side by side lanes farther apart than a vehicle's width never touch: each
+// has passed the other's way wherever they are; closer, neither has while
+// they are alongside.
+TEST(PassedWay, SideBySideLanes) {
+  for (double sep : {1.0, 3.2}) {
+    Mover a = Straight(1, 0), b = Straight(1, 0);
+    for (Point2& p : b.path) p.y += sep;
+    EXPECT_EQ(PassedWay(a, b), sep > 1.8) << sep;
+    EXPECT_EQ(PassedWay(b, a), sep > 1.8) << sep;
+  }
+}
+
 }  // namespace
 }  // namespace taebp::junction

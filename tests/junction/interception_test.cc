@@ -107,16 +107,22 @@ TEST(JunctionSpec, ValidateRejectsMismatchedSizes) {
 
 // ------------------------------------------------------------------ fakes
 struct FakeEnv : Environment {
-  bool area_clear = true;
+  std::set<int> way_blocked;  // vehicles someone inside the junction can still touch
+  std::vector<int> way_asked;
   std::set<int> moving;            // vehicles not yet standing
   std::set<int> no_room_vehicles;  // keep clear
   std::set<int> major_busy;        // movements whose major road is not clear
-  bool AreaClear(int, int) override { return area_clear; }
+  bool WayClear(int vehicle, int, bool) override {
+    way_asked.push_back(vehicle);
+    return !way_blocked.count(vehicle);
+  }
   bool Standing(int v) override { return !moving.count(v); }
   bool ExitHasRoom(int, int vehicle) override { return !no_room_vehicles.count(vehicle); }
   bool MajorClear(int movement) override { return !major_busy.count(movement); }
   std::set<int> past_line;  // vehicles whose front is past their line
   bool PastLine(int vehicle) override { return past_line.count(vehicle); }
+  std::set<std::pair<int, int>> passed;  // (first, second): first passed second's way
+  bool Passed(int first, int second) override { return passed.count({first, second}); }
 };
 
 struct FakeModel : EncounterModel {
@@ -200,20 +206,23 @@ struct Sim {
   }
 };
 
-// Both waiting: held at once, drawn, the nudge once both stand and the area
-// is clear, the HV's reading, then the releases.
+// Both waiting: held at once, drawn, the nudge once both stand and nobody
+// inside the junction can touch the AV where it creeps, the HV's reading,
+// then the releases.
 TEST(Interception, BothWaitingAreHeldNudgeWhenStandingAndClearThenTheGame) {
   Sim r;
   r.model.draws[kAv] = Draw(true, 1.5);
   const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 1.0), Wait(kHv, kHV, kSs, 1.2)};
   r.env.moving = {kHv};
-  r.env.area_clear = false;
+  r.env.way_blocked = {kAv};
   EXPECT_EQ(r.Step(1.2, at), (std::vector<Cmd>{Hold(kAv), Hold(kHv)}));
   ASSERT_EQ(r.model.drawn.size(), 1u);
   EXPECT_EQ(r.Step(1.3, at), kNone);  // the HV still rolls, a third vehicle inside
   r.env.moving.clear();
-  EXPECT_EQ(r.Step(1.4, at), kNone);  // a third vehicle inside
-  r.env.area_clear = true;
+  EXPECT_EQ(r.Step(1.4, at), kNone);  // a third vehicle inside can touch the creeping AV
+  ASSERT_FALSE(r.env.way_asked.empty());
+  EXPECT_EQ(r.env.way_asked.back(), kAv);
+  r.env.way_blocked.clear();
   EXPECT_EQ(r.Step(1.5, at), std::vector<Cmd>{Nudge(kAv)});
   EXPECT_EQ(r.Step(1.6, at), kNone);  // nudging: nothing until NudgeDone
   r.logic.NudgeDone(kAv, 1.5, 2.5, r.model);
@@ -276,7 +285,8 @@ TEST(Interception, ReleaseOrderAndRightOfWayForEachIntentAndResponse) {
 
 // A still AV whose nudge took its front past its line is inside the junction,
 // where SUMO no longer makes it yield (it has passed its link): it follows the
-// HV only once the HV has left the junction, not once it has entered.
+// HV only once the HV has passed its way or left the junction, not once it
+// has entered.
 TEST(Interception, AStillAvNudgedPastItsLineFollowsOnlyOnceTheHvHasLeft) {
   for (bool dc : {false, true}) {
     SCOPED_TRACE(dc ? "DC" : "DR");
@@ -291,8 +301,65 @@ TEST(Interception, AStillAvNudgedPastItsLineFollowsOnlyOnceTheHvHasLeft) {
     EXPECT_EQ(r.Step(2.0, {}), dc ? std::vector<Cmd>{Rel(kHv)} : kNone);
     r.logic.Entered(kHv, 3.0);
     EXPECT_EQ(r.Step(3.0, {}), kNone) << "the HV is inside; the AV too";
-    r.logic.Cleared(kHv, 4.0);
-    EXPECT_EQ(r.Step(4.0, {}), std::vector<Cmd>{Back(kAv)});
+    r.env.passed = {{kAv, kHv}};
+    EXPECT_EQ(r.Step(3.2, {}), kNone) << "the AV has not passed the HV's way: that is not it";
+    if (dc) {
+      r.logic.Cleared(kHv, 4.0);  // left the junction
+    } else {
+      r.env.passed = {{kHv, kAv}};  // past the AV's way, still inside
+    }
+    // Past its link, SUMO will not make it yield to anyone: its way first.
+    r.env.way_blocked = {kAv};
+    EXPECT_EQ(r.Step(4.0, {}), kNone);
+    r.env.way_blocked.clear();
+    EXPECT_EQ(r.Step(4.1, {}), std::vector<Cmd>{Back(kAv)});
+  }
+}
+
+// A move of the game (SUMO's right of way off: it would not yield) waits
+// until nobody inside the junction can touch it on its way; when the AV goes
+// and the HV drives recklessly each waits for both ways; a move handed back
+// to SUMO does not wait (SUMO makes it yield).
+TEST(Interception, MovesOfTheGameWaitForTheirWayHandBacksDoNot) {
+  struct Case {
+    bool go, dc;
+    int blocked;
+    std::vector<Cmd> blocked_now, then;
+  };
+  const std::vector<Case> cases = {
+      {true, false, kHv, {}, {Rel(kAv), Rel(kHv)}},  // together: both wait
+      {true, false, kAv, {}, {Rel(kAv), Rel(kHv)}},
+      {false, false, kAv, {Rel(kHv)}, {}},           // the still AV's way is not the HV's
+      {false, false, kHv, {}, {Rel(kHv)}},
+      {true, true, kAv, {}, {Rel(kAv)}},             // the AV that goes
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(std::string(c.go ? "go" : "stop") + (c.dc ? "/DC" : "/DR") + " blocked " +
+                 std::to_string(c.blocked));
+    Sim r;
+    r.model.draws[kAv] = Draw(c.go, 0.0);
+    r.model.dc[kHv] = c.dc;
+    const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+    EXPECT_EQ(r.Step(0.0, at), (std::vector<Cmd>{Hold(kAv), Hold(kHv), Nudge(kAv)}));
+    r.logic.NudgeDone(kAv, 0.0, 1.0, r.model);
+    r.env.way_blocked = {c.blocked};
+    EXPECT_EQ(r.Step(1.0, {}), c.blocked_now);
+    r.env.way_blocked.clear();
+    EXPECT_EQ(r.Step(1.1, {}), c.then);
+  }
+  // Hand-backs: the still AV after the HV, the careful HV after the AV.
+  for (bool go : {false, true}) {
+    Sim r;
+    r.model.draws[kAv] = Draw(go, 0.0);
+    r.model.dc[kHv] = go;
+    const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+    r.Step(0.0, at);
+    r.logic.NudgeDone(kAv, 0.0, 1.0, r.model);
+    const int first = go ? kAv : kHv, second = go ? kHv : kAv;
+    EXPECT_EQ(r.Step(1.0, {}), std::vector<Cmd>{Rel(first)});
+    r.env.way_blocked = {second};
+    r.logic.Entered(first, 1.5);
+    EXPECT_EQ(r.Step(1.5, {}), std::vector<Cmd>{Back(second)}) << (go ? "go" : "stop");
   }
 }
 
@@ -309,33 +376,69 @@ TEST(Interception, EncounterReleasesAreMarkedSoTheControllerWatchesThem) {
   for (const Command& c : cs) EXPECT_TRUE(c.in_encounter);
 }
 
-// Every move but the reckless HV's waits for room at its exit and, at a
-// two-way stop, a gap in the major road on its own movement; handing back to
-// SUMO too (a vehicle nudged into the junction is not protected by SUMO's
-// rules).
+// Every move of the controller but the reckless HV's waits for room at its
+// exit and, at a two-way stop, a gap in the major road on its own movement: a
+// still AV nudged past its line too (SUMO no longer protects it there). A
+// careful move from its line is SUMO's once handed back: SUMO's own keep
+// clear and gap acceptance decide when it enters, so it is handed back at once.
 TEST(Interception, MovesWaitForRoomAndTheMajorRoadTheRecklessHvDoesNot) {
   for (Rule rule : {Rule::kAllWay, Rule::kTwoWay}) {
-    SCOPED_TRACE(ToString(rule));
-    Interception logic(B1(rule), Timing{});
-    FakeEnv env;
-    FakeModel model;
-    model.draws[kAv] = Draw(false, 1.0);  // nudges, then stays
-    const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
-    logic.Step(0, at, env, model);
-    logic.NudgeDone(kAv, 1.0, 1.0, model);
-    env.no_room_vehicles = {kAv, kHv};
-    env.major_busy = {kSs, kWs};
-    EXPECT_EQ(Simple(logic.Step(1.0, {}, env, model)), std::vector<Cmd>{Rel(kHv)});  // DR
-    logic.Cleared(kHv, 2.0);
-    EXPECT_EQ(Simple(logic.Step(2.0, {}, env, model)), kNone);  // no room
-    env.no_room_vehicles.clear();
-    const std::vector<Cmd> next = Simple(logic.Step(2.1, {}, env, model));
-    if (rule == Rule::kAllWay) {
-      EXPECT_EQ(next, std::vector<Cmd>{Back(kAv)});
-    } else {
-      EXPECT_EQ(next, kNone);  // the major road
-      env.major_busy.clear();
-      EXPECT_EQ(Simple(logic.Step(2.2, {}, env, model)), std::vector<Cmd>{Back(kAv)});
+    for (bool past : {true, false}) {
+      SCOPED_TRACE(std::string(ToString(rule)) + (past ? ", AV past its line" : ", AV at its line"));
+      Interception logic(B1(rule), Timing{});
+      FakeEnv env;
+      FakeModel model;
+      model.draws[kAv] = Draw(false, 1.0);  // nudges, then stays
+      const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+      logic.Step(0, at, env, model);
+      logic.NudgeDone(kAv, 1.0, 1.0, model);
+      if (past) env.past_line = {kAv};
+      env.no_room_vehicles = {kAv, kHv};
+      env.major_busy = {kSs, kWs};
+      EXPECT_EQ(Simple(logic.Step(1.0, {}, env, model)), std::vector<Cmd>{Rel(kHv)});  // DR
+      logic.Cleared(kHv, 2.0);
+      if (!past) {
+        EXPECT_EQ(Simple(logic.Step(2.0, {}, env, model)), std::vector<Cmd>{Back(kAv)});
+        continue;
+      }
+      EXPECT_EQ(Simple(logic.Step(2.0, {}, env, model)), kNone);  // no room
+      env.no_room_vehicles.clear();
+      const std::vector<Cmd> next = Simple(logic.Step(2.1, {}, env, model));
+      if (rule == Rule::kAllWay) {
+        EXPECT_EQ(next, std::vector<Cmd>{Back(kAv)});
+      } else {
+        EXPECT_EQ(next, kNone);  // the major road
+        env.major_busy.clear();
+        EXPECT_EQ(Simple(logic.Step(2.2, {}, env, model)), std::vector<Cmd>{Back(kAv)});
+      }
+    }
+  }
+}
+
+// At a two-way stop the AV nudges into the junction only while the major road
+// is clear on both movements for the critical gap (SUMO makes every vehicle
+// that reaches a nudged AV stop for it, inside the junction too); a still AV
+// and an all-way stop do not wait for it.
+TEST(Interception, AtATwoWayStopTheAvNudgesOnlyIntoAClearMajorRoad) {
+  for (Rule rule : {Rule::kAllWay, Rule::kTwoWay}) {
+    for (int busy : {kWs, kSs}) {
+      for (double s : {0.0, 1.5}) {
+        SCOPED_TRACE(std::string(ToString(rule)) + " busy " + std::to_string(busy) + " s " +
+                     std::to_string(s));
+        Interception logic(B1(rule), Timing{});
+        FakeEnv env;
+        FakeModel model;
+        model.draws[kAv] = Draw(false, s);
+        env.major_busy = {busy};
+        const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+        const bool waits = rule == Rule::kTwoWay && s > 0;
+        const std::vector<Cmd> held = {Hold(kAv), Hold(kHv)};
+        const std::vector<Cmd> held_nudge = {Hold(kAv), Hold(kHv), Nudge(kAv)};
+        const std::vector<Cmd> nudge = {Nudge(kAv)};
+        EXPECT_EQ(Simple(logic.Step(0, at, env, model)), waits ? held : held_nudge);
+        env.major_busy.clear();
+        EXPECT_EQ(Simple(logic.Step(0.1, at, env, model)), waits ? nudge : kNone);
+      }
     }
   }
 }
@@ -458,6 +561,26 @@ TEST(Interception, ThirdVehiclesOnConflictingMovementsWaitUntilBothAreOnTheirWay
   r.logic.Cleared(kAv, 2.0);
   r.logic.Cleared(kHv, 2.0);
   EXPECT_EQ(r.logic.TakeFinished().size(), 1u);
+}
+
+// A new meeting forms only once both vehicles of the encounter before are
+// inside the junction: one handed back but still at its line is neither at
+// the lines a meeting looks at (it is SUMO's, on its way) nor yet inside
+// where the new moves' ways are checked, so a reckless move of the new
+// encounter could start into it.
+TEST(Interception, ANewMeetingWaitsUntilTheEncounterBeforeIsInsideTheJunction) {
+  Sim r;  // the AV stays, the HV drives recklessly
+  const std::vector<AtLine> first = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+  r.Step(0.0, first);
+  r.logic.NudgeDone(kAv, 0.0, 0.5, r.model);
+  EXPECT_EQ(r.Step(1.0, {}), std::vector<Cmd>{Rel(kHv)});
+  r.logic.Entered(kHv, 1.5);
+  EXPECT_EQ(r.Step(1.5, {}), std::vector<Cmd>{Back(kAv)});  // the AV: SUMO's, at its line
+  ASSERT_TRUE(r.logic.spec().Conflict(kNs, kEs));
+  const std::vector<AtLine> next = {Wait(kAv2, kAV, kNs, 1.0), Wait(kHv2, kHV, kEs, 1.2)};
+  EXPECT_EQ(r.Step(1.6, next), kNone) << "the AV of the encounter before has not begun to move";
+  r.logic.Entered(kAv, 1.7);
+  EXPECT_EQ(r.Step(1.7, next), (std::vector<Cmd>{Hold(kAv2), Hold(kHv2), Nudge(kAv2)}));
 }
 
 TEST(Interception, NudgeDoneWithoutEncounterThrows) {

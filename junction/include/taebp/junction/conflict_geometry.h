@@ -45,4 +45,16 @@ struct Mover {
 // do not collide. `dt`: SUMO's step length.
 bool BothProceedCollide(const Mover& a, const Mover& b, double dt);
 
+// Has `first` (moving on along its path) passed `second`'s way through the
+// junction, whatever their speeds from now on: no body of `first` from where
+// it is (its front at first.front) until its rear has left the junction
+// overlaps any body of `second` from where it stands until its rear has left
+// the junction? Bodies as in BothProceedCollide, sampled every `step` metres
+// of arc. (On a merge the first must be on the shared exit lane farther ahead
+// than the second reaches before its rear leaves the junction.)
+// A reach >= 0: only that many metres ahead of the vehicle's front (0: where
+// it is now: a vehicle standing still).
+bool PassedWay(const Mover& first, const Mover& second, double first_reach = -1,
+               double second_reach = -1, double step = 0.25);
+
 }  // namespace taebp::junction

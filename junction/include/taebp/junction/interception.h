@@ -30,10 +30,11 @@
 //   `kArrivalLimit` seconds, or that stops being its lane's front, ends the
 //   meeting: the held one is handed back, counted in AbandonedMeetings),
 //   then draws the AV's intent and signal, waits until both stand still and
-//   no third vehicle is inside the conflict area of their movements
-//   (Environment::AreaClear), lets the AV nudge as drawn from its committed
-//   scheme, and the HV reads the displacement SUMO reports. Then, as the paper
-//   has it (EncounterSequence): an AV that goes and an HV that drives
+//   no vehicle inside the junction can touch the AV on its way
+//   (Environment::WayClear: nor will anyone there come to yield to an AV
+//   nudged into its path), lets the AV nudge as drawn from its committed
+//   scheme, and the HV reads the displacement SUMO reports.
+//   Then, as the paper has it (EncounterSequence): an AV that goes and an HV that drives
 //   recklessly are released with SUMO's right of way off (they collide if both
 //   go: SUMO's collision check says whether they do); so is a careful move
 //   while its partner still stands yielding in the junction or at its line (an
@@ -46,17 +47,22 @@
 //   following) and decide when it enters. A still AV whose nudge took its
 //   front past its line is inside the junction itself, where SUMO no longer
 //   makes it yield (it has passed its link): it is handed back only once the
-//   HV has left the junction. Every move but the reckless HV's
-//   waits for room at its exit and, at a two-way stop, a gap in the major
-//   road; when the AV goes and the HV drives recklessly, the two start
-//   together (the game's premise), so there the HV waits with the AV for the
-//   major road to clear on both movements.
+//   HV has passed its way through the junction (Environment::Passed) or left
+//   the junction. Every move of the game waits until no vehicle inside the
+//   junction can touch it on its way through (Environment::WayClear: with
+//   SUMO's right of way off it would not yield); every move but the reckless
+//   HV's also waits for room at its exit and, at a two-way stop, a gap in the
+//   major road; when the AV goes and the HV drives recklessly, the two start
+//   together (the game's premise), so there each waits with the other for
+//   both ways (and at a two-way stop the major road on both movements) to
+//   clear.
 // - Third vehicles. While a meeting or an encounter runs, a vehicle waiting at a stop line
 //   of this junction on a movement that conflicts with the AV's or the HV's is
 //   held there; it is handed back once both encounter vehicles are on their
 //   way (SUMO's own logic then makes it yield to them). A new meeting may
-//   form from then on; the encounter is recorded when both have left the
-//   junction.
+//   form once both are inside the junction (a move not yet begun is neither
+//   at the lines a meeting looks at nor inside where the new moves' ways are
+//   checked); the encounter is recorded when both have left the junction.
 #pragma once
 
 #include "taebp/junction/intersection.h"
@@ -100,9 +106,15 @@ struct Timing {
 class Environment {
  public:
   virtual ~Environment() = default;
-  // No vehicle other than the encounter's two inside the junction on these
-  // two movements or on any movement conflicting with them.
-  virtual bool AreaClear(int av_movement, int hv_movement) = 0;
+  // No vehicle inside the junction other than `vehicle` and `partner` can
+  // still touch `vehicle` on its way through it: each one on a movement
+  // conflicting with its own has passed its way (conflict_geometry.h
+  // PassedWay), or stands still clear of it (yielding: SUMO's rules make a
+  // vehicle in the junction wait for a foe ahead on the crossing, and
+  // waiting for it would wait for ever).
+  // `moving_only`: vehicles standing still do not count (a still AV past its
+  // line, handed back: those stopped there are yielding to it).
+  virtual bool WayClear(int vehicle, int partner, bool moving_only = false) = 0;
   // The vehicle stands still (a held vehicle may take a step or two to stop).
   virtual bool Standing(int vehicle) = 0;
   // Keep clear: the vehicle's exit on `movement` can take it with its rear
@@ -115,6 +127,10 @@ class Environment {
   // The vehicle's front is past its stop line, inside the junction (a nudge
   // can take a held AV there).
   virtual bool PastLine(int vehicle) = 0;
+  // `first`, on its way, has passed `second`'s way through the junction: no
+  // body of it from now on can touch `second` on the junction
+  // (conflict_geometry.h PassedWay).
+  virtual bool Passed(int first, int second) = 0;
 };
 
 // The paper's game for one AV-HV pair: the AV's draw from its committed

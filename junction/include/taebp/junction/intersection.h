@@ -69,9 +69,12 @@ class EncounterSequence {
   // Releases due at `now`, given which vehicles have entered the junction
   // (released and past their stop lines). A careful release (not a reckless
   // HV) also needs its exit to have room (`av_may_enter`, `hv_may_enter`:
-  // keep clear); until then it stays due.
+  // keep clear); any release needs `av_may_go` / `hv_may_go` (the caller's
+  // gate: a move of the game waits for its way to clear); until then it
+  // stays due.
   std::vector<Release> Update(double now, bool av_entered, bool hv_entered,
-                              bool av_may_enter = true, bool hv_may_enter = true);
+                              bool av_may_enter = true, bool hv_may_enter = true,
+                              bool av_may_go = true, bool hv_may_go = true);
 
  private:
   bool av_goes_, hv_dc_;
