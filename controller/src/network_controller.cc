@@ -97,6 +97,11 @@ struct NetworkController::Impl {
     v.max_speed = s.sumo.MaxSpeed(id);
     for (const std::string& e : s.sumo.Route(id)) v.route.push_back(s.topo.EdgeIndex(e));
     v.route_pos = std::max(0, s.sumo.RouteIndex(id));
+    if (s.policy) {  // the stop lines it may now reach sooner than thought
+      control::SpeedFactorSeen(s, s.sumo.SpeedFactor(id));
+      if (v.route_pos < static_cast<int>(v.route.size()))
+        control::ApproachDeparture(s, s.topo.EdgeName(v.route[v.route_pos]));
+    }
     const int h = s.vehicles.Add(std::move(v));
     control::UpdateNear(s, h);
     if (s.opts.colour_states) {
@@ -195,6 +200,7 @@ void NetworkController::Step() {
   RunState& s = c.s;
   s.now = s.sumo.Time();
   ++c.steps;
+  s.step = c.steps;
   if (s.sumo.TeleportNumber() > 0 && s.measuring()) ++s.out.teleports;
   if (s.sumo.DepartedNumber() > 0)
     for (const std::string& id : s.sumo.DepartedIDs()) c.Register(id);

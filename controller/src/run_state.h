@@ -32,6 +32,9 @@ constexpr double kHaltSpeed = 0.1;  // m/s: SUMO's halting threshold
 
 struct ApproachState {
   int front = -1;  // the vehicle at its front last time it was looked at
+  // The first step at which a vehicle may be near its line: not looked at
+  // before (stop_lines.cc, Observe).
+  long next_look = 0;
   ApproachStats stats;
 };
 
@@ -66,7 +69,11 @@ struct RunState {
   double dt = 0.1;
   long sample_every = 10;  // steps between two samples (about a second)
   double now = 0;
+  long step = 0;  // steps simulated
   double last_crossing = 0;
+  // The largest speed factor of any vehicle so far: nobody drives faster than
+  // this times a lane's speed limit.
+  double max_speed_factor = 0;
   double stall_limit = 120;
 
   Topology topo;

@@ -23,6 +23,16 @@ void LeftLine(RunState& s, int h) {
 
 }  // namespace
 
+void ApproachDeparture(RunState& s, const std::string& edge) {
+  for (int a : s.topo.ApproachesOfEdge(edge)) s.approaches[a].next_look = 0;
+}
+
+void SpeedFactorSeen(RunState& s, double factor) {
+  if (factor <= s.max_speed_factor) return;
+  s.max_speed_factor = factor;
+  for (ApproachState& ap : s.approaches) ap.next_look = 0;  // the bounds were too tight
+}
+
 bool Watched(RunState& s, JunctionState& j) {
   const bool watched = (j.near_av > 0 && j.near_hv > 0) || j.logic->Busy();
   if (!watched && j.watched) {
@@ -35,17 +45,34 @@ bool Watched(RunState& s, JunctionState& j) {
   return watched;
 }
 
+// The steps until a vehicle `dist` metres farther from the line than the
+// reach of a meeting can be within it: nobody drives faster than the lane's
+// limit times the largest speed factor of any vehicle.
+long StepsAway(const RunState& s, const ApproachInfo& info, double dist) {
+  const double vmax = info.speed * s.max_speed_factor;
+  if (vmax <= 0 || dist <= 0) return 1;
+  return std::max(1L, static_cast<long>(std::floor(dist / (vmax * s.dt))));
+}
+
 void Observe(RunState& s, JunctionState& j) {
   j.at_line.clear();
   const int jx = s.Index(j);
+  const double reach = std::max(s.sc.meeting_distance, kAtLine);
   for (int a : s.topo.junctions()[jx].approaches) {
     const ApproachInfo& info = s.topo.approaches()[a];
     ApproachState& ap = s.approaches[a];
+    // Nobody can be near this line yet (a vehicle departing onto its edge
+    // brings the look forward: ApproachDeparture).
+    if (s.step < ap.next_look) continue;
+    ap.next_look = s.step + 1;
     int h = -1;
-    if (s.sumo.LaneVehicleNumber(info.lane) > 0) {
+    const bool empty = s.sumo.LaneVehicleNumber(info.lane) == 0;
+    if (!empty) {
       const std::vector<std::string> ids = s.sumo.LaneVehicleIDs(info.lane);
       if (!ids.empty()) h = s.vehicles.Find(ids.back());
     }
+    // Only lanes no vehicle can change into ahead of their front.
+    if (empty && info.only_lane) ap.next_look = s.step + StepsAway(s, info, info.length - reach);
     if (ap.front >= 0 && ap.front != h) LeftLine(s, ap.front);
     ap.front = h;
     if (h < 0) continue;
@@ -67,7 +94,10 @@ void Observe(RunState& s, JunctionState& j) {
     }
     if (v.movement < 0) continue;  // e.g. needs another lane for its next edge
     const double gap = info.length - s.sumo.LanePosition(v.id);
-    if (gap > s.sc.meeting_distance && gap > kAtLine) continue;
+    if (gap > reach) {
+      if (info.only_lane) ap.next_look = s.step + StepsAway(s, info, gap - reach);
+      continue;
+    }
     const bool waiting = gap <= kAtLine && s.sumo.Speed(v.id) < kSlow;
     if (waiting && v.line_since < 0) v.line_since = s.now;
     if (!waiting) v.line_since = -1;

@@ -21,8 +21,19 @@ constexpr double kStopGap = 0.1;  // m: SUMO halts a front this far before the l
 
 // Is junction `j` looked at this step? On leaving that, what it saw is forgotten.
 bool Watched(RunState& s, JunctionState& j);
-// Fills j.at_line with SUMO's view of its stop lines this step.
+// Fills j.at_line with SUMO's view of its stop lines this step. A lane is
+// read only from the first step at which a vehicle can be within reach of a
+// meeting at its line (an empty lane: its length away; else its front's gap),
+// driving at its speed limit times the largest speed factor seen; lanes of
+// edges with several lanes every step (a vehicle may change into them ahead
+// of their front). So the per-step work is in proportion to what waits at,
+// or comes to, the stop lines.
 void Observe(RunState& s, JunctionState& j);
+// A vehicle departed onto `edge`: its approaches are looked at again at once.
+void ApproachDeparture(RunState& s, const std::string& edge);
+// A vehicle's speed factor: a larger one than any before makes every lane be
+// looked at again.
+void SpeedFactorSeen(RunState& s, double factor);
 
 class StopLineEnvironment : public junction::Environment {
  public:

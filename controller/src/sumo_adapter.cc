@@ -145,6 +145,7 @@ double MinGap(const std::string& veh) { return TAEBP_SUMO_CALL(MinGap(veh)); }
 double Width(const std::string& veh) { return TAEBP_SUMO_CALL(Width(veh)); }
 double Accel(const std::string& veh) { return TAEBP_SUMO_CALL(Accel(veh)); }
 double MaxSpeed(const std::string& veh) { return TAEBP_SUMO_CALL(MaxSpeed(veh)); }
+double SpeedFactor(const std::string& veh) { return TAEBP_SUMO_CALL(SpeedFactor(veh)); }
 int RouteIndex(const std::string& veh) { return TAEBP_SUMO_CALL(RouteIndex(veh)); }
 std::vector<std::string> Route(const std::string& veh) { return TAEBP_SUMO_CALL(Route(veh)); }
 void SetRoute(const std::string& veh, const std::vector<std::string>& edges) {

@@ -54,6 +54,7 @@ double MinGap(const std::string& veh);
 double Width(const std::string& veh);
 double Accel(const std::string& veh);
 double MaxSpeed(const std::string& veh);
+double SpeedFactor(const std::string& veh);
 int RouteIndex(const std::string& veh);
 std::vector<std::string> Route(const std::string& veh);
 void SetRoute(const std::string& veh, const std::vector<std::string>& edges);

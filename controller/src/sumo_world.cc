@@ -37,6 +37,7 @@ class AdapterWorld final : public SumoWorld {
   double Width(const std::string& veh) override { return sumo::Width(veh); }
   double Accel(const std::string& veh) override { return sumo::Accel(veh); }
   double MaxSpeed(const std::string& veh) override { return sumo::MaxSpeed(veh); }
+  double SpeedFactor(const std::string& veh) override { return sumo::SpeedFactor(veh); }
 
   void SetSpeed(const std::string& veh, double speed) override { sumo::SetSpeed(veh, speed); }
   void SetSpeedMode(const std::string& veh, int mode) override { sumo::SetSpeedMode(veh, mode); }

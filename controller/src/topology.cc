@@ -110,7 +110,10 @@ Topology::Topology(const ScenarioConfig& sc, const Scenario& scenario, const net
       const net::Lane* l = net.FindLane(lane);
       ap.length = l ? l->length : 0;
       ap.speed = l ? l->speed : vmax;
+      for (const std::string& p : net.Predecessors(lane))
+        if (const net::Lane* pl = net.FindLane(p)) ap.speed = std::max(ap.speed, pl->speed);
       ap.edge = l ? l->edge : std::string();
+      if (const net::Edge* e = l ? net.FindEdge(l->edge) : nullptr) ap.only_lane = e->lanes.size() == 1;
       ap.junction = jx;
       rt.approaches.push_back(static_cast<int>(approaches_.size()));
       edge_approaches_[ap.edge].push_back(static_cast<int>(approaches_.size()));

@@ -57,7 +57,10 @@ struct ApproachInfo {  // a stop-controlled lane into a controlled junction
   std::string lane;
   std::string edge;
   double length = 0;
-  double speed = 0;  // the lane's limit (m/s)
+  // The speed limit of the lane and of the lanes leading into it (m/s): the
+  // fastest a vehicle of speed factor 1 comes along it.
+  double speed = 0;
+  bool only_lane = true;  // its edge has no other lane (no vehicle can change into it ahead)
   int junction = -1;
 };
 

@@ -124,6 +124,7 @@ class FakeWorld : public SumoWorld {
   double Width(const std::string&) override { return 1.8; }
   double Accel(const std::string&) override { return 2.6; }
   double MaxSpeed(const std::string&) override { return 13.89; }
+  double SpeedFactor(const std::string&) override { return 1.0; }
 
   void SetSpeed(const std::string& v, double speed) override {
     commands.push_back("speed " + v + " " + Num(speed));
@@ -238,6 +239,43 @@ TEST_F(FakeJunction, AnAvAndAnHvWhoseMovementsDoNotConflictAreNeverCommanded) {
   for (int k = 0; k < 50; ++k) Step(*c);
   EXPECT_GT(world_.reads, before) << "the junction is watched (an AV and an HV near it)";
   EXPECT_THAT(world_.commands, IsEmpty());
+}
+
+// An AV and an HV drive towards conflicting lines at the lanes' speed limit
+// (the fastest any vehicle there can: speed factor 1). Their lanes are read
+// when they start and then not again until they can be within reach of a
+// meeting at the line; yet they are held in the very step the second of them
+// comes to a halt at its line, as when every lane is read every step.
+TEST_F(FakeJunction, LanesAreReadOnlyWhenSomeoneCanBeNearTheLineAndNoMeetingIsLate) {
+  auto c = Controller("no_ebp");
+  const double vmax = net_.FindLane("WC_0")->speed;
+  const double line = net_.FindLane("WC_0")->length - 0.3;
+  Car av = AtLine("a1", "AV", "WC", "CE"), hv = AtLine("h1", "HV", "SC", "CN");
+  av.pos = hv.pos = 5.0;
+  av.speed = hv.speed = vmax;
+  world_.Depart(av);
+  world_.Depart(hv);
+  long reads_far = 0;
+  int step = 0, halted_at = -1, held_at = -1;
+  while (held_at < 0 && step < 200) {
+    const long before = world_.reads;
+    Step(*c);
+    ++step;
+    if (world_.CommandsFor("a1").size() == 1 && held_at < 0) held_at = step;
+    for (const char* id : {"a1", "h1"}) {  // drive on at the limit; halt at the line
+      const Car& car = world_.cars.at(id);
+      const double next = std::min(line, car.pos + vmax * 0.1);
+      world_.Move(id, car.lane, next, next < line ? vmax : 0.0);
+    }
+    if (world_.cars.at("a1").speed == 0 && halted_at < 0) halted_at = step + 1;
+    const bool sample = step % 10 == 0;
+    // (The step they depart in reads their lanes once.)
+    if (step > 1 && !sample && world_.cars.at("a1").pos < line - 20)
+      reads_far += world_.reads - before;
+  }
+  ASSERT_GT(halted_at, 40) << "the test drives them from afar";
+  EXPECT_EQ(held_at, halted_at) << "held in the step both wait at their lines";
+  EXPECT_EQ(reads_far, 0) << "lanes read while nobody could be near their lines";
 }
 
 TEST_F(FakeJunction, TheGameIsExecutedInTheWorldAndBothAreHandedBackInThePapersOrder) {

@@ -105,6 +105,8 @@ double MinGap(const std::string& veh);
 double Width(const std::string& veh);
 double Accel(const std::string& veh);
 double MaxSpeed(const std::string& veh);
+// Its speed factor: it drives at most this times a lane's speed limit.
+double SpeedFactor(const std::string& veh);
 int RouteIndex(const std::string& veh);  // index of the current edge in its route
 std::vector<std::string> Route(const std::string& veh);  // the route's edges
 void SetRoute(const std::string& veh, const std::vector<std::string>& edges);  // from its edge

@@ -52,6 +52,7 @@ class SumoWorld {
   virtual double Width(const std::string& veh) = 0;
   virtual double Accel(const std::string& veh) = 0;
   virtual double MaxSpeed(const std::string& veh) = 0;
+  virtual double SpeedFactor(const std::string& veh) = 0;  // at most this times a lane's limit
 
   // Commands.
   virtual void SetSpeed(const std::string& veh, double speed) = 0;  // < 0: car-following again
