@@ -210,6 +210,7 @@ void NetworkController::Step() {
   if (s.policy) {
     if (!s.crossing.empty()) c.commands.UpdateCrossing();
     if (!s.nudging.empty()) c.commands.UpdateNudges();
+    if (!s.unblocked.empty()) c.commands.UpdateUnblocked();
     for (control::JunctionState& j : s.junctions)
       if (control::Watched(s, j)) c.Decide(j);
   }

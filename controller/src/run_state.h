@@ -27,6 +27,7 @@ namespace taebp::control {
 constexpr int kModeDefault = 31;   // SUMO's own rules (stop signs included)
 constexpr int kModeReleased = 55;  // the controller decided the junction; keep car-following
 constexpr int kModeCreep = 0;      // exact commanded speeds during a nudge
+constexpr int kModeUnblocked = 63; // SUMO's rules, foes already in the junction disregarded
 
 constexpr double kHaltSpeed = 0.1;  // m/s: SUMO's halting threshold
 
@@ -81,6 +82,7 @@ struct RunState {
   std::vector<JunctionState> junctions;    // as topo.junctions()
   std::vector<ApproachState> approaches;   // as topo.approaches()
   std::vector<int> crossing, nudging;      // vehicles released and not out / creeping
+  std::vector<int> unblocked;              // let past a nudged AV, still in the junction
   std::unique_ptr<HvPopulation> population;  // policy runs only
   PolicyRun out;
 };

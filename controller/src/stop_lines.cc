@@ -242,4 +242,57 @@ bool StopLineEnvironment::Passed(int first, int second) {
   return junction::PassedWay(MoverNow(first), MoverNow(second));
 }
 
+std::vector<StopLineEnvironment::Inside> StopLineEnvironment::VehiclesInside() {
+  std::vector<Inside> out;
+  for (std::size_t k = 0; k < info_.movements.size(); ++k) {
+    const MovementInfo& mk = info_.movements[k];
+    for (const std::string& in : mk.internal) {
+      if (s_.sumo.LaneVehicleNumber(in) == 0) continue;
+      for (const std::string& id : s_.sumo.LaneVehicleIDs(in)) {
+        Inside x;
+        x.vehicle = s_.vehicles.Find(id);
+        x.movement = static_cast<int>(k);
+        x.mover = mk.mover;
+        if (x.vehicle >= 0) {
+          x.mover.length = s_.vehicles[x.vehicle].length;
+          x.mover.width = s_.vehicles[x.vehicle].width;
+        }
+        x.mover.front = mk.ArcOf(in, s_.sumo.LanePosition(id));
+        x.still = s_.sumo.Speed(id) < kHaltSpeed;
+        out.push_back(x);
+      }
+    }
+  }
+  return out;
+}
+
+// The still, free vehicles inside the junction on movements conflicting with
+// `vehicle`'s that stand in its way, each of which has a clear way itself:
+// every other vehicle inside on a movement conflicting with its own, moving
+// on its way or still where it stands (the nudged AV among them), does not
+// touch it.
+std::vector<int> StopLineEnvironment::Unblockable(int vehicle, int partner) {
+  std::vector<int> out;
+  const int movement = s_.vehicles[vehicle].movement;
+  const std::vector<Inside> inside = VehiclesInside();
+  std::optional<junction::Mover> mine;
+  for (const Inside& b : inside) {
+    if (!b.still || b.vehicle < 0 || b.vehicle == vehicle || b.vehicle == partner) continue;
+    if (s_.vehicles[b.vehicle].state != State::kFree || b.mover.front < 0) continue;
+    if (!info_.spec.Conflict(b.movement, movement)) continue;
+    if (!mine) mine = MoverNow(vehicle);
+    if (junction::PassedWay(b.mover, *mine, 0.0)) continue;  // not in its way
+    bool free = true;
+    for (const Inside& x : inside) {
+      if (&x == &b || !info_.spec.Conflict(x.movement, b.movement)) continue;
+      if (x.mover.front < 0 || !junction::PassedWay(x.mover, b.mover, x.still ? 0.0 : -1.0)) {
+        free = false;
+        break;
+      }
+    }
+    if (free) out.push_back(b.vehicle);
+  }
+  return out;
+}
+
 }  // namespace taebp::control

@@ -44,8 +44,18 @@ class StopLineEnvironment : public junction::Environment {
   bool MajorClear(int movement) override;
   bool PastLine(int vehicle) override;
   bool Passed(int first, int second) override;
+  std::vector<int> Unblockable(int vehicle, int partner) override;
 
  private:
+  // A vehicle inside the junction: its slot, its movement, where it is.
+  struct Inside {
+    int vehicle = -1;  // -1: not one the controller knows
+    int movement = -1;
+    junction::Mover mover;  // its front where it is now
+    bool still = false;
+  };
+  // Every vehicle on an internal lane of this junction.
+  std::vector<Inside> VehiclesInside();
   // The vehicle's path through the junction with its front where it is now.
   junction::Mover MoverNow(int vehicle);
 

@@ -32,6 +32,33 @@ void VehicleCommands::Execute(JunctionState& j, const Command& c) {
         HandBack(j, c.vehicle);
       }
       break;
+    case Command::Kind::kUnblock:
+      Unblock(c.vehicle);
+      break;
+  }
+}
+
+void VehicleCommands::Unblock(int h) {
+  Vehicle& v = s_.vehicles[h];
+  if (v.unblocked || v.state != State::kFree) return;
+  s_.sumo.SetSpeedMode(v.id, kModeUnblocked);
+  v.unblocked = true;
+  s_.unblocked.push_back(h);
+  if (s_.measuring()) ++s_.out.unblocked;
+}
+
+void VehicleCommands::UpdateUnblocked() {
+  const std::vector<int> now_unblocked = s_.unblocked;
+  for (int h : now_unblocked) {
+    Vehicle& v = s_.vehicles[h];
+    if (v.alive) {
+      const std::string lane = s_.sumo.LaneID(v.id);
+      if (!lane.empty() && lane[0] == ':') continue;  // still inside
+      s_.sumo.SetSpeedMode(v.id, kModeDefault);
+    }
+    v.unblocked = false;
+    s_.unblocked.erase(std::remove(s_.unblocked.begin(), s_.unblocked.end(), h),
+                       s_.unblocked.end());
   }
 }
 

@@ -10,6 +10,9 @@
 //   junction (UpdateCrossing: the logic learns when it has entered the
 //   junction and when it has left it), then SUMO's again;
 // - HandBack: a third vehicle held for an encounter is SUMO's again;
+// - Unblock: a vehicle SUMO keeps waiting inside the junction for a nudged AV
+//   may pass it (speed mode 63: foes already in the junction disregarded)
+//   until it has left the junction (UpdateUnblocked);
 // - colours by state under colour_states (sumo-gui).
 #pragma once
 
@@ -23,9 +26,11 @@ class VehicleCommands {
 
   // Executes one command of junction j's logic.
   void Execute(JunctionState& j, const junction::Command& c);
-  // Per step: nudges in progress, released vehicles leaving their junctions.
+  // Per step: nudges in progress, released vehicles leaving their junctions,
+  // vehicles let past a nudged AV leaving theirs (SUMO's rules in full again).
   void UpdateNudges();
   void UpdateCrossing();
+  void UpdateUnblocked();
   // A released vehicle's rear left the junction (or it left the network
   // inside it): SUMO's rules again.
   void Clear(int h);
@@ -36,6 +41,7 @@ class VehicleCommands {
   void CountWait(JunctionState& j, const Vehicle& v);
   void Release(JunctionState& j, int h, bool reckless);
   void HandBack(JunctionState& j, int h);
+  void Unblock(int h);
   void StartNudge(int h, double distance);
   void FinishNudge(int h, double observed);
   bool ClearedJunction(const Vehicle& v, const std::string& lane);

@@ -43,6 +43,7 @@ struct Vehicle {
   double line_gap = 0;     // m from its front to the stop line when halted there
   bool reckless = false;   // released with SUMO's right of way off
   bool entered = false;    // released and past its stop line (reported to the logic)
+  bool unblocked = false;  // let past a nudged AV (kModeUnblocked) until out of the junction
   std::vector<int> near;   // controlled junctions whose stop line it may reach before the next sample
   double target = 0, creep_speed = 0, commanded = 0;  // the nudge
   std::string lane;        // while crossing: the lane it was last seen on

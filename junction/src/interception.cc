@@ -186,8 +186,19 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
     bool av_may = e.av_released || av_sumos || may(e.out.av_movement, e.out.av);
     const bool hv_may = e.hv_released || hv_sumos || may(e.out.hv_movement, e.out.hv);
     const bool av_way = e.av_released || av_sumos ||
-                        env.WayClear(e.out.av, e.out.hv, /*moving_only=*/!av_goes);
+                        env.WayClear(e.out.av, e.out.hv);
     const bool hv_way = e.hv_released || hv_sumos || env.WayClear(e.out.hv, e.out.av);
+    // A standoff: the AV stands nudged inside the junction and vehicles SUMO
+    // stopped there for it block a move of the game: those free to go may
+    // pass it.
+    if (!e.av_released && (!av_way || !hv_way) && env.PastLine(e.out.av)) {
+      std::vector<int> blockers;
+      if (!av_way) blockers = env.Unblockable(e.out.av, e.out.hv);
+      if (!hv_way)
+        for (int b : env.Unblockable(e.out.hv, e.out.av))
+          if (std::find(blockers.begin(), blockers.end(), b) == blockers.end()) blockers.push_back(b);
+      for (int b : blockers) out.push_back({Command::Kind::kUnblock, b});
+    }
     // The AV goes and the HV drives recklessly: the game's premise is that
     // both start together, so each waits with the other for both ways and,
     // at a two-way stop, the major road on both movements.

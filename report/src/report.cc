@@ -372,6 +372,7 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
                    {"tolerance", kNudgeTolerance}};
     j["other_collisions"] = r.other_collisions;
     j["other_collisions_game_move"] = r.other_collisions_game_move;
+    j["unblocked"] = r.unblocked;
     j["teleports"] = r.teleports;
     j["longest_gap_without_crossing"] = r.longest_gap_without_crossing;
     j["simulated_seconds"] = r.simulated_seconds;

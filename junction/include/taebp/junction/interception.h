@@ -55,7 +55,12 @@
 //   major road; when the AV goes and the HV drives recklessly, the two start
 //   together (the game's premise), so there each waits with the other for
 //   both ways (and at a two-way stop the major road on both movements) to
-//   clear.
+//   clear. A nudged AV standing inside the junction makes SUMO stop vehicles
+//   in the junction for it, possibly in the way of a move of the game, where
+//   they would wait for it for ever and it for them: such a vehicle, when its
+//   own way is clear, is let past the AV (Command::kUnblock: SUMO's car
+//   following and links ahead still apply, vehicles already in the junction
+//   are disregarded until it has left it).
 // - Third vehicles. While a meeting or an encounter runs, a vehicle waiting at a stop line
 //   of this junction on a movement that conflicts with the AV's or the HV's is
 //   held there; it is handed back once both encounter vehicles are on their
@@ -131,6 +136,16 @@ class Environment {
   // body of it from now on can touch `second` on the junction
   // (conflict_geometry.h PassedWay).
   virtual bool Passed(int first, int second) = 0;
+  // Vehicles standing still inside the junction in `vehicle`'s way that SUMO
+  // keeps waiting there for a vehicle of the game standing in the junction (a
+  // nudged AV: SUMO makes a vehicle in the junction wait for a foe ahead of
+  // it on their crossing for as long as that foe stands), and that could
+  // drive on without touching anyone inside: each one's way is clear of every
+  // vehicle there (moving ones on their ways, still ones where they stand).
+  virtual std::vector<int> Unblockable(int vehicle, int partner) {
+    (void)vehicle, (void)partner;
+    return {};
+  }
 };
 
 // The paper's game for one AV-HV pair: the AV's draw from its committed
@@ -163,6 +178,8 @@ struct Command {
     kStartNudge,  // the AV: creep `distance` m (0: stay), then report NudgeDone
     kRelease,     // drive through with SUMO's right of way off (the game's go / DR)
     kHandBack,    // SUMO's own rules again (a careful release, a held third vehicle)
+    kUnblock,     // a vehicle SUMO keeps waiting inside the junction for a vehicle of the
+                  // game may pass it (Environment::Unblockable) until it has left the junction
   };
   Kind kind = Kind::kHold;
   int vehicle = -1;

@@ -177,6 +177,9 @@ struct PolicyRun {
   // of way off (the HV driving recklessly, the AV that goes) and the other a
   // third vehicle (at a two-way stop: the major road)
   long other_collisions_game_move = 0;
+  // Vehicles SUMO kept waiting inside a junction for a nudged AV, in the way
+  // of a move of the game, that the controller let past it (after the warm-up)
+  long unblocked = 0;
   long teleports = 0;
   double longest_gap_without_crossing = 0;  // s, a deadlock indicator
   std::string sumo_version;
