@@ -123,6 +123,11 @@ struct FakeEnv : Environment {
   bool PastLine(int vehicle) override { return past_line.count(vehicle); }
   std::set<std::pair<int, int>> passed;  // (first, second): first passed second's way
   bool Passed(int first, int second) override { return passed.count({first, second}); }
+  std::map<int, std::vector<int>> unblockable;  // by the vehicle whose way they block
+  std::vector<int> Unblockable(int vehicle, int) override {
+    const auto it = unblockable.find(vehicle);
+    return it == unblockable.end() ? std::vector<int>{} : it->second;
+  }
 };
 
 struct FakeModel : EncounterModel {
@@ -167,6 +172,7 @@ Cmd Hold(int v) { return {Kind::kHold, v}; }
 Cmd Nudge(int v) { return {Kind::kStartNudge, v}; }
 Cmd Rel(int v) { return {Kind::kRelease, v}; }
 Cmd Back(int v) { return {Kind::kHandBack, v}; }
+Cmd Unblock(int v) { return {Kind::kUnblock, v}; }
 const std::vector<Cmd> kNone;
 
 AtLine Wait(int v, VehicleKind k, int m, double since) { return {v, k, m, true, since}; }
@@ -360,6 +366,28 @@ TEST(Interception, MovesOfTheGameWaitForTheirWayHandBacksDoNot) {
     r.env.way_blocked = {second};
     r.logic.Entered(first, 1.5);
     EXPECT_EQ(r.Step(1.5, {}), std::vector<Cmd>{Back(second)}) << (go ? "go" : "stop");
+  }
+}
+
+// A standoff: vehicles SUMO stopped inside the junction for the AV nudged
+// into it block a move of the game. Those free to go are let past it
+// (kUnblock); without an AV standing past its line nobody is (a vehicle
+// stopped inside then waits for someone else, e.g. oncoming traffic).
+TEST(Interception, VehiclesStoppedForANudgedAvInTheWayOfAMoveAreLetPastIt) {
+  for (bool past : {true, false}) {
+    SCOPED_TRACE(past ? "AV past its line" : "AV at its line");
+    Sim r;
+    r.model.draws[kAv] = Draw(false, 1.0);  // nudges, stays
+    const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+    r.Step(0.0, at);
+    r.logic.NudgeDone(kAv, 1.0, 1.0, r.model);
+    if (past) r.env.past_line = {kAv};
+    r.env.way_blocked = {kHv};
+    r.env.unblockable[kHv] = {kThird};
+    EXPECT_EQ(r.Step(1.0, {}), past ? std::vector<Cmd>{Unblock(kThird)} : kNone);
+    r.env.way_blocked.clear();
+    r.env.unblockable.clear();
+    EXPECT_EQ(r.Step(1.1, {}), std::vector<Cmd>{Rel(kHv)}) << "its way clear: the reckless HV";
   }
 }
 
