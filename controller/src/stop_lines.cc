@@ -122,30 +122,15 @@ bool StopLineEnvironment::Standing(int h) {
 // stands still clear of it (its body where it stands). Vehicles ahead on its
 // own movement are its leaders: car-following keeps it behind them, whatever
 // its speed mode.
-bool StopLineEnvironment::WayClear(int vehicle, int partner, bool moving_only) {
+bool StopLineEnvironment::WayClear(int vehicle, int partner) {
   const int movement = s_.vehicles[vehicle].movement;
   std::optional<junction::Mover> mine;  // read once someone is inside
-  for (std::size_t k = 0; k < info_.movements.size(); ++k) {
-    if (!info_.spec.Conflict(static_cast<int>(k), movement)) continue;
-    const MovementInfo& mk = info_.movements[k];
-    for (const std::string& in : mk.internal) {
-      if (s_.sumo.LaneVehicleNumber(in) == 0) continue;
-      for (const std::string& id : s_.sumo.LaneVehicleIDs(in)) {
-        const int h = s_.vehicles.Find(id);
-        if (h == partner || h == vehicle) continue;
-        if (h < 0) return false;
-        const Vehicle& w = s_.vehicles[h];
-        junction::Mover other = mk.mover;
-        other.length = w.length;
-        other.width = w.width;
-        other.front = mk.ArcOf(in, s_.sumo.LanePosition(id));
-        if (other.front < 0) return false;
-        if (!mine) mine = MoverNow(vehicle);
-        const bool still = s_.sumo.Speed(id) < kHaltSpeed;
-        if (still && moving_only) continue;
-        if (!junction::PassedWay(other, *mine, still ? 0.0 : -1.0)) return false;
-      }
-    }
+  for (const Inside& x : VehiclesInside()) {
+    if (x.vehicle == vehicle || x.vehicle == partner) continue;
+    if (!info_.spec.Conflict(x.movement, movement)) continue;
+    if (x.vehicle < 0 || x.mover.front < 0) return false;
+    if (!mine) mine = MoverNow(vehicle);
+    if (!junction::PassedWay(x.mover, *mine, x.still ? 0.0 : -1.0)) return false;
   }
   return true;
 }

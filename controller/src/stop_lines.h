@@ -38,7 +38,7 @@ void SpeedFactorSeen(RunState& s, double factor);
 class StopLineEnvironment : public junction::Environment {
  public:
   StopLineEnvironment(RunState& s, const JunctionState& j);
-  bool WayClear(int vehicle, int partner, bool moving_only) override;
+  bool WayClear(int vehicle, int partner) override;
   bool Standing(int vehicle) override;
   bool ExitHasRoom(int movement, int vehicle) override;
   bool MajorClear(int movement) override;

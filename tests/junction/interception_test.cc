@@ -112,7 +112,7 @@ struct FakeEnv : Environment {
   std::set<int> moving;            // vehicles not yet standing
   std::set<int> no_room_vehicles;  // keep clear
   std::set<int> major_busy;        // movements whose major road is not clear
-  bool WayClear(int vehicle, int, bool) override {
+  bool WayClear(int vehicle, int) override {
     way_asked.push_back(vehicle);
     return !way_blocked.count(vehicle);
   }

@@ -117,9 +117,7 @@ class Environment {
   // PassedWay), or stands still clear of it (yielding: SUMO's rules make a
   // vehicle in the junction wait for a foe ahead on the crossing, and
   // waiting for it would wait for ever).
-  // `moving_only`: vehicles standing still do not count (a still AV past its
-  // line, handed back: those stopped there are yielding to it).
-  virtual bool WayClear(int vehicle, int partner, bool moving_only = false) = 0;
+  virtual bool WayClear(int vehicle, int partner) = 0;
   // The vehicle stands still (a held vehicle may take a step or two to stop).
   virtual bool Standing(int vehicle) = 0;
   // Keep clear: the vehicle's exit on `movement` can take it with its rear
