@@ -164,18 +164,18 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
   // while the other still stands in the junction or at its line, yielding)
   // goes with SUMO's right of way off once nobody inside the junction can
   // touch it on its way; a careful one whose partner is on its way is handed
-  // back to SUMO's rules. Every move but the reckless HV's waits for room at
-  // its exit and, at a two-way stop, a gap in the major road (a vehicle
-  // nudged into the junction is not protected by SUMO's rules).
+  // back to SUMO's rules.
   if (e.sequence) {
     const bool av_goes = e.out.draw.goes_first;
     const bool hv_dc = e.out.reading.drives_if_clear;
+    // Its nudge took the still AV's front past its line (read while it stands).
+    const bool av_past = !e.av_released && env.PastLine(e.out.av);
     // SUMO's once released: a careful move after its partner from its line
     // (the still AV after the HV, the HV driving if clear after the AV).
     // SUMO's rules decide when it enters (its own gap acceptance and keep
     // clear). A still AV that its nudge took past its line has passed its
     // link, where SUMO no longer makes it yield: the controller checks for it.
-    const bool av_sumos = !e.av_released && !av_goes && !env.PastLine(e.out.av);
+    const bool av_sumos = !e.av_released && !av_goes && !av_past;
     const bool hv_sumos = !e.hv_released && av_goes && hv_dc;
     // The others: room at the exit (not the reckless HV: EncounterSequence)
     // and, at a two-way stop, a gap in the major road; and the way.
@@ -191,7 +191,7 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
     // A standoff: the AV stands nudged inside the junction and vehicles SUMO
     // stopped there for it block a move of the game: those free to go may
     // pass it.
-    if (!e.av_released && (!av_way || !hv_way) && env.PastLine(e.out.av)) {
+    if (av_past && (!av_way || !hv_way)) {
       std::vector<int> blockers;
       if (!av_way) blockers = env.Unblockable(e.out.av, e.out.hv);
       if (!hv_way)
@@ -211,11 +211,9 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
     // it yield at the crossing point), unless its nudge took it past its own
     // line: once the HV has passed its way or left.
     const bool hv_ahead =
-        e.hv_cleared || (e.hv_entered && (e.av_released || !env.PastLine(e.out.av) ||
-                                          env.Passed(e.out.hv, e.out.av)));
+        e.hv_cleared || (e.hv_entered && (!av_past || env.Passed(e.out.hv, e.out.av)));
     for (const auto& rel :
          e.sequence->Update(now, e.av_entered, hv_ahead, av_may, hv_may, av_way, hv_way)) {
-
       // A careful move after its partner (released, inside the junction) is
       // SUMO's; before it (the partner still standing), the game's.
       const bool partner_released = rel.av ? e.hv_released : e.av_released;
