@@ -11,10 +11,11 @@
 // collisions, and collects the outputs.
 //
 // Per-step work: nothing at a junction no AV or no HV can reach within a
-// second (so nothing at all at AV share 0 or 1); one halting count per
-// stop-controlled lane of the others; two getters per vehicle crossing or
-// nudging for an encounter. Every vehicle is read once per simulated second
-// (route progress).
+// second (so nothing at all at AV share 0 or 1); at the others, a stop line's
+// lane only from the first step a vehicle can be within reach of a meeting
+// there (stop_lines.h, Observe); two getters per vehicle crossing or nudging
+// for an encounter. Every vehicle is read once per simulated second (route
+// progress).
 //
 // Its parts live in controller/src, one job each (network_controller.cc
 // lists them in the order a step runs them); SUMO is reached only through
