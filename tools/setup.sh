@@ -22,6 +22,7 @@ TAEBP_PACKAGES=(
   python3-matplotlib python3-pil
   xvfb xauth
   doxygen
+  strace
 )
 # Wanted but not required: when they cannot be installed, a warning, and the
 # tests that need them say that they skip. slurm-wlm + munge: the real

@@ -165,6 +165,16 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   c.Positive("scenario.duration", s.duration);
   if (c.ok() && s.duration < s.step_length)
     c.Fail("scenario.duration = " + Num(s.duration) + " is shorter than one step");
+  // The run is a whole number of steps: a duration between two would be
+  // rounded without a word.
+  if (c.ok()) {
+    const double steps = s.duration / s.step_length;
+    if (std::abs(steps - std::round(steps)) > 1e-6 * std::max(1.0, steps))
+      c.Fail("scenario.duration = " + Num(s.duration) + " s is not a whole number of steps (" +
+             Num(steps) + " steps of scenario.step_length = " + Num(s.step_length) +
+             " s): give " + Num(std::floor(steps) * s.step_length) + " or " +
+             Num(std::ceil(steps) * s.step_length));
+  }
   // What the run allocates grows with the simulated time (one record per
   // encounter, about 300 bytes, ~500 an hour on the figure-8, more on a
   // network): bound it, and the number of steps, before anything starts.

@@ -459,9 +459,8 @@ YAML::Node ParseYaml(const std::string& text, const std::string& origin) {
 }
 
 std::string ReadFileText(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw ConfigError(path + ": is a directory, not a config file");
+  const std::string why = NotAFile(path);
+  if (!why.empty()) throw ConfigError(path + ": " + why + " (a config file is expected)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path + ": cannot open the file (does it exist?)");
   std::ostringstream ss;
@@ -629,6 +628,33 @@ static ExperimentConfig ParseExperimentRoot(YAML::Node root, const std::string& 
 }
 
 std::string ReadConfigFile(const std::string& path) { return ReadFileText(path); }
+
+std::string NotAFile(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);  // follows symbolic links
+  switch (st.type()) {
+    case fs::file_type::regular:
+      return "";
+    case fs::file_type::not_found: {
+      std::error_code lec;
+      if (fs::is_symlink(fs::symlink_status(path, lec)))
+        return "a dangling symbolic link (to " + fs::read_symlink(path, lec).string() + ")";
+      return "no such file";
+    }
+    case fs::file_type::directory:
+      return "a folder, not a file";
+    case fs::file_type::fifo:
+      return "a FIFO (named pipe), not a file";
+    case fs::file_type::socket:
+      return "a socket, not a file";
+    case fs::file_type::block:
+    case fs::file_type::character:
+      return "a device, not a file";
+    default:
+      return ec ? "cannot be looked at: " + ec.message() : "not a regular file";
+  }
+}
 
 struct ExperimentTemplate::Impl {
   std::string text;

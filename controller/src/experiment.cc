@@ -2,6 +2,7 @@
 
 #include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_adapter.h"
+#include "taebp/report/interrupt.h"
 
 #include <pugixml.hpp>
 
@@ -105,6 +106,7 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     const long minute = std::max(1L, std::lround(60.0 / config.scenario.step_length));
     try {
       for (long k = 0; k < steps; ++k) {
+        ThrowIfInterrupted();  // Ctrl-C, SIGTERM: unwind, scratch removed (interrupt.h)
         sumo::Step();
         controller.Step();
         if (options.every_minute && (k + 1) % minute == 0)

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 #include <utility>
+#include <vector>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -83,7 +84,48 @@ void Start(const std::vector<std::string>& args) {
     }
     restore();
   } else {
-    libsumo_backend::Start(args);
+    // SUMO prints its own errors on stderr as it loads; they still go there,
+    // and the first one leads our message (not the whole command line).
+    std::cerr.flush();
+    std::fflush(stderr);
+    FILE* capture = std::tmpfile();
+    const int saved = capture ? dup(2) : -1;
+    if (saved >= 0) dup2(fileno(capture), 2);
+    auto restore = [&]() -> std::string {
+      std::string text;
+      if (saved < 0) return text;
+      std::cerr.flush();
+      std::fflush(stderr);
+      dup2(saved, 2);
+      close(saved);
+      std::rewind(capture);
+      char buf[4096];
+      for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, capture)) > 0;) text.append(buf, n);
+      std::fclose(capture);
+      for (std::size_t done = 0; done < text.size();) {
+        const ssize_t n = write(2, text.data() + done, text.size() - done);
+        if (n <= 0) break;
+        done += static_cast<std::size_t>(n);
+      }
+      return text;
+    };
+    try {
+      libsumo_backend::Start(args);
+    } catch (const SumoError&) {
+      std::istringstream lines(restore());
+      std::vector<std::string> errors;
+      for (std::string line; std::getline(lines, line);)
+        if (line.rfind("Error: ", 0) == 0) errors.push_back(line.substr(7));
+      if (errors.empty()) throw;
+      std::string cmd;
+      for (const auto& a : args) cmd += (cmd.empty() ? "" : " ") + a;
+      throw SumoError("SUMO failed to start: " + errors.front() +
+                      (errors.size() > 1 ? " (and " + std::to_string(errors.size() - 1) +
+                                               " more error(s) from SUMO, above)"
+                                         : std::string()) +
+                      "; the command was: " + cmd);
+    }
+    restore();
   }
   g_started = true;
 }

@@ -100,6 +100,7 @@ PYBIND11_MODULE(_taebp, m) {
                                                                    PyExc_ValueError);
   static py::exception<taebp::SumoError> sumo_error(m, "SumoError", PyExc_RuntimeError);
   static py::exception<taebp::SimulationBusy> busy(m, "SimulationBusy", PyExc_RuntimeError);
+  static py::exception<taebp::OutputError> output_error(m, "OutputError", PyExc_OSError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -111,11 +112,15 @@ PYBIND11_MODULE(_taebp, m) {
       sumo_error(e.what());
     } catch (const taebp::SimulationBusy& e) {
       busy(e.what());
+    } catch (const taebp::OutputError& e) {
+      output_error(e.what());
     }
   });
 
   m.def("version", [] { return taebp::TaebpVersion(); });
   m.def("git_revision", [] { return taebp::BuildGitRevision(); });
+  // Why a path is not a regular file ("" when it is): config.h's NotAFile.
+  m.def("not_a_file", [](const std::string& path) { return taebp::NotAFile(path); });
 
   m.def("theory_json",
         [](double prior, double penalty, double trust, std::optional<double> assumed_trust,
@@ -172,6 +177,9 @@ PYBIND11_MODULE(_taebp, m) {
       [](const std::string& config, const std::vector<std::string>& overrides,
          std::optional<std::string> out, bool progress) {
         taebp::ExperimentResult result;
+        // Checked, not a sweep's, locked before the run (as `taebp run --out`).
+        std::optional<taebp::RunFolder> folder;
+        if (out) folder.emplace(*out, "out=");
         {
           py::gil_scoped_release release;
           taebp::ExperimentObserver observer;
@@ -183,7 +191,7 @@ PYBIND11_MODULE(_taebp, m) {
             };
           }
           result = taebp::RunExperiment(config, overrides, {}, observer);
-          if (out) taebp::WriteExperiment(result, *out);
+          if (folder) taebp::WriteExperiment(result, *folder);
         }
         py::dict files;
         for (const auto& [name, text] : result.Files()) files[py::str(name)] = py::str(text);

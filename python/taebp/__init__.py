@@ -23,7 +23,8 @@ Functions
     load_run(dir), load_sweep(dir)  results already written
 
 Errors are exceptions with the program's messages: ConfigError and
-InvalidArgument (both ValueError), SumoError, BusyError (RuntimeError),
+InvalidArgument (both ValueError), OutputError (OSError: an out= folder that
+cannot be used, holds a sweep, or is in use), SumoError, BusyError (RuntimeError),
 StallError (RuntimeError: a stall under scenario.stall_action: error, exit
 code 4 of the program, with the result of what ran) and SweepError (a sweep
 with failed tasks).
@@ -46,7 +47,8 @@ from . import _taebp
 __all__ = [
     "theory", "design", "predict", "solve", "run", "sweep", "load_run", "load_sweep",
     "Table", "RunResult", "SweepResult", "to_pandas", "encounter_columns",
-    "ConfigError", "InvalidArgument", "SumoError", "BusyError", "StallError", "SweepError",
+    "ConfigError", "InvalidArgument", "OutputError", "SumoError", "BusyError", "StallError",
+    "SweepError",
     "__version__",
 ]
 
@@ -57,7 +59,8 @@ ConfigError = _taebp.ConfigError          # bad config, --set or problem (ValueE
 InvalidArgument = _taebp.InvalidArgument  # a parameter out of range (ValueError)
 SumoError = _taebp.SumoError              # SUMO failed (RuntimeError)
 BusyError = _taebp.SimulationBusy         # a second simulation in this process (RuntimeError)
-for _e in (ConfigError, InvalidArgument, SumoError, BusyError):
+OutputError = _taebp.OutputError          # an out= folder not usable, a sweep's, in use (OSError)
+for _e in (ConfigError, InvalidArgument, OutputError, SumoError, BusyError):
     _e.__module__ = __name__
 
 
@@ -144,6 +147,9 @@ def solve(problem):
     the LP is not optimal, message. Raises ConfigError for a malformed problem."""
     if isinstance(problem, (str, os.PathLike)):
         path = os.fspath(problem)
+        why = _taebp.not_a_file(path)  # a FIFO would block the read for good
+        if why:
+            raise ConfigError(path + ": " + why + " (a config file is expected)")
         try:
             with open(path, encoding="utf-8") as f:
                 text = f.read()

@@ -9,9 +9,13 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <algorithm>
+
+#include <cstdio>  // renameat2
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace taebp {
@@ -137,6 +141,225 @@ FolderLock::FolderLock(const std::string& dir, bool required) {
 
 FolderLock::~FolderLock() {
   if (fd_ >= 0) ::close(fd_);
+}
+
+bool IsRunFile(const std::string& name) {
+  static const char* const kFixed[] = {"summary.json", "encounters.csv", "junctions.csv",
+                                       "config.yaml",  "timing.json",    "timeseries.csv",
+                                       "hv_trust.csv"};
+  for (const char* f : kFixed)
+    if (name == f) return true;
+  auto starts = [&](const char* p) { return name.rfind(p, 0) == 0; };
+  auto ends = [&](const char* x) {
+    const std::size_t n = std::strlen(x);
+    return name.size() >= n && name.compare(name.size() - n, n, x) == 0;
+  };
+  if ((starts("tripinfo-") || starts("summary-")) && ends(".xml")) return true;
+  // An earlier writer's temporary: a run file's name, ".tmp.", digits.
+  const std::size_t tmp = name.rfind(".tmp.");
+  if (tmp != std::string::npos && tmp + 5 < name.size() &&
+      name.find_first_not_of("0123456789", tmp + 5) == std::string::npos)
+    return IsRunFile(name.substr(0, tmp));
+  return false;
+}
+
+namespace {
+
+constexpr const char* kStagingTag = ".taebp-new-";
+
+// The staging folder of process `pid` for the run folder `dir`: a hidden
+// sibling, on the same file system, so that the two can be swapped.
+fs::path StagingPath(const fs::path& dir, long pid) {
+  return dir.parent_path() / ("." + dir.filename().string() + kStagingTag + std::to_string(pid));
+}
+// Where the folder is a mount point (or its parent cannot take the sibling):
+// inside it.
+fs::path InnerStagingPath(const fs::path& dir, long pid) {
+  return dir / (kStagingTag + std::to_string(pid));
+}
+
+// A staging folder's name with `prefix` and a process id; that process's id,
+// or -1.
+long StagingPid(const std::string& name, const std::string& prefix) {
+  if (name.rfind(prefix, 0) != 0) return -1;
+  const std::string digits = name.substr(prefix.size());
+  if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) return -1;
+  return std::strtol(digits.c_str(), nullptr, 10);
+}
+
+// I/O failures while writing results are no bad argument (exit 1).
+void WriteSynced(const fs::path& path, const std::string& content) {
+  auto fail = [&](const char* what) {
+    return std::runtime_error("cannot write " + path.string() + ": " + what + ": " + Errno());
+  };
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw fail("open");
+  std::size_t done = 0;
+  while (done < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const std::runtime_error e = fail("write");
+      ::close(fd);
+      throw e;
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) {
+    const std::runtime_error e = fail("fsync");
+    ::close(fd);
+    throw e;
+  }
+  if (::close(fd) != 0) throw fail("close");
+}
+
+void SyncFolder(const fs::path& dir) {
+  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dfd >= 0) {
+    ::fsync(dfd);
+    ::close(dfd);
+  }
+}
+
+bool SameDevice(const fs::path& a, const fs::path& b) {
+  struct stat sa {}, sb {};
+  return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev;
+}
+
+}  // namespace
+
+RunFolder::RunFolder(const std::string& dir, const std::string& option) : dir_(dir) {
+  const std::string what = option.empty() ? dir : option + " " + dir;
+  CheckOutputDir(dir, option);
+  std::error_code ec;
+  const fs::path abs = fs::weakly_canonical(fs::absolute(fs::path(dir)), ec);
+  for (const char* sweep_file : {"sweep.json", "journal.jsonl"})
+    if (fs::exists(abs / sweep_file, ec))
+      throw OutputError(what + " holds a sweep's results (" + sweep_file +
+                        "): a run there would replace the sweep's pooled encounters.csv; "
+                        "choose another folder");
+  if (fs::is_directory(abs, ec)) {
+    for (const fs::directory_entry& e : fs::directory_iterator(abs, ec)) {
+      const std::string name = e.path().filename().string();
+      if (!e.is_directory(ec) || e.is_symlink(ec)) continue;
+      const long pid = StagingPid(name, kStagingTag);
+      if (pid >= 0) continue;  // a run's staging inside a mount point (below)
+      throw OutputError(what + " holds a folder, " + name +
+                        ", that a run would replace with its own files; choose another "
+                        "folder or move it");
+    }
+  }
+  made_dir_ = !fs::exists(abs, ec);
+  fs::create_directories(abs, ec);
+  if (ec) throw OutputError(what + ": cannot create it: " + ec.message());
+  made_lock_ = !fs::exists(abs / FolderLock::kFileName, ec);
+  try {
+    lock_ = std::make_unique<FolderLock>(abs.string());
+  } catch (...) {
+    if (made_dir_) fs::remove(abs, ec);  // empty unless another run got there first
+    throw;
+  }
+  // Staging folders of runs killed while replacing this folder: the old or
+  // the new set of an interrupted swap. Only the lock's holder writes them
+  // (the lock file goes with the swap), so with the lock held all are stale.
+  const std::string sibling = "." + abs.filename().string() + kStagingTag;
+  for (const fs::path& where : {abs.parent_path(), abs}) {
+    for (const fs::directory_entry& e : fs::directory_iterator(where, ec)) {
+      const std::string name = e.path().filename().string();
+      const long pid = StagingPid(name, where == abs ? std::string(kStagingTag) : sibling);
+      if (pid >= 0) {
+        std::error_code rm;
+        fs::remove_all(e.path(), rm);
+      }
+    }
+  }
+}
+
+RunFolder::~RunFolder() {
+  if (replaced_ || !lock_) return;
+  // The run failed before writing: the folder as it was. The lock file is
+  // unlinked while still held, so a command that opened it meanwhile is
+  // refused rather than let in.
+  std::error_code ec;
+  const fs::path dir = fs::absolute(fs::path(dir_));
+  if (made_lock_ || made_dir_) fs::remove(dir / FolderLock::kFileName, ec);
+  if (made_dir_) fs::remove(dir, ec);  // only when empty
+  lock_.reset();
+}
+
+void RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& files) {
+  std::error_code ec;
+  // The real folder (a symbolic link to it stays a link).
+  const fs::path dir = fs::weakly_canonical(fs::absolute(fs::path(dir_)), ec);
+  // Beside the folder for a swap; inside it where the folder is a mount
+  // point or its parent cannot take the staging folder.
+  fs::path staging = StagingPath(dir, ::getpid());
+  bool swap = SameDevice(dir, dir.parent_path());
+  fs::remove_all(staging, ec);
+  if (swap && (!fs::create_directory(staging, ec) || ec)) swap = false;
+  if (!swap) {
+    staging = InnerStagingPath(dir, ::getpid());
+    fs::remove_all(staging, ec);
+    if (!fs::create_directory(staging, ec) || ec)
+      throw std::runtime_error("cannot write " + staging.string() + ": " +
+                               (ec ? ec.message() : std::string("it exists")));
+  }
+  fs::permissions(staging, fs::status(dir, ec).permissions(), ec);
+  try {
+    for (const auto& [name, content] : files) WriteSynced(staging / name, content);
+    // For a swap, the folder's other files go with the new set (links).
+    if (swap) {
+      for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
+        const std::string name = e.path().filename().string();
+        // The lock file goes too, as a link to the same file: the lock this
+        // object holds stays on the folder's lock file after the swap.
+        if (IsRunFile(name) || fs::exists(staging / name)) continue;
+        if (e.is_directory(ec) && !e.is_symlink(ec))
+          throw OutputError(dir_ + " holds a folder, " + name + ", that a run would replace");
+        if (::link(e.path().c_str(), (staging / name).c_str()) != 0)
+          fs::copy(e.path(), staging / name, fs::copy_options::copy_symlinks);
+      }
+    }
+    SyncFolder(staging);
+  } catch (const OutputError&) {
+    fs::remove_all(staging, ec);
+    throw;
+  } catch (const std::exception& e) {
+    fs::remove_all(staging, ec);
+    // Named by the run folder (the staging folder is a detail).
+    throw std::runtime_error("cannot write the results into " + dir_ + ": " + e.what());
+  }
+  // One swap: the folder holds the old set until here, the new one after.
+  if (swap) {
+    if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
+      replaced_ = true;
+      SyncFolder(dir.parent_path());
+      fs::remove_all(staging, ec);  // now the old set
+      return;
+    }
+    if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP && errno != EPERM &&
+        errno != EXDEV && errno != EBUSY) {
+      const std::string why = Errno();
+      fs::remove_all(staging, ec);
+      throw std::runtime_error("cannot write " + dir_ + ": swapping in the new results: " + why);
+    }
+  }
+  // No swap: file by file, then the stale run files.
+  try {
+    replaced_ = true;  // from the first rename on, the folder holds this run's files
+    for (const auto& [name, content] : files) fs::rename(staging / name, dir / name);
+  } catch (...) {
+    fs::remove_all(staging, ec);
+    throw;
+  }
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    const bool ours = std::any_of(files.begin(), files.end(),
+                                  [&](const auto& f) { return f.first == name; });
+    if (IsRunFile(name) && !ours) fs::remove(e.path(), ec);
+  }
+  SyncFolder(dir);
+  fs::remove_all(staging, ec);
 }
 
 }  // namespace taebp

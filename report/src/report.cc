@@ -109,7 +109,9 @@ json JunctionJson(const PolicyRun& r, const JunctionRun& jr) {
   j["crossings"] = {{"av", jr.crossings_av}, {"hv", jr.crossings_hv}, {"all", all}};
   j["throughput_per_hour"] = PerHour(static_cast<double>(all), r.measured_seconds);
   j["held"] = jr.held;
-  j["wait_at_stop_line"] = {{"mean", jr.held ? jr.wait_sum / jr.held : 0.0}, {"max", jr.wait_max}};
+  // No vehicle held (sumo_native, or nobody met): no mean wait (null), not 0.
+  j["wait_at_stop_line"] = {{"mean", jr.held ? json(jr.wait_sum / jr.held) : json()},
+                            {"max", jr.wait_max}};
   json approaches = json::array();
   for (const ApproachStats& a : jr.approaches)
     approaches.push_back({{"lane", a.lane},
@@ -279,7 +281,7 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
           << jr.crossings_hv << ','
           << FormatDouble(PerHour(static_cast<double>(jr.crossings_av + jr.crossings_hv),
                                   r.measured_seconds))
-          << ',' << jr.held << ',' << FormatDouble(jr.held ? jr.wait_sum / jr.held : 0.0) << ','
+          << ',' << jr.held << ',' << (jr.held ? FormatDouble(jr.wait_sum / jr.held) : "") << ','
           << FormatDouble(jr.wait_max) << ',' << FormatDouble(qmax) << ','
           << FormatDouble(qmean) << ',' << s.n << ',' << s.dc << ','
           << FormatDouble(Rate(s.dc, s.n)) << ',' << s.collisions << ','
@@ -362,7 +364,7 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
                                 {"hv", hours > 0 ? r.crossings_hv / hours : 0.0},
                                 {"all", hours > 0 ? all / hours : 0.0}};
     j["crossings"] = {{"av", r.crossings_av}, {"hv", r.crossings_hv}, {"all", all}};
-    j["wait_at_stop_line"] = {{"mean", r.held > 0 ? r.wait_sum / r.held : 0.0},
+    j["wait_at_stop_line"] = {{"mean", r.held > 0 ? json(r.wait_sum / r.held) : json()},
                               {"max", r.wait_max}};
     j["nudges"] = {{"count", s.nudges},
                    {"mean_commanded", s.nudges ? s.commanded_sum / s.nudges : 0.0},
@@ -633,7 +635,8 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
   for (const PolicyRun& r : runs) {
     char buf[64];
     if (r.held == 0)
-      std::snprintf(buf, sizeof buf, "n/a (SUMO's own logic)");
+      std::snprintf(buf, sizeof buf, "%s",
+                    r.policy == "sumo_native" ? "n/a (SUMO's own logic)" : "no vehicle held");
     else
       std::snprintf(buf, sizeof buf, "%.1f / %.1f", r.wait_sum / r.held, r.wait_max);
     out << std::setw(w) << buf;

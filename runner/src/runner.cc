@@ -1,5 +1,7 @@
 #include "taebp/runner/runner.h"
 
+#include "taebp/report/interrupt.h"
+
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/scenario/scenario.h"
 
@@ -87,6 +89,23 @@ ExperimentResult RunExperiment(const std::string& config_path,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     result.wall_seconds += wall;
     if (observer.policy_done) observer.policy_done(result.runs.back(), wall);
+    {
+      // A run that measured nothing says so (it used to pass unremarked).
+      const PolicyRun& run = result.runs.back();
+      std::string w;
+      if (run.scenario_kind == "network" && run.network.departed == 0)
+        w = name + ": no vehicle departed after the warm-up: the demand is empty (check "
+                   "scenario.routes or scenario.demand, scenario.routes_scale, the departure "
+                   "times against scenario.warmup and scenario.duration)";
+      else if (name != "sumo_native" && run.held == 0)
+        w = name + ": the controller held no vehicle: no AV and HV met at a controlled "
+                   "junction, so this run is SUMO's own traffic (too few AVs or HVs, or too "
+                   "little traffic at the junctions)";
+      if (!w.empty()) {
+        result.warnings.push_back(w);
+        if (observer.warning) observer.warning(w);
+      }
+    }
     for (const StallRecord& st : result.runs.back().stalls) {
       char buf[256];
       std::snprintf(buf, sizeof buf, "%s: traffic stalled at junction '%s' from t = %.1f s",
@@ -115,8 +134,14 @@ ExperimentResult RunExperiment(const std::string& config_path,
   return result;
 }
 
+void WriteExperiment(const ExperimentResult& result, RunFolder& folder) {
+  ThrowIfInterrupted();
+  folder.Replace(result.Files());
+}
+
 void WriteExperiment(const ExperimentResult& result, const std::string& out_dir) {
-  WriteFilesAtomically(out_dir, result.Files());
+  RunFolder folder(out_dir);
+  WriteExperiment(result, folder);
 }
 
 std::string DefaultOutDir(const std::string& config_path) {

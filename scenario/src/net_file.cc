@@ -1,5 +1,7 @@
 #include "taebp/scenario/net_file.h"
 
+#include "taebp/config/config.h"  // NotAFile
+
 #include <pugixml.hpp>
 
 #include <algorithm>
@@ -39,9 +41,8 @@ const std::vector<std::string> kNoLanes;
 NetFile NetFile::Load(const std::string& path) {
   // Read by us, not by pugixml's load_file: a directory opens with fopen on
   // Linux and its "size" made pugixml ask for 2^63 bytes.
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw std::runtime_error(path + ": is a directory, not a SUMO network file");
+  if (const std::string why = NotAFile(path); !why.empty())
+    throw std::runtime_error(path + ": " + why + " (a SUMO network file is expected)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path + ": cannot open the file (does it exist?)");
   std::ostringstream text;

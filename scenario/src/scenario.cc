@@ -195,8 +195,9 @@ Scenario BuildFigure8(const ExperimentConfig& config, const std::string& config_
     key = "scenario.loop_length = " + Fmt(loop);
   } else {
     const fs::path p = Resolve(sc.network, config_dir);
-    if (!fs::is_regular_file(p))
-      throw ConfigError("scenario.network = '" + sc.network + "': no such file (" + p.string() +
+    const std::string why = NotAFile(p.string());
+    if (!why.empty())
+      throw ConfigError("scenario.network = '" + sc.network + "': " + why + " (" + p.string() +
                         ")");
     s.net = p.string();
     key = "scenario.network = '" + sc.network + "'";
@@ -234,7 +235,8 @@ std::vector<std::string> SplitList(const std::string& text) {
 // Net, route and additional files named by a .sumocfg (relative to it).
 void ReadSumocfg(const fs::path& cfg, Scenario* s) {
   const std::string key = "scenario.sumocfg = '" + cfg.string() + "'";
-  if (!fs::is_regular_file(cfg)) throw ConfigError(key + ": no such file");
+  if (const std::string why = NotAFile(cfg.string()); !why.empty())
+    throw ConfigError(key + ": " + why);
   pugi::xml_document doc;
   const pugi::xml_parse_result r = doc.load_file(cfg.c_str());
   if (!r) throw ConfigError(key + ": not XML (" + std::string(r.description()) + ")");
@@ -343,10 +345,29 @@ void SelectJunctions(const ScenarioConfig& sc, const net::NetFile& net, Scenario
       }
     return false;
   };
+  // Why junctions of a selected type were passed over, for the message when
+  // nothing is selected.
+  std::map<std::string, int> all_types;
+  int of_type = 0, was_excluded = 0, too_fast = 0, no_internal = 0, not_intersection = 0;
   for (const auto& [id, j] : net.junctions()) {
-    if (!ids.count(id) &&
-        !(types.count(j.type) && !excluded.count(id) && slow_enough(j) && intersection(j)))
+    if (j.type != "internal") ++all_types[j.type];
+    if (!ids.count(id) && types.count(j.type)) {
+      ++of_type;
+      if (excluded.count(id)) {
+        ++was_excluded;
+        continue;
+      }
+      if (!slow_enough(j)) {
+        ++too_fast;
+        continue;
+      }
+      if (!intersection(j)) {
+        j.int_lanes.empty() ? ++no_internal : ++not_intersection;
+        continue;
+      }
+    } else if (!ids.count(id)) {
       continue;
+    }
     if (j.int_lanes.empty())
       throw ConfigError("scenario.junctions: junction '" + id + "'" + where +
                         " has no internal lanes (built with --no-internal-links?): SUMO cannot "
@@ -359,8 +380,29 @@ void SelectJunctions(const ScenarioConfig& sc, const net::NetFile& net, Scenario
   if (s->junctions.empty()) {
     std::string list;
     for (const std::string& t : sel.types) list += (list.empty() ? "" : ", ") + t;
-    throw ConfigError("scenario.junctions selects no junction" + where + " (ids: " +
-                      std::to_string(sel.ids.size()) + " given, types: [" + list + "])");
+    std::string have;
+    for (const auto& [type, n] : all_types)
+      have += (have.empty() ? "" : ", ") + std::to_string(n) + " " + type;
+    std::string why;
+    auto add = [&](int n, const std::string& what) {
+      if (n > 0) why += (why.empty() ? "" : "; ") + std::to_string(n) + " " + what;
+    };
+    add(was_excluded, "in scenario.junctions.exclude");
+    add(too_fast, "with an approach faster than scenario.junctions.max_speed = " +
+                      Fmt(sel.max_speed) + " m/s");
+    add(no_internal,
+        "without internal lanes (the network was built with --no-internal-links: SUMO reports "
+        "no collision inside such a junction and has no conflicts for it; rebuild it with "
+        "internal links, netconvert's default)");
+    add(not_intersection,
+        "not intersections (fewer than two incoming roads with conflicting movements)");
+    throw ConfigError(
+        "scenario.junctions selects no junction" + where + " (ids: " +
+        std::to_string(sel.ids.size()) + " given, types: [" + list + "]). The network has " +
+        (have.empty() ? std::string("no junctions") : have) + "; of the selected types " +
+        std::to_string(of_type) + (of_type == 1 ? " junction" : " junctions") +
+        (why.empty() ? std::string() : ", passed over: " + why) +
+        ". Select by scenario.junctions.types (a type the network has) or .ids");
   }
 }
 
@@ -399,6 +441,58 @@ bool PatchJunctionTypes(Scenario* s) {
   return true;
 }
 
+// The vehicle types the vehicles of `files` can have: the ids of their
+// vType and vTypeDistribution elements, and SUMO's DEFAULT_VEHTYPE when a
+// vehicle, trip or flow names no type. False when a file cannot be read as
+// XML here (gzip, say): then nothing can be said.
+bool VehicleTypesOf(const std::vector<std::string>& files, std::set<std::string>* types) {
+  for (const std::string& f : files) {
+    pugi::xml_document doc;
+    if (!doc.load_file(f.c_str())) return false;
+    for (const pugi::xpath_node& n : doc.select_nodes("//vType | //vTypeDistribution"))
+      if (const char* id = n.node().attribute("id").value(); *id) types->insert(id);
+    for (const pugi::xpath_node& n : doc.select_nodes("//vehicle | //trip | //flow"))
+      if (!n.node().attribute("type")) types->insert("DEFAULT_VEHTYPE");
+  }
+  return true;
+}
+
+std::string JoinList(const std::set<std::string>& items) {
+  std::string out;
+  for (const std::string& i : items) out += (out.empty() ? "" : ", ") + i;
+  return out;
+}
+
+// A policy other than sumo_native needs AVs. Without scenario.av_share, the
+// AVs are the vehicles of a type in scenario.av_types: when no such type
+// exists in the demand, every policy would run with 0 AVs and say nothing.
+void CheckAvsExist(const ExperimentConfig& config, const Scenario& s) {
+  const ScenarioConfig& sc = config.scenario;
+  if (sc.av_share) return;  // AVs drawn per vehicle (0 is a choice)
+  std::vector<std::string> needing;
+  for (const std::string& p : config.policies)
+    if (p != "sumo_native") needing.push_back(p);
+  if (needing.empty()) return;
+  std::set<std::string> types;
+  if (!VehicleTypesOf(s.route_files, &types) || !VehicleTypesOf(s.additional_files, &types))
+    return;
+  for (const std::string& t : sc.av_types)
+    if (types.count(t)) return;
+  std::string policies;
+  for (const std::string& p : needing) policies += (policies.empty() ? "" : ", ") + p;
+  std::string av_types;
+  for (const std::string& t : sc.av_types) av_types += (av_types.empty() ? "" : ", ") + t;
+  const std::string why =
+      "scenario.av_types = [" + av_types + "] matches no vehicle type of the demand (its types: " +
+      (types.empty() ? std::string("none") : JoinList(types)) + "), so " + policies +
+      " would run with 0 AVs";
+  if (sc.demand && sc.routes.empty() && sc.sumocfg.empty())
+    throw ConfigError(why + ": generated demand (scenario.demand) needs scenario.av_share, the "
+                            "share of AVs among its vehicles");
+  throw ConfigError(why + ": set scenario.av_types to the type(s) of your AVs, or "
+                          "scenario.av_share to draw AVs among all vehicles");
+}
+
 Scenario BuildNetwork(const ExperimentConfig& config, const std::string& config_dir) {
   const ScenarioConfig& sc = config.scenario;
   Scenario s;
@@ -414,20 +508,22 @@ Scenario BuildNetwork(const ExperimentConfig& config, const std::string& config_
   } else {
     const fs::path p = Resolve(sc.network, config_dir);
     key = "scenario.network = '" + sc.network + "'";
-    if (!fs::is_regular_file(p)) throw ConfigError(key + ": no such file (" + p.string() + ")");
+    if (const std::string why = NotAFile(p.string()); !why.empty())
+      throw ConfigError(key + ": " + why + " (" + p.string() + ")");
     s.net = p.string();
   }
-  if (!fs::is_regular_file(s.net)) throw ConfigError(key + ": no such network file " + s.net);
+  if (const std::string why = NotAFile(s.net); !why.empty())
+    throw ConfigError(key + ": the network file " + s.net + ": " + why);
   for (const std::string& r : sc.routes) {
     const fs::path p = Resolve(r, config_dir);
-    if (!fs::is_regular_file(p))
-      throw ConfigError("scenario.routes: '" + r + "' is not a file (" + p.string() + ")");
+    if (const std::string why = NotAFile(p.string()); !why.empty())
+      throw ConfigError("scenario.routes: '" + r + "': " + why + " (" + p.string() + ")");
     s.route_files.push_back(p.string());
   }
   for (const std::string& a : sc.additional) {
     const fs::path p = Resolve(a, config_dir);
-    if (!fs::is_regular_file(p))
-      throw ConfigError("scenario.additional: '" + a + "' is not a file (" + p.string() + ")");
+    if (const std::string why = NotAFile(p.string()); !why.empty())
+      throw ConfigError("scenario.additional: '" + a + "': " + why + " (" + p.string() + ")");
     s.additional_files.push_back(p.string());
   }
   const net::NetFile net = LoadNet(s.net, key);
@@ -447,6 +543,7 @@ Scenario BuildNetwork(const ExperimentConfig& config, const std::string& config_
     s.generated_trips = WriteFringeDemand(net, spec, routes);
     s.route_files.push_back(routes);
   }
+  CheckAvsExist(config, s);
   if (PatchJunctionTypes(&s))
     s.topology = std::make_shared<const net::NetFile>(LoadNet(s.net, key + " (patched)"));
   else

@@ -624,7 +624,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
     a.tp_av.push_back(Number(m["throughput_av"]));
     a.tp_hv.push_back(Number(m["throughput_hv"]));
     a.tp_all.push_back(Number(m["throughput_all"]));
-    a.wait.push_back(Number(m["wait_mean"]));
+    if (m["wait_mean"].is_number()) a.wait.push_back(Number(m["wait_mean"]));  // null: none held
     if (m["served_flow"].is_number()) {
       a.served.push_back(Number(m["served_flow"]));
       a.loss.push_back(Number(m["time_loss_mean"]));

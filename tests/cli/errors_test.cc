@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
+
 namespace {
 
 using ::testing::HasSubstr;
@@ -37,11 +39,13 @@ CliResult RunCli(const std::vector<std::string>& args) {
   return taebp::test::RunProgram(kCli, args);
 }
 
-// Every file under `dir` (relative path -> content).
+// Every file under `dir` (relative path -> content), but the folder's lock
+// file (it names its last holder, not a result).
 std::map<std::string, std::string> Snapshot(const fs::path& dir) {
   std::map<std::string, std::string> files;
   for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file()) files[fs::relative(e.path(), dir).string()] = ReadText(e.path());
+    if (e.is_regular_file() && e.path().filename() != ".taebp.lock")
+      files[fs::relative(e.path(), dir).string()] = ReadText(e.path());
   return files;
 }
 
@@ -103,8 +107,11 @@ TEST(CliConfigFile, DirectoryEmptyOrMissingIsAnErrorNamingThePathForEveryCommand
   fs::create_directories(folder);
   const std::string empty = dir.Write("empty.yaml", "");
   const std::string missing = (dir.path() / "missing.yaml").string();
+  // A FIFO is refused at once (it used to block until a writer came).
+  const std::string fifo = (dir.path() / "config.fifo").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
   const fs::path out = dir.path() / "out";
-  for (const std::string& config : {folder, empty, missing}) {
+  for (const std::string& config : {folder, empty, missing, fifo}) {
     for (const std::string cmd : {"run", "sweep", "solve"}) {
       SCOPED_TRACE(cmd + " " + config);
       std::vector<std::string> args = {cmd, config};
@@ -218,6 +225,14 @@ TEST_F(CliFaults, CorruptNetworkIsASumoErrorNamingTheFile) {
                                 "scenario.network=" + network, "--out", out.string()});
     EXPECT_EQ(r.exit_code, code) << r.Describe();
     EXPECT_THAT(r.err, HasSubstr(network)) << r.Describe();
+    if (code == kExitSumo) {
+      // SUMO's own message leads ours, the command comes last (the first
+      // line used to be the whole sumo command).
+      EXPECT_THAT(r.err, HasSubstr("taebp: SUMO failed to start: Attribute 'speed' in "
+                                   "definition of lane"))
+          << r.Describe();
+      EXPECT_THAT(r.err, HasSubstr("; the command was: sumo -n " + network)) << r.Describe();
+    }
     ExpectEarlierResultsUntouched(out);
   }
 }

@@ -6,6 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include "test_support.h"
 
 #include <cstdlib>
@@ -90,7 +92,7 @@ TEST(ConfigLoad, ToYamlRoundTripGivesIdenticalJson) {
   // A config that sets every kind of field: optional, distribution, logistic
   // likelihood, awkward doubles, a sweep grid and a non-default policy list.
   const ExperimentConfig rich = ParseExperimentConfig(
-      "scenario: {avs: 3, hvs: 5, duration: 123.456, seed: 18446744073709551615,\n"
+      "scenario: {avs: 3, hvs: 5, duration: 123.45, seed: 18446744073709551615,\n"
       "           step_length: 0.05, auto_length: false, network: some/net.xml,\n"
       "           creep_speed: 0.1}\n"
       "model:\n"
@@ -113,7 +115,7 @@ TEST(ConfigLoad, ToYamlRoundTripGivesIdenticalJson) {
   const std::string rich_yaml = ToYaml(rich);
   const ExperimentConfig back = ParseExperimentConfig(rich_yaml, "rich-roundtrip.yaml");
   EXPECT_EQ(ToJson(back), ToJson(rich)) << rich_yaml;
-  EXPECT_EQ(back.scenario.duration, 123.456);
+  EXPECT_EQ(back.scenario.duration, 123.45);
   EXPECT_EQ(back.model.collision_penalty, 3.3333333333333335);
   ASSERT_TRUE(back.model.assumed_trust.has_value());
   EXPECT_EQ(*back.model.assumed_trust, 0.9);
@@ -429,8 +431,14 @@ TEST(ConfigErrors, DirectoryOrEmptyFileIsAnErrorNamingThePath) {
   fs::create_directories(folder);
   const std::string dmsg = ConfigErrorOf([&] { LoadExperimentConfig(folder); });
   EXPECT_THAT(dmsg, HasSubstr(folder));
-  EXPECT_THAT(dmsg, HasSubstr("is a directory"));
-  EXPECT_THAT(ConfigErrorOf([&] { LoadProblemConfig(folder); }), HasSubstr("is a directory"));
+  EXPECT_THAT(dmsg, HasSubstr("a folder, not a file"));
+  EXPECT_THAT(ConfigErrorOf([&] { LoadProblemConfig(folder); }), HasSubstr("a folder, not a file"));
+  // A FIFO is refused at once (reading it would wait for a writer forever).
+  const std::string fifo = (dir.path() / "config.fifo").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  const std::string fmsg = ConfigErrorOf([&] { LoadExperimentConfig(fifo); });
+  EXPECT_THAT(fmsg, HasSubstr(fifo));
+  EXPECT_THAT(fmsg, HasSubstr("a FIFO (named pipe), not a file"));
   for (const std::string& text : {std::string(""), std::string("# only a comment\n\n"),
                                   std::string("---\n"), std::string("~\n")}) {
     SCOPED_TRACE("text '" + text + "'");
@@ -466,6 +474,27 @@ TEST(ConfigErrors, StepLengthIsAWholeNumberOfMillisecondsOfAtLeastOne) {
   for (const char* good : {"0.001", "0.002", "0.05", "0.1", "0.25", "1"}) {
     SCOPED_TRACE(good);
     EXPECT_NO_THROW(LoadExperimentConfig(kPaper, {std::string("scenario.step_length=") + good}));
+  }
+}
+
+// The run is a whole number of steps: a duration between two is an error
+// naming both neighbours (it used to be rounded without a word).
+TEST(ConfigErrors, DurationIsAWholeNumberOfSteps) {
+  const std::string msg = ConfigErrorOf([&] {
+    LoadExperimentConfig(kPaper, {"scenario.duration=100.05", "scenario.step_length=0.1"});
+  });
+  EXPECT_THAT(msg, HasSubstr("scenario.duration = 100.05 s is not a whole number of steps"));
+  EXPECT_THAT(msg, HasSubstr("scenario.step_length = 0.1"));
+  EXPECT_THAT(msg, HasSubstr("give 100 or 100.1"));
+  EXPECT_THAT(ConfigErrorOf([&] {
+                LoadExperimentConfig(kPaper, {"scenario.duration=10", "scenario.step_length=0.3"});
+              }),
+              HasSubstr("give 9.9 or 10.2"));
+  for (const auto& [duration, step] : std::vector<std::pair<const char*, const char*>>{
+           {"3600", "0.1"}, {"0.3", "0.1"}, {"7200", "0.002"}, {"30", "0.25"}, {"59.9", "0.1"}}) {
+    SCOPED_TRACE(std::string(duration) + " / " + step);
+    EXPECT_NO_THROW(LoadExperimentConfig(kPaper, {std::string("scenario.duration=") + duration,
+                                                  std::string("scenario.step_length=") + step}));
   }
 }
 

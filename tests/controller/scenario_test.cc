@@ -12,6 +12,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include "test_support.h"
 
 #include <algorithm>
@@ -294,6 +296,106 @@ TEST(ScenarioBadInput, MissingNetworkIsAConfigErrorNamingTheKey) {
   EXPECT_EQ(fs::path(BuildScenario(rel, built).net), fs::path(built) / "figure8.net.xml");
   EXPECT_THAT(ErrorOf<ConfigError>([&] { BuildScenario(rel, TAEBP_SOURCE_DIR); }),
               HasSubstr("scenario.network"));
+}
+
+// Anything but a regular file as a network or a route file is refused saying
+// what it is (a FIFO used to block the run forever, a folder was "no such
+// file"), for the figure-8 and for any network.
+TEST(ScenarioBadInput, AFolderFifoOrDanglingLinkAsAFileIsRefusedSayingWhatItIs) {
+  TempDir dir;
+  const fs::path folder = dir.path() / "folder.net.xml";
+  fs::create_directories(folder);
+  const fs::path fifo = dir.path() / "fifo.net.xml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  const fs::path dangling = dir.path() / "dangling.net.xml";
+  fs::create_symlink(dir.path() / "gone.net.xml", dangling);
+  const std::vector<std::pair<fs::path, std::string>> cases = {
+      {folder, "a folder, not a file"},
+      {fifo, "a FIFO (named pipe), not a file"},
+      {dangling, "a dangling symbolic link"},
+      {dir.path() / "missing.net.xml", "no such file"}};
+  for (const auto& [path, what] : cases) {
+    SCOPED_TRACE(path.string());
+    for (const std::string kind : {"figure8", "network"}) {
+      std::vector<std::string> set = {"scenario.kind=" + kind, "scenario.network=" + path.string()};
+      if (kind == "network") set.push_back("scenario.demand={flow: 100}");
+      const ExperimentConfig cfg = Config(set);
+      const std::string msg = ErrorOf<ConfigError>([&] { BuildScenario(cfg, ""); });
+      EXPECT_THAT(msg, HasSubstr("scenario.network")) << kind;
+      EXPECT_THAT(msg, HasSubstr(path.string())) << kind;
+      EXPECT_THAT(msg, HasSubstr(what)) << kind;
+    }
+    const ExperimentConfig routes =
+        Config({"scenario.kind=network", "scenario.grid={columns: 2, rows: 2}",
+                "scenario.routes=[" + path.string() + "]", "scenario.av_share=0.5"});
+    const std::string msg = ErrorOf<ConfigError>([&] { BuildScenario(routes, ""); });
+    EXPECT_THAT(msg, HasSubstr("scenario.routes"));
+    EXPECT_THAT(msg, HasSubstr(what));
+  }
+}
+
+// A policy that needs AVs on a demand without any is refused before SUMO
+// starts (it used to run with 0 AVs and exit 0): generated demand without
+// scenario.av_share, route files whose types scenario.av_types misses.
+TEST(ScenarioBadInput, APolicyNeedingAvsWithNoAvInTheDemandIsAConfigError) {
+  TempDir dir;
+  const std::string routes = dir.Write(
+      "cars.rou.xml",
+      "<routes>\n  <vType id=\"car\"/>\n  <vType id=\"truck\" length=\"12\"/>\n"
+      "  <trip id=\"a\" type=\"car\" depart=\"0\" from=\"left0to0/0\" to=\"0/0toleft0\"/>\n"
+      "</routes>\n");
+  auto load = [&](const std::string& scenario, const std::string& policies) {
+    const std::string path = dir.Write(
+        "c.yaml", "scenario: {kind: network, grid: {columns: 2, rows: 2}, duration: 60, " +
+                      scenario + "}\npolicies: [" + policies + "]\n");
+    return LoadExperimentConfig(path);
+  };
+  std::string msg =
+      ErrorOf<ConfigError>([&] { BuildScenario(load("demand: {flow: 100}", "no_ebp, ta_ebp"), ""); });
+  EXPECT_THAT(msg, HasSubstr("scenario.av_types = [AV] matches no vehicle type of the demand "
+                             "(its types: car), so no_ebp, ta_ebp would run with 0 AVs"));
+  EXPECT_THAT(msg, HasSubstr("needs scenario.av_share"));
+  msg = ErrorOf<ConfigError>(
+      [&] { BuildScenario(load("routes: [" + routes + "]", "sumo_native, ta_ebp"), ""); });
+  EXPECT_THAT(msg, HasSubstr("(its types: car, truck), so ta_ebp would run with 0 AVs"));
+  EXPECT_THAT(msg, HasSubstr("set scenario.av_types"));
+  // Fine: AVs drawn (a share of 0 too: a deliberate choice), their type
+  // named, or no policy that needs them.
+  EXPECT_NO_THROW(BuildScenario(load("demand: {flow: 100}, av_share: 0.3", "ta_ebp"), ""));
+  EXPECT_NO_THROW(BuildScenario(load("demand: {flow: 100}, av_share: 0", "ta_ebp"), ""));
+  EXPECT_NO_THROW(BuildScenario(load("demand: {flow: 100}", "sumo_native"), ""));
+  EXPECT_NO_THROW(
+      BuildScenario(load("routes: [" + routes + "], av_types: [truck]", "ta_ebp"), ""));
+}
+
+// A selection that takes no junction says what the network has and why each
+// junction of a selected type was passed over (it used to say only "selects
+// no junction"): a grid built without internal links, and types the network
+// does not have.
+TEST(ScenarioBadInput, AnEmptySelectionListsTheNetworksTypesAndWhy) {
+  TempDir dir;
+  const std::string net = (dir.path() / "flat.net.xml").string();
+  ASSERT_EQ(std::system(("netgenerate --grid --grid.number 3 --grid.length 100 "
+                         "--default-junction-type allway_stop --no-internal-links true -o " +
+                         net + " >/dev/null 2>&1")
+                            .c_str()),
+            0);
+  auto load = [&](const std::string& types) {
+    const std::string path = dir.Write(
+        "c.yaml", "scenario: {kind: network, network: " + net +
+                      ", demand: {flow: 100}, av_share: 0.5, junctions: {types: [" + types +
+                      "]}}\n");
+    return LoadExperimentConfig(path);
+  };
+  std::string msg = ErrorOf<ConfigError>([&] { BuildScenario(load("allway_stop"), ""); });
+  EXPECT_THAT(msg, HasSubstr("scenario.junctions selects no junction in " + net));
+  EXPECT_THAT(msg, HasSubstr("The network has 9 allway_stop"));
+  EXPECT_THAT(msg, HasSubstr("of the selected types 9 junctions, passed over: "));
+  EXPECT_THAT(msg, HasSubstr("without internal lanes (the network was built with "
+                             "--no-internal-links"));
+  msg = ErrorOf<ConfigError>([&] { BuildScenario(load("priority_stop"), ""); });
+  EXPECT_THAT(msg, HasSubstr("The network has 9 allway_stop"));
+  EXPECT_THAT(msg, HasSubstr("of the selected types 0 junctions."));
 }
 
 TEST(ScenarioBadInput, CorruptNetworkIsAConfigErrorNamingTheFile) {

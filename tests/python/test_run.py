@@ -80,7 +80,7 @@ def test_errors_are_exceptions_with_the_cli_message(tmp_path):
         taebp.run(PAPER, overrides=["scenario.avs=-1"])
     assert str(e.value) == message and isinstance(e.value, ValueError)
     assert "scenario.avs" in message
-    with pytest.raises(taebp.ConfigError, match="cannot open"):
+    with pytest.raises(taebp.ConfigError, match="missing.yaml: no such file"):
         taebp.run(tmp_path / "missing.yaml")
     with pytest.raises(TypeError, match="list of 'KEY=VALUE'"):
         taebp.run(PAPER, overrides="scenario.duration=10")
@@ -169,7 +169,9 @@ def test_a_sumo_failure_is_sumo_error_with_the_cli_message_and_the_process_runs_
     assert code == 3
     with pytest.raises(taebp.SumoError) as e:
         taebp.run(PAPER, overrides=over)
-    assert str(e.value) == message and "SUMO start" in message
+    # SUMO's own first error leads the message, the command comes last.
+    assert str(e.value) == message and message.startswith("SUMO failed to start: ")
+    assert "the command was: sumo " in message
     assert isinstance(e.value, RuntimeError)
     # libsumo was closed: the next simulation in this process runs normally.
     assert len(taebp.run(PAPER, overrides=SHORT + ["policies=[ta_ebp]"]).encounters) > 20

@@ -126,5 +126,12 @@ def test_solve_errors_have_the_cli_message(tmp_path):
         taebp.solve(bad)
     with pytest.raises(taebp.ConfigError, match="unknown key 'colour'"):
         taebp.solve(dict(bad, colour="red"))
-    with pytest.raises(taebp.ConfigError, match="cannot open"):
-        taebp.solve(str(tmp_path / "missing.yaml"))
+    # Not a file: the program's message (a FIFO used to block the read).
+    for name, why in (("missing.yaml", "no such file"), ("fifo.yaml", "a FIFO")):
+        if name == "fifo.yaml":
+            os.mkfifo(tmp_path / name)
+        message, code = cli_error("solve", tmp_path / name, "--json")
+        assert code == 2 and why in message
+        with pytest.raises(taebp.ConfigError) as e:
+            taebp.solve(str(tmp_path / name))
+        assert str(e.value) == message

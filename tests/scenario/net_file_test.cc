@@ -476,7 +476,7 @@ TEST(NetFileBadInput, ClearMessagesNamingTheFile) {
   // A directory is not a file.
   msg = ErrorOf<std::runtime_error>([&] { NetFile::Load(dir.path().string()); });
   EXPECT_THAT(msg, HasSubstr(dir.path().string()));
-  EXPECT_THAT(msg, HasSubstr("is a directory"));
+  EXPECT_THAT(msg, HasSubstr("a folder, not a file"));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include "taebp/config/config.h"
 #include "taebp/controller/experiment.h"
 #include "taebp/controller/network_controller.h"
+#include "taebp/report/interrupt.h"
 #include "taebp/report/output_dir.h"
 #include "taebp/report/report.h"
 #include "taebp/runner/runner.h"
@@ -146,7 +147,9 @@ int Solve(const std::string& path, bool json) {
 int RunExperimentCommand(const std::string& config_path, const std::vector<std::string>& overrides,
                          std::string out_dir, bool quiet, const taebp::RunOptions& run_options = {}) {
   if (out_dir.empty()) out_dir = taebp::DefaultOutDir(config_path);
-  taebp::CheckOutputDir(out_dir);  // before the first simulation step
+  // Checked, not a sweep's, locked: before the first simulation step.
+  taebp::RunFolder folder(out_dir);
+  const taebp::InterruptGuard interrupts;
   taebp::ExperimentObserver observer;
   observer.warning = [](const std::string& w) {
     std::fprintf(stderr, "taebp: warning: %s\n", w.c_str());
@@ -158,7 +161,7 @@ int RunExperimentCommand(const std::string& config_path, const std::vector<std::
   };
   const taebp::ExperimentResult result =
       taebp::RunExperiment(config_path, overrides, run_options, observer);
-  taebp::WriteExperiment(result, out_dir);
+  taebp::WriteExperiment(result, folder);
   std::cout << result.Table();
   if (!quiet) std::fprintf(stderr, "taebp: results in %s\n", out_dir.c_str());
   // The files hold every policy up to and including the stalled one; the
@@ -195,6 +198,9 @@ int ReportErrors(F&& body) {
   } catch (const taebp::StallError& e) {
     std::cerr << "taebp: stalled: " << e.what() << "\n";
     return kExitStall;
+  } catch (const taebp::Interrupted& e) {
+    std::cerr << "taebp: " << e.what() << "\n";
+    return e.exit_code();
   } catch (const std::exception& e) {
     std::cerr << "taebp: error: " << e.what() << "\n";
     return 1;

@@ -425,9 +425,16 @@ struct ExperimentConfig {
   bool BeyondPaper() const;
 };
 
-// The text of a config file. Throws ConfigError naming the path when it is a
-// directory, missing or unreadable.
+// The text of a config file. Throws ConfigError naming the path when it is
+// not a regular file (NotAFile), or unreadable.
 std::string ReadConfigFile(const std::string& path);
+
+// Why `path` cannot be read as a file, or "" when it is a regular file (a
+// symbolic link to one counts): "no such file", "a folder, not a file", "a
+// FIFO (named pipe), not a file" (reading one would wait for a writer
+// forever), "a socket, not a file", "a device, not a file", "a dangling
+// symbolic link", or the system's reason it cannot be looked at.
+std::string NotAFile(const std::string& path);
 
 // Loads a YAML experiment file, applies `overrides` ("key.path=VALUE", VALUE
 // parsed as YAML) and validates. Unknown keys, wrong types and out-of-range

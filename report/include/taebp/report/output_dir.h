@@ -2,8 +2,11 @@
 // the whole life of a command that owns one (sweep, merge).
 #pragma once
 
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace taebp {
 
@@ -41,6 +44,50 @@ class FolderLock {
 
  private:
   int fd_ = -1;
+};
+
+// A file a run writes into its folder (summary.json, encounters.csv,
+// junctions.csv, config.yaml, timing.json, timeseries.csv, hv_trust.csv,
+// tripinfo-*.xml, summary-*.xml) or a temporary one of an earlier version's
+// writer (NAME.tmp.PID).
+bool IsRunFile(const std::string& name);
+
+// A run's output folder (taebp run, taebp.run(..., out=...)) for the life of
+// the run. On construction, before any simulation:
+// - checked as CheckOutputDir does;
+// - not a sweep's folder (sweep.json or journal.jsonl in it: a run would
+//   replace the sweep's pooled encounters.csv beside its tables);
+// - holding no folder of its own (the whole folder is replaced at the end);
+// - created if missing and locked (FolderLock) for the object's life, so two
+//   runs, or a run and a sweep, never write one folder at once;
+// - what runs killed while replacing it left beside it (see Replace) removed.
+// Throws OutputError naming the folder and why. Destroyed without a Replace
+// (the run failed), it leaves the folder as it found it: a folder it made is
+// removed again when still empty, a lock file it made too.
+class RunFolder {
+ public:
+  explicit RunFolder(const std::string& dir, const std::string& option = "--out");
+  ~RunFolder();
+  RunFolder(const RunFolder&) = delete;
+  RunFolder& operator=(const RunFolder&) = delete;
+
+  // Replaces the folder's run files with `files` as one set: the new set is
+  // written in full (fsync) into a staging folder beside it
+  // (.NAME.taebp-new-PID), the folder's other files (a user's notes,
+  // pictures) are linked into it, and the two folders are swapped in one
+  // rename (renameat2 RENAME_EXCHANGE), then the old one is removed. A
+  // reader sees the old set or the new one, never a mix; run files of the
+  // old set that the new one lacks (a rerun with fewer policies) are gone.
+  // Where the file system cannot swap folders, the files are renamed into
+  // place one by one and stale run files removed.
+  void Replace(const std::vector<std::pair<std::string, std::string>>& files);
+
+  const std::string& dir() const { return dir_; }
+
+ private:
+  std::string dir_;
+  std::unique_ptr<FolderLock> lock_;
+  bool made_dir_ = false, made_lock_ = false, replaced_ = false;
 };
 
 }  // namespace taebp

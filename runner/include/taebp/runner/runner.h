@@ -5,6 +5,7 @@
 
 #include "taebp/config/config.h"
 #include "taebp/controller/experiment.h"
+#include "taebp/report/output_dir.h"
 #include "taebp/report/report.h"
 
 #include <functional>
@@ -68,7 +69,11 @@ ExperimentResult RunExperiment(const std::string& config_path,
                                const RunOptions& options = {},
                                const ExperimentObserver& observer = {});
 
-// Writes the result files into `out_dir` atomically (all or nothing).
+// Replaces the run files of `folder` with the result's, as one set
+// (RunFolder::Replace: a reader sees the old set or the new one); throws
+// Interrupted, before writing anything, when a signal came during the run.
+void WriteExperiment(const ExperimentResult& result, RunFolder& folder);
+// The same into `out_dir`, locked and checked only now (a sweep's task).
 void WriteExperiment(const ExperimentResult& result, const std::string& out_dir);
 
 // The default output directory of a config: results/STEM, STEM the config file name without its extension.
