@@ -342,7 +342,7 @@ TEST(ScenarioBadInput, APolicyNeedingAvsWithNoAvInTheDemandIsAConfigError) {
   const std::string routes = dir.Write(
       "cars.rou.xml",
       "<routes>\n  <vType id=\"car\"/>\n  <vType id=\"truck\" length=\"12\"/>\n"
-      "  <trip id=\"a\" type=\"car\" depart=\"0\" from=\"left0to0/0\" to=\"0/0toleft0\"/>\n"
+      "  <trip id=\"a\" type=\"car\" depart=\"0\" from=\"left0A0\" to=\"A0left0\"/>\n"
       "</routes>\n");
   auto load = [&](const std::string& scenario, const std::string& policies) {
     const std::string path = dir.Write(
