@@ -4,6 +4,8 @@
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/report/interrupt.h"
 
+#include "sumo_messages.h"
+
 #include <pugixml.hpp>
 
 #include <cmath>
@@ -38,7 +40,7 @@ std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario
       "sumo", "-n", scenario.net, "--step-length", dt.str(), "--seed", seed.str(),
       "--collision.check-junctions", "true", "--collision.action", "warn",
       "--collision.mingap-factor", "0", "--time-to-teleport", "-1", "--no-step-log", "true",
-      "--no-warnings", "true", "--duration-log.disable", "true", "--xml-validation", "never"};
+      "--duration-log.disable", "true", "--xml-validation", "never"};
   if (!scenario.route_files.empty()) args.insert(args.end(), {"-r", Join(scenario.route_files)});
   if (sc.routes_scale != 1.0) {
     std::ostringstream scale;
@@ -95,6 +97,8 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
   copts.colour_states = options.colour_states;
   copts.stall_limit = options.stall_limit;
   NetworkController controller(config, PolicyOf(policy), scenario, *scenario.topology, copts);
+  // SUMO's warnings (its stderr) from its start to its close.
+  std::optional<control::SumoMessages> messages(std::in_place);
   sumo::Start(SumoArgs(config, scenario, policy));
   PolicyRun run;
   // SUMO is closed on every way out: a scenario that does not fit or a stall
@@ -126,6 +130,21 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     throw;
   }
   sumo::Close();
+  const control::SumoWarnings warned = messages->Finish();
+  messages.reset();
+  run.sumo_warnings = warned.count;
+  run.sumo_collision_warnings = warned.collisions;
+  run.sumo_warnings_first = warned.first;
+  if (!warned.demand_changed.empty()) {
+    const std::size_t n = warned.demand_changed.size();
+    throw SumoError(
+        "SUMO did not simulate the demand the route files hold (" + std::to_string(n) +
+        (n == 1 ? " warning" : " warnings") + " of policy " + policy + "): " +
+        warned.demand_changed.front() +
+        (n > 1 ? " (and " + std::to_string(n - 1) + " more)" : std::string()) +
+        ". Fix the route files (sort them by departure time: SUMO's tools/route/sort_routes.py; "
+        "give every vehicle a route its edges connect)");
+  }
   if (scenario.scratch) {
     ReadTripinfo(TripinfoPath(scenario, policy), config.scenario.warmup, &run.network);
     // SUMO heads its outputs with a comment holding the date and this run's

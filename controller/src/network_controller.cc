@@ -202,6 +202,10 @@ void NetworkController::Step() {
   ++c.steps;
   s.step = c.steps;
   if (s.sumo.TeleportNumber() > 0 && s.measuring()) ++s.out.teleports;
+  // The vehicles already waiting to depart when the measured time begins
+  // (the offered demand is counted from there).
+  if (s.out.network.pending_start < 0 && s.measuring() && s.sc.IsNetwork())
+    s.out.network.pending_start = s.sumo.PendingNumber();
   if (s.sumo.DepartedNumber() > 0)
     for (const std::string& id : s.sumo.DepartedIDs()) c.Register(id);
   if (s.sumo.ArrivedNumber() > 0)
@@ -242,9 +246,18 @@ PolicyRun NetworkController::Finish() {
     s.out.wait_sum += j.run.wait_sum;
     s.out.wait_max = std::max(s.out.wait_max, j.run.wait_max);
     s.out.held += j.run.held;
-    s.out.encounters_unfinished += j.logic->Encounters();
+    // Of the encounters drawn after the warm-up (as the rows): those still
+    // running at the end.
+    s.out.encounters_unfinished += j.logic->Encounters(s.sc.warmup);
+    if (s.now > s.sc.warmup)
+      j.run.longest_gap_without_crossing = std::max(
+          j.run.longest_gap_without_crossing, s.now - std::max(j.last_progress, s.sc.warmup));
     s.out.junctions.push_back(j.run);
   }
+  // Formed = a row in encounters.csv (drawn after the warm-up, finished) or
+  // still running: rows = formed - unfinished.
+  s.out.encounters_formed =
+      static_cast<long>(s.out.encounters.size()) + s.out.encounters_unfinished;
   return std::move(s.out);
 }
 

@@ -14,11 +14,14 @@ void CountProgress(RunState& s, int h, int new_pos) {
   for (int k = v.route_pos; k < new_pos; ++k) {
     const int j = s.topo.JunctionAtEnd(v.route[k]);
     if (j < 0) continue;
-    s.junctions[j].last_progress = s.now;
+    JunctionState& at = s.junctions[j];
+    if (s.measuring())
+      at.run.longest_gap_without_crossing = std::max(
+          at.run.longest_gap_without_crossing, s.now - std::max(at.last_progress, s.sc.warmup));
+    at.last_progress = s.now;
     s.last_crossing = s.now;
     if (!s.measuring()) continue;
-    (v.kind == VehicleKind::kAV ? s.junctions[j].run.crossings_av
-                                : s.junctions[j].run.crossings_hv)++;
+    (v.kind == VehicleKind::kAV ? at.run.crossings_av : at.run.crossings_hv)++;
   }
   v.route_pos = std::max(v.route_pos, new_pos);
 }

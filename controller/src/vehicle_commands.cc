@@ -19,7 +19,6 @@ void VehicleCommands::Execute(JunctionState& j, const Command& c) {
       Hold(j, c.vehicle);
       break;
     case Command::Kind::kStartNudge:
-      if (s_.measuring()) ++s_.out.encounters_formed;
       StartNudge(c.vehicle, c.distance);
       break;
     case Command::Kind::kRelease:

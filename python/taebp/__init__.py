@@ -273,6 +273,8 @@ class RunResult:
 
     summary     summary.json as a dict (policies.<name>.{...}, provenance)
     encounters  encounters.csv as a Table (one row per AV-HV encounter)
+    junctions   junctions.csv as a Table (one row per controlled junction and
+                policy: crossings, waits, queues, encounters, rates)
     config      config.yaml: the resolved configuration (YAML text)
     table       the Table I printout of ``taebp run``
     warnings    the run's warnings (also in summary.json's provenance)
@@ -285,6 +287,7 @@ class RunResult:
         self.files = dict(files)
         self.summary = json.loads(self.files["summary.json"])
         self.encounters = Table.from_csv(self.files["encounters.csv"], "encounters.csv")
+        self.junctions = Table.from_csv(self.files.get("junctions.csv", ""), "junctions.csv")
         self.timeseries = (Table.from_csv(self.files["timeseries.csv"], "timeseries.csv")
                            if "timeseries.csv" in self.files else None)
         self.hv_trust = (Table.from_csv(self.files["hv_trust.csv"], "hv_trust.csv")
@@ -300,9 +303,10 @@ class RunResult:
         return list(self.summary.get("policies", {}))
 
     def to_pandas(self):
-        """{"encounters": one row per encounter, "policies": one row per policy
-        with summary.json's metrics flattened (e.g. theory.dc_rate)}, plus
-        "timeseries" and "hv_trust" for runs beyond the paper."""
+        """{"encounters": one row per encounter, "junctions": one row per
+        junction and policy, "policies": one row per policy with summary.json's
+        metrics flattened (e.g. theory.dc_rate)}, plus "timeseries" and
+        "hv_trust" for runs beyond the paper."""
         pd = _pandas()
         rows = []
         for name, metrics in self.summary.get("policies", {}).items():
@@ -310,6 +314,7 @@ class RunResult:
             _flatten("", metrics, flat)
             rows.append(flat)
         out = {"encounters": self.encounters.to_pandas(),
+               "junctions": self.junctions.to_pandas(),
                "policies": pd.DataFrame(rows)}
         for name in ("timeseries", "hv_trust"):
             if getattr(self, name) is not None:
@@ -370,6 +375,8 @@ class SweepResult:
     aggregate   aggregate.csv: one row per (point, policy), pooled over seeds
     encounters  encounters.csv: every encounter, with point, replicate, seed
                 and the swept keys in front
+    junctions   every finished task's junctions.csv (one row per junction and
+                policy), with point, replicate, seed and the swept keys in front
     keys        the swept config keys (columns between point/seed and policy)
     out         the directory"""
 
@@ -398,14 +405,34 @@ class SweepResult:
     def encounters(self):
         return self._table("encounters.csv")
 
+    @property
+    def junctions(self):
+        if "junctions.csv" not in self._tables:
+            front = ["point", "replicate", "seed"] + self.keys
+            columns, rows, tasks = None, [], {}
+            for r in self.results:  # the finished tasks, in task order
+                if r.get("status") == "ok":
+                    tasks.setdefault((r["point"], r["replicate"]), [r[c] for c in front])
+            for (point, replicate), values in tasks.items():
+                path = os.path.join(self.out, "tasks", "%d-%d" % (point, replicate),
+                                    "junctions.csv")
+                if not os.path.isfile(path):
+                    continue
+                with open(path, encoding="utf-8", newline="") as f:
+                    t = Table.from_csv(f.read(), "junctions.csv")
+                columns = columns or front + t.columns
+                rows.extend(tuple(values) + row for row in t.rows)
+            self._tables["junctions.csv"] = Table(columns or front, rows, "junctions")
+        return self._tables["junctions.csv"]
+
     def run(self, point, replicate=0):
         """One task's RunResult (tasks/POINT-REPLICATE)."""
         return load_run(os.path.join(self.out, "tasks", "%d-%d" % (point, replicate)))
 
     def to_pandas(self):
-        """{"results", "aggregate", "encounters"} as pandas DataFrames."""
+        """{"results", "aggregate", "encounters", "junctions"} as pandas DataFrames."""
         return {name: getattr(self, name).to_pandas()
-                for name in ("results", "aggregate", "encounters")}
+                for name in ("results", "aggregate", "encounters", "junctions")}
 
     def __repr__(self):
         return "<taebp.SweepResult %s: %s points x %s replicates>" % (

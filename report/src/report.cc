@@ -109,6 +109,7 @@ json JunctionJson(const PolicyRun& r, const JunctionRun& jr) {
   j["crossings"] = {{"av", jr.crossings_av}, {"hv", jr.crossings_hv}, {"all", all}};
   j["throughput_per_hour"] = PerHour(static_cast<double>(all), r.measured_seconds);
   j["held"] = jr.held;
+  j["longest_gap_without_crossing"] = jr.longest_gap_without_crossing;
   // No vehicle held (sumo_native, or nobody met): no mean wait (null), not 0.
   j["wait_at_stop_line"] = {{"mean", jr.held ? json(jr.wait_sum / jr.held) : json()},
                             {"max", jr.wait_max}};
@@ -131,6 +132,8 @@ json NetworkJson(const PolicyRun& r) {
   j["departed"] = n.departed;
   j["arrived"] = n.arrived;
   j["served_flow_per_hour"] = PerHour(static_cast<double>(n.arrived), r.measured_seconds);
+  j["offered"] = n.Offered();
+  j["offered_flow_per_hour"] = PerHour(static_cast<double>(n.Offered()), r.measured_seconds);
   j["waiting_to_depart"] = {{"max", n.pending_max}, {"end", n.pending_end}};
   j["vehicles_max"] = n.vehicles_max;
   j["trips"] = n.trips;
@@ -263,7 +266,7 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
   out << "policy,junction,type,original_type,rule,crossings_av,crossings_hv,"
          "throughput_per_hour,held,wait_mean,wait_max,queue_max,queue_mean,encounters,dc,"
          "dc_rate,collisions,collision_rate,theory_dc_rate,theory_collision_rate,"
-         "meetings_not_game,meetings_abandoned\n";
+         "meetings_not_game,meetings_abandoned,longest_gap_without_crossing\n";
   for (const PolicyRun& r : runs) {
     for (const JunctionRun& jr : r.junctions) {
       const Stats s = ComputeAt(r, jr.id);
@@ -288,7 +291,8 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
           << FormatDouble(Rate(s.collisions, s.n)) << ','
           << FormatDouble(s.n ? s.theory_dc_sum / s.n : 0.0) << ','
           << FormatDouble(s.n ? s.theory_collision_sum / s.n : 0.0) << ','
-          << jr.meetings_not_game << ',' << jr.meetings_abandoned << '\n';
+          << jr.meetings_not_game << ',' << jr.meetings_abandoned << ','
+          << FormatDouble(jr.longest_gap_without_crossing) << '\n';
     }
   }
   return out.str();
@@ -376,6 +380,9 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
     j["other_collisions_game_move"] = r.other_collisions_game_move;
     j["unblocked"] = r.unblocked;
     j["teleports"] = r.teleports;
+    j["sumo_warnings"] = {{"count", r.sumo_warnings},
+                          {"collisions", r.sumo_collision_warnings},
+                          {"first", r.sumo_warnings_first}};
     j["longest_gap_without_crossing"] = r.longest_gap_without_crossing;
     j["simulated_seconds"] = r.simulated_seconds;
     j["measured_seconds"] = r.measured_seconds;

@@ -105,6 +105,19 @@ ExperimentResult RunExperiment(const std::string& config_path,
         result.warnings.push_back(w);
         if (observer.warning) observer.warning(w);
       }
+      // SUMO's own warnings (its collision reports left out: counted by taebp).
+      const long others = run.sumo_warnings - run.sumo_collision_warnings;
+      if (others > 0) {
+        // One line (the table lists warnings a line each); the first few are
+        // in summary.json.
+        std::string s = name + ": SUMO warned " + std::to_string(others) +
+                        (others == 1 ? " time" : " times") + ", first: " +
+                        (run.sumo_warnings_first.empty() ? std::string("?")
+                                                         : run.sumo_warnings_first.front()) +
+                        " (summary.json: sumo_warnings)";
+        result.warnings.push_back(s);
+        if (observer.warning) observer.warning(s);
+      }
     }
     for (const StallRecord& st : result.runs.back().stalls) {
       char buf[256];

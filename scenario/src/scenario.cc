@@ -257,6 +257,28 @@ void ReadSumocfg(const fs::path& cfg, Scenario* s) {
   s->net = nets[0];
   for (const std::string& f : values("route-files")) s->route_files.push_back(f);
   for (const std::string& f : values("additional-files")) s->additional_files.push_back(f);
+  // Every other option of the file is not applied: said, with taebp's own
+  // key where it has one (SUMO runs with taebp's step, end, seed, teleport
+  // and collision settings).
+  static const std::map<std::string, std::string> kOwnKey = {
+      {"end", "scenario.duration"},        {"step-length", "scenario.step_length"},
+      {"seed", "scenario.seed"},           {"scale", "scenario.routes_scale"},
+      {"begin", "taebp starts at 0"},      {"time-to-teleport", "taebp: never (-1)"}};
+  std::string ignored;
+  for (pugi::xml_node section : root.children()) {
+    if (section.type() != pugi::node_element) continue;
+    for (pugi::xml_node n : section.children()) {
+      if (n.type() != pugi::node_element) continue;
+      const std::string name = n.name();
+      if (name == "net-file" || name == "route-files" || name == "additional-files") continue;
+      ignored += (ignored.empty() ? "" : ", ") + name + "=" + n.attribute("value").as_string();
+      if (const auto it = kOwnKey.find(name); it != kOwnKey.end())
+        ignored += " (" + it->second + ")";
+    }
+  }
+  if (!ignored.empty())
+    s->notes.push_back(key + ": options taebp does not take are ignored (only net-file, "
+                             "route-files and additional-files are read): " + ignored);
 }
 
 std::string GeneratedGrid(const GridConfig& g) {

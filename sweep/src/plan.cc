@@ -341,7 +341,7 @@ const std::vector<std::string>& MetricColumns() {
       "wait_mean", "wait_max", "nudges", "other_collisions", "teleports",
       "longest_gap_without_crossing",
       // kind: network (empty for the figure-8)
-      "served_flow", "time_loss_mean", "waiting_time_mean", "waiting_to_depart_end",
+      "served_flow", "offered_flow", "time_loss_mean", "waiting_time_mean", "waiting_to_depart_end",
       "nudges_unrealised",
       // runs beyond the paper (empty otherwise): trust, regret, the last hour
       "initial_mean_trust", "final_mean_trust", "expected_long_run_trust", "final_mean_field_trust",
@@ -415,6 +415,7 @@ Json MetricsFromSummary(const Json& s, const std::vector<std::string>& policies)
       return *cur;
     };
     m["served_flow"] = opt({"network", "served_flow_per_hour"});
+    m["offered_flow"] = opt({"network", "offered_flow_per_hour"});
     m["time_loss_mean"] = opt({"network", "time_loss_mean"});
     m["waiting_time_mean"] = opt({"network", "waiting_time_mean"});
     m["waiting_to_depart_end"] = opt({"network", "waiting_to_depart", "end"});
@@ -581,7 +582,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
     double ref_c = 0, ref_d = 0, ref_gc = 0, ref_gd = 0;
     double th_c_w = 0, th_d_w = 0, th_c = 0, th_d = 0, thg_c_w = 0, thg_d_w = 0;
     std::vector<double> tp_av, tp_hv, tp_all, wait;
-    std::vector<double> served, loss, waiting, pending;  // kind: network
+    std::vector<double> served, offered, loss, waiting, pending;  // kind: network
     // Beyond the paper.
     std::vector<double> final_trust, long_run, regret_per_encounter;
     double oracle_dc_w = 0;  // sum of encounters x oracle DC rate
@@ -627,6 +628,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
     if (m["wait_mean"].is_number()) a.wait.push_back(Number(m["wait_mean"]));  // null: none held
     if (m["served_flow"].is_number()) {
       a.served.push_back(Number(m["served_flow"]));
+      if (m["offered_flow"].is_number()) a.offered.push_back(Number(m["offered_flow"]));
       a.loss.push_back(Number(m["time_loss_mean"]));
       a.waiting.push_back(Number(m["waiting_time_mean"]));
       a.pending.push_back(Number(m["waiting_to_depart_end"]));
@@ -673,7 +675,8 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
          "final_mean_trust,final_mean_trust_sd,expected_long_run_trust,oracle_dc_rate,"
          "regret_per_encounter,regret_per_encounter_sd,last_hour_encounters,last_hour_dc_rate,"
          "last_hour_dc_rate_lo,last_hour_dc_rate_hi,last_hour_collision_rate,"
-         "last_hour_collision_rate_lo,last_hour_collision_rate_hi,last_hour_oracle_dc_rate\n";
+         "last_hour_collision_rate_lo,last_hour_collision_rate_hi,last_hour_oracle_dc_rate,"
+         "offered_flow\n";
   for (const auto& [point_index, by_policy] : acc) {
     const Point& p = plan.points[static_cast<std::size_t>(point_index)];
     for (const std::string& policy : p.policies) {
@@ -684,7 +687,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       for (const auto& v : p.values) out << ',' << CsvCell(v);
       out << ',' << CsvCell(policy) << ',' << a.ok << ',' << a.failed;
       if (a.ok == 0) {
-        out << std::string(23 + 14, ',') << '\n';  // one empty cell per metric column
+        out << std::string(23 + 14 + 1, ',') << '\n';  // one empty cell per metric column
         continue;
       }
       out << ',' << a.enc;
@@ -708,7 +711,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
           << num(mean(a.loss)) << ',' << num(sd(a.loss)) << ',' << num(mean(a.waiting)) << ','
           << num(mean(a.pending));
       if (!a.beyond) {
-        out << std::string(14, ',') << '\n';
+        out << std::string(14, ',') << ',' << num(mean(a.offered)) << '\n';
         continue;
       }
       out << ',' << num(mean(a.final_trust)) << ',' << num(sd(a.final_trust)) << ','
@@ -725,7 +728,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       } else {
         out << ",,,,,,,";
       }
-      out << '\n';
+      out << ',' << num(mean(a.offered)) << '\n';
     }
   }
   return out.str();

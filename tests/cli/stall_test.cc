@@ -138,4 +138,76 @@ TEST(CliStall, GridlockUnderStallActionRecordRunsEveryPolicyFlagged) {
   EXPECT_THAT(r.out, HasSubstr("(recorded)")) << r.out;
 }
 
+// Encounters formed and unfinished are counted as the rows are (drawn after
+// the warm-up): rows = formed - unfinished for every warm-up. On the
+// figure-8 a run of these lengths ends during an encounter; with the
+// warm-up 2 s before the end, that encounter was drawn before it and is
+// neither a row nor unfinished (it used to count as unfinished: "formed 0,
+// unfinished 4").
+TEST(CliStall, UnfinishedEncountersAreThoseFormedAfterTheWarmup) {
+  TempDir dir;
+  const std::string paper = std::string(TAEBP_SOURCE_DIR) + "/configs/paper.yaml";
+  long unfinished_no_warmup = 0;
+  for (const int duration : {40, 47, 53, 61}) {
+    for (const int warmup : {0, duration - 2}) {
+      SCOPED_TRACE("duration " + std::to_string(duration) + ", warmup " + std::to_string(warmup));
+      const fs::path out = dir.path() / "out";
+      const CliResult r = RunCli({"run", paper, "--set", "policies=[no_trust, ta_ebp]", "--set",
+                                  "scenario.duration=" + std::to_string(duration), "--set",
+                                  "scenario.warmup=" + std::to_string(warmup), "--out",
+                                  out.string(), "--quiet"});
+      ASSERT_EQ(r.exit_code, 0) << r.Describe();
+      const nlohmann::json s = nlohmann::json::parse(ReadText(out / "summary.json"));
+      const std::string rows = ReadText(out / "encounters.csv");
+      for (const char* p : {"no_trust", "ta_ebp"}) {
+        SCOPED_TRACE(p);
+        long n = 0;
+        for (std::size_t at = rows.find(std::string("\n") + p + ","); at != std::string::npos;
+             at = rows.find(std::string("\n") + p + ",", at + 1))
+          ++n;
+        const nlohmann::json& run = s["policies"][p];
+        const long formed = run["encounters_formed"], unfinished = run["encounters_unfinished"];
+        EXPECT_GE(unfinished, 0);
+        EXPECT_LE(unfinished, formed);
+        EXPECT_EQ(formed - unfinished, n) << "rows = formed - unfinished";
+        EXPECT_EQ(run["encounters"].get<long>(), n);
+        if (warmup == 0) unfinished_no_warmup += unfinished;
+        if (warmup > 0) {
+          EXPECT_EQ(unfinished, 0) << "drawn before the warm-up's end";
+        }
+      }
+    }
+  }
+  EXPECT_GT(unfinished_no_warmup, 0) << "these runs end during an encounter";
+}
+
+// The longest gap without a crossing is set per junction, and for
+// sumo_native too: on the gridlocking grid every junction's gap is long.
+TEST(CliStall, LongestGapWithoutCrossingPerJunctionAndForSumoNative) {
+  TempDir dir;
+  const std::string config = Config(dir);
+  const fs::path out = dir.path() / "out";
+  const CliResult r = RunCli({"run", config, "--set", "policies=[sumo_native, no_ebp]", "--set",
+                              "scenario.stall_action=record", "--set", "scenario.warmup=100",
+                              "--out", out.string(), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const nlohmann::json s = nlohmann::json::parse(ReadText(out / "summary.json"));
+  for (const char* p : {"sumo_native", "no_ebp"}) {
+    SCOPED_TRACE(p);
+    const nlohmann::json& run = s["policies"][p];
+    EXPECT_GT(run["longest_gap_without_crossing"].get<double>(), 300.0);
+    ASSERT_EQ(run["junctions"].size(), 4u);
+    double longest = 0;
+    for (const auto& j : run["junctions"]) {
+      const double gap = j["longest_gap_without_crossing"].get<double>();
+      EXPECT_GT(gap, 0.0) << j["id"];
+      EXPECT_LE(gap, 800.0 + 1e-6) << j["id"] << ": within the measured 800 s";
+      longest = std::max(longest, gap);
+    }
+    EXPECT_GT(longest, 300.0) << "the stalled junction's gap";
+  }
+  const std::string csv = ReadText(out / "junctions.csv");
+  EXPECT_THAT(csv.substr(0, csv.find('\n')), testing::EndsWith(",longest_gap_without_crossing"));
+}
+
 }  // namespace

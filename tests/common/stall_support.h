@@ -5,6 +5,8 @@
 // through B0 and A0, and after the stall limit (300 s on a network) nothing
 // has passed B0 while vehicles wait at its stop lines: a stall, under every
 // policy (sumo_native included). Shared by the CLI and controller suites.
+// Sorted by departure time (SUMO drops what comes out of order: it used to
+// drop sb and nb here unnoticed, until SUMO's warnings were read).
 #pragma once
 
 #include <string>
@@ -20,10 +22,10 @@ inline std::string BlockedGridRoutes() {
     <vehicle id="blocker" depart="0" route="west">
         <stop lane="B0right0_0" endPos="85" duration="100000"/>
     </vehicle>
-    <flow id="w" route="west" begin="2" end="900" period="4"/>
-    <flow id="sa" route="south_a" begin="3" end="900" period="4"/>
     <flow id="sb" route="south_b" begin="1" end="900" period="4"/>
+    <flow id="w" route="west" begin="2" end="900" period="4"/>
     <flow id="nb" route="north_b" begin="2.5" end="900" period="4"/>
+    <flow id="sa" route="south_a" begin="3" end="900" period="4"/>
 </routes>
 )";
 }

@@ -29,6 +29,7 @@ namespace taebp {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 namespace per = persuasion;
 namespace fs = std::filesystem;
 
@@ -396,6 +397,40 @@ TEST(ScenarioBadInput, AnEmptySelectionListsTheNetworksTypesAndWhy) {
   msg = ErrorOf<ConfigError>([&] { BuildScenario(load("priority_stop"), ""); });
   EXPECT_THAT(msg, HasSubstr("The network has 9 allway_stop"));
   EXPECT_THAT(msg, HasSubstr("of the selected types 0 junctions."));
+}
+
+// A .sumocfg's options other than its files are not applied: listed as
+// ignored (with taebp's own key where it has one), in the notes that go to
+// stderr and summary.json (they used to be dropped without a word).
+TEST(ScenarioSumocfg, OptionsTaebpDoesNotTakeAreListedAsIgnored) {
+  TempDir dir;
+  const std::string net = (dir.path() / "grid.net.xml").string();
+  ASSERT_EQ(std::system(("netgenerate --grid --grid.number 2 --grid.length 100 "
+                         "--grid.attach-length 100 --default-junction-type allway_stop -o " +
+                         net + " >/dev/null 2>&1")
+                            .c_str()),
+            0);
+  dir.Write("cars.rou.xml",
+            "<routes>\n  <trip id=\"a\" depart=\"0\" from=\"left0A0\" to=\"A0left0\"/>\n"
+            "</routes>\n");
+  const std::string cfg = dir.Write(
+      "city.sumocfg",
+      "<configuration>\n  <input>\n    <net-file value=\"grid.net.xml\"/>\n"
+      "    <route-files value=\"cars.rou.xml\"/>\n  </input>\n"
+      "  <time>\n    <end value=\"1800\"/>\n    <step-length value=\"0.5\"/>\n  </time>\n"
+      "  <processing>\n    <ignore-route-errors value=\"true\"/>\n  </processing>\n"
+      "</configuration>\n");
+  const std::string yaml = dir.Write(
+      "c.yaml", "scenario: {kind: network, sumocfg: " + cfg + ", av_share: 0.5}\n");
+  const Scenario s = BuildScenario(LoadExperimentConfig(yaml), "");
+  std::string notes;
+  for (const std::string& n : s.notes) notes += n + "\n";
+  EXPECT_THAT(notes, HasSubstr("scenario.sumocfg = '" + cfg +
+                               "': options taebp does not take are ignored"));
+  EXPECT_THAT(notes, HasSubstr("end=1800 (scenario.duration), step-length=0.5 "
+                               "(scenario.step_length), ignore-route-errors=true"));
+  EXPECT_THAT(notes, Not(HasSubstr("net-file=")));
+  ASSERT_EQ(s.route_files.size(), 1u);
 }
 
 TEST(ScenarioBadInput, CorruptNetworkIsAConfigErrorNamingTheFile) {

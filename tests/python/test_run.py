@@ -71,6 +71,11 @@ def test_pandas_frames():
     assert list(pol["policy"]) == ["no_trust", "ta_ebp"]
     assert list(pol["theory.dc_rate"]) == [0.0, 0.375]
     assert taebp.to_pandas(r.encounters).shape == enc.shape
+    # junctions.csv: one row per policy and junction (the figure-8's C).
+    j = frames["junctions"]
+    assert list(j["policy"]) == ["no_trust", "ta_ebp"] and set(j["junction"]) == {"C"}
+    assert list(j["encounters"]) == [r.summary["policies"][p]["encounters"]
+                                     for p in ("no_trust", "ta_ebp")]
 
 
 def test_errors_are_exceptions_with_the_cli_message(tmp_path):

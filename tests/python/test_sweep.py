@@ -45,8 +45,17 @@ def test_sweep_equals_the_cli_sweep(tmp_path, config):
     one = s.run(1, 1)
     assert one.summary["provenance"]["seed"] == 4
     frames = s.to_pandas()
-    assert set(frames) == {"results", "aggregate", "encounters"}
+    assert set(frames) == {"results", "aggregate", "encounters", "junctions"}
     assert len(frames["encounters"]) == len(s.encounters)
+    # One row per task, policy and junction (the figure-8 has one, C), with
+    # the task's point, replicate, seed and swept values in front; its
+    # encounters are the task's.
+    j = frames["junctions"]
+    assert list(j.columns[:6]) == ["point", "replicate", "seed"] + s.keys
+    assert len(j) == 4 * 2 * 2 and set(j["junction"]) == {"C"}
+    res = frames["results"].set_index(["point", "replicate", "policy"])["encounters"]
+    for _, row in j.iterrows():
+        assert row["encounters"] == res[(row["point"], row["replicate"], row["policy"])]
 
 
 def test_swept_values_keep_their_yaml_types_in_sweep_json(tmp_path):

@@ -227,9 +227,11 @@ class Interception {
   bool Busy() const {
     return encounter_.has_value() || !leaving_.empty() || !thirds_.empty() || !finished_.empty();
   }
-  // Encounters begun and not finished.
-  int Encounters() const {
-    return (encounter_ && encounter_->drawn ? 1 : 0) + static_cast<int>(leaving_.size());
+  // Encounters begun (drawn) at or after `since` and not finished.
+  int Encounters(double since = -1e300) const {
+    int n = encounter_ && encounter_->drawn && encounter_->out.time >= since ? 1 : 0;
+    for (const Active& a : leaving_) n += a.out.time >= since ? 1 : 0;
+    return n;
   }
   int HeldThirds() const { return static_cast<int>(thirds_.size()); }
   // AV-HV meetings that were not the game (each pair counted once).

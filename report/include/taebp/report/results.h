@@ -5,6 +5,7 @@
 #include "taebp/persuasion/outcomes.h"
 
 #include <limits>
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,10 @@ struct JunctionRun {
   // Meetings whose arriving partner never came to its line (the waiting one,
   // held for it, went back to SUMO; no game was drawn).
   long meetings_abandoned = 0;
+  // The longest time over the measured period in which no vehicle passed
+  // this junction (s; from the warm-up's end or the last crossing to the next
+  // crossing or the run's end): a deadlock here, or a quiet junction.
+  double longest_gap_without_crossing = 0;
   std::vector<ApproachStats> approaches;
 };
 // Network-wide totals over the measured time (kind: network).
@@ -90,6 +95,10 @@ struct NetworkRun {
   long pending_max = 0;              // most vehicles waiting to be inserted at once
   long vehicles_max = 0;             // most vehicles in the network at once (sampled each second)
   long pending_end = 0;              // waiting to be inserted at the end (demand not served)
+  long pending_start = -1;           // waiting to be inserted when the measured time began
+  // The demand offered in the measured time: the vehicles due to depart in
+  // it (departed + still waiting at the end - already waiting at its start).
+  long Offered() const { return departed + pending_end - std::max(0L, pending_start); }
   // SUMO's tripinfo records (--tripinfo-output.write-unfinished) of the
   // vehicles that departed after the warm-up, finished or not: a trip still
   // in the network at the end (arrival -1) counts with its time so far.
@@ -162,6 +171,10 @@ struct BeyondRun {
 
 struct PolicyRun {
   std::string policy;
+  // SUMO's warnings in this policy's simulation: all, SUMO's collision
+  // reports among them, the first few others (text without "Warning: ").
+  long sumo_warnings = 0, sumo_collision_warnings = 0;
+  std::vector<std::string> sumo_warnings_first;
   persuasion::CommittedScheme scheme;     // the design for the population's theta_hat
   // Library prediction: expectation over the trust distribution of the per-HV
   // predictions (for a fixed trust, the prediction itself).

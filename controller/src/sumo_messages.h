@@ -1,0 +1,48 @@
+// SUMO's warnings during one policy's simulation (issue 17, item 4). libsumo
+// prints them on this process's stderr; from construction to Finish() that
+// stream goes to a temporary file, whose lines are then sorted: SUMO's
+// "Warning: " lines are counted and kept (the first few), every other line
+// (SUMO's errors, anything else written meanwhile) goes back to stderr as it
+// was. Warnings that change the demand SUMO simulates (a route file not
+// sorted by departure time, whose later vehicles SUMO drops; a vehicle
+// without a valid route) are named apart, so that the run can fail on them.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace taebp::control {
+
+struct SumoWarnings {
+  long count = 0;            // every "Warning: " line
+  long collisions = 0;       // of those, SUMO's collision reports (taebp counts collisions itself)
+  std::vector<std::string> first;           // the first few others, without "Warning: "
+  std::vector<std::string> demand_changed;  // those that change the demand (all of them)
+};
+
+// Patterns of SUMO 1.15 warnings after which SUMO runs another demand than
+// the files hold.
+const std::vector<std::string>& DemandChangingWarnings();
+
+// Sorts SUMO's output: warnings into `into`, every other line into `rest`.
+void SortSumoOutput(const std::string& text, SumoWarnings* into, std::string* rest);
+
+class SumoMessages {
+ public:
+  static constexpr std::size_t kFirst = 5;
+  SumoMessages();
+  ~SumoMessages();  // (without Finish) puts stderr back, passing everything on
+  SumoMessages(const SumoMessages&) = delete;
+  SumoMessages& operator=(const SumoMessages&) = delete;
+
+  // Puts stderr back; SUMO's warnings sorted, every other line passed on.
+  SumoWarnings Finish();
+
+ private:
+  std::string Restore();  // stderr back; what was captured
+  std::FILE* file_ = nullptr;
+  int saved_ = -1;
+};
+
+}  // namespace taebp::control
