@@ -18,7 +18,7 @@ foreach(p ${pages})
 endforeach()
 foreach(needle "DesignTaebp" "SolveTrustAwarePersuasion" "MinimalNudge" "RunPolicy"
                "RunExperiment" "RunSweep" "LoadExperimentConfig"
-               "the minimal nudge that makes" "atomically (all or nothing)")
+               "the minimal nudge that makes" "as one set")
   string(FIND "${all}" "${needle}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "the API reference does not mention '${needle}'")

@@ -108,6 +108,7 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     if (options.after_start) options.after_start();
     const long steps = std::lround(config.scenario.duration / config.scenario.step_length);
     const long minute = std::max(1L, std::lround(60.0 / config.scenario.step_length));
+    const long progress_every = std::max(1L, std::lround(10.0 / config.scenario.step_length));
     try {
       for (long k = 0; k < steps; ++k) {
         ThrowIfInterrupted();  // Ctrl-C, SIGTERM: unwind, scratch removed (interrupt.h)
@@ -115,6 +116,9 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
         controller.Step();
         if (options.every_minute && (k + 1) % minute == 0)
           options.every_minute(policy, sumo::Time());
+        if (options.progress && ((k + 1) % progress_every == 0 || k + 1 == steps))
+          options.progress({policy, sumo::Time(), config.scenario.duration,
+                            controller.VehiclesNow(), controller.EncountersSoFar()});
       }
       if (options.before_close) options.before_close();
       run = controller.Finish();

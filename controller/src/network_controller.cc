@@ -203,9 +203,9 @@ void NetworkController::Step() {
   s.step = c.steps;
   if (s.sumo.TeleportNumber() > 0 && s.measuring()) ++s.out.teleports;
   // The vehicles already waiting to depart when the measured time begins
-  // (the offered demand is counted from there).
-  if (s.out.network.pending_start < 0 && s.measuring() && s.sc.IsNetwork())
-    s.out.network.pending_start = s.sumo.PendingNumber();
+  // (the offered demand is counted from there): read each warm-up step, the
+  // last one's stays.
+  if (!s.measuring() && s.sc.IsNetwork()) s.out.network.pending_start = s.sumo.PendingNumber();
   if (s.sumo.DepartedNumber() > 0)
     for (const std::string& id : s.sumo.DepartedIDs()) c.Register(id);
   if (s.sumo.ArrivedNumber() > 0)
@@ -221,6 +221,13 @@ void NetworkController::Step() {
   if (c.steps % s.sample_every == 0) c.Sample();
   s.out.longest_gap_without_crossing =
       std::max(s.out.longest_gap_without_crossing, s.now - s.last_crossing);
+}
+
+long NetworkController::VehiclesNow() const {
+  return static_cast<long>(impl_->s.vehicles.in_network().size());
+}
+long NetworkController::EncountersSoFar() const {
+  return static_cast<long>(impl_->s.out.encounters.size());
 }
 
 PolicyRun NetworkController::Finish() {

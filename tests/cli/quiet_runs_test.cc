@@ -97,4 +97,29 @@ TEST(QuietRuns, ANetworkRunWithoutADepartureWarns) {
         << r.Describe();
 }
 
+// The offered demand (issue 17, item 17) is the number of vehicles due to
+// depart in the measured time, whether SUMO could insert them or not: here a
+// flow of 2 vehicles a second on one lane (more than SUMO can insert, so
+// vehicles wait to depart), due from 0 to 149.5 s, measured from 100 s: 100.
+TEST(QuietRuns, OfferedDemandCountsTheVehiclesDueInTheMeasuredTime) {
+  TempDir dir;
+  const std::string routes = dir.Write(
+      "flood.rou.xml",
+      "<routes>\n  <flow id=\"f\" begin=\"0\" end=\"150\" period=\"0.5\">"
+      "<route edges=\"left0A0 A0B0 B0right0\"/></flow>\n</routes>\n");
+  const fs::path out = dir.path() / "out";
+  const CliResult r = RunGrid(out, {"scenario.demand=null", "scenario.routes=[" + routes + "]",
+                                    "scenario.warmup=100", "scenario.duration=600",
+                                    "policies=[sumo_native, no_ebp]"});
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  const auto summary = nlohmann::json::parse(ReadText(out / "summary.json"));
+  for (const char* p : {"sumo_native", "no_ebp"}) {
+    SCOPED_TRACE(p);
+    const auto& net = summary["policies"][p]["network"];
+    EXPECT_GT(net["waiting_to_depart"]["max"].get<long>(), 10) << "SUMO cannot insert them all";
+    EXPECT_EQ(net["offered"], 100) << net;
+    EXPECT_DOUBLE_EQ(net["offered_flow_per_hour"].get<double>(), 100 * 3600.0 / 500.0);
+  }
+}
+
 }  // namespace

@@ -164,9 +164,13 @@ class FakeJunction : public ::testing::Test {
   }
 
   std::unique_ptr<NetworkController> Controller(const std::string& policy) {
+    // The fake world's vehicles are of types AV and HV (the routes only
+    // declare them: the cars come from the tests).
+    const std::string routes =
+        dir_.Write("types.rou.xml", "<routes>\n  <vType id=\"AV\"/>\n  <vType id=\"HV\"/>\n</routes>\n");
     config_ = ParseExperimentConfig(
-        "scenario:\n  kind: network\n  network: " + net_path_ +
-            "\n  demand: {flow: 100}\n  duration: 100\n  warmup: 0\n"
+        "scenario:\n  kind: network\n  network: " + net_path_ + "\n  routes: [" + routes +
+            "]\n  duration: 100\n  warmup: 0\n"
             "model:\n  prior_go: 0.2\n  collision_penalty: 3.0\n  trust: 0.6\n"
             "policies: [" + policy + "]\n",
         "fake.yaml", {});

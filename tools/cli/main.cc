@@ -19,6 +19,8 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <functional>
+#include <memory>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -27,6 +29,8 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+
+#include <unistd.h>
 
 namespace {
 
@@ -150,17 +154,58 @@ int RunExperimentCommand(const std::string& config_path, const std::vector<std::
   // Checked, not a sweep's, locked: before the first simulation step.
   taebp::RunFolder folder(out_dir);
   const taebp::InterruptGuard interrupts;
+  // A progress line per policy on a terminal (not with --quiet, not when
+  // stderr is a file or a pipe), rewritten in place, at most 5 times a second.
+  // The terminal itself (a copy of stderr's descriptor): while SUMO runs,
+  // stderr is collected (SUMO's warnings), the progress line is not.
+  const bool live = !quiet && ::isatty(STDERR_FILENO) == 1;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> tty(
+      live ? ::fdopen(::dup(STDERR_FILENO), "w") : nullptr, &std::fclose);
+  bool line_open = false;
+  auto clear_line = [&] {
+    if (line_open && tty) {
+      std::fputs("\r\033[K", tty.get());
+      std::fflush(tty.get());
+    }
+    line_open = false;
+  };
+  taebp::RunOptions options = run_options;
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point policy_start = Clock::now(), last_print{};
+  std::string current;
+  if (tty) {
+    options.progress = [&](const taebp::RunOptions::Progress& p) {
+      const Clock::time_point now = Clock::now();
+      if (p.policy != current) current = p.policy, policy_start = now;
+      if (now - last_print < std::chrono::milliseconds(200) && p.simulated < p.duration) return;
+      last_print = now;
+      const double wall = std::chrono::duration<double>(now - policy_start).count();
+      const double eta = p.simulated > 0 ? wall * (p.duration - p.simulated) / p.simulated : 0;
+      std::fprintf(tty.get(),
+                   "\rtaebp: %-12s %.0f/%.0f s simulated, %ld vehicles, %ld encounters, "
+                   "%.0f s to go\033[K",
+                   p.policy.c_str(), p.simulated, p.duration, p.vehicles, p.encounters, eta);
+      std::fflush(tty.get());
+      line_open = true;
+    };
+  }
   taebp::ExperimentObserver observer;
-  observer.warning = [](const std::string& w) {
+  observer.warning = [&](const std::string& w) {
+    clear_line();
     std::fprintf(stderr, "taebp: warning: %s\n", w.c_str());
   };
   observer.policy_done = [&](const taebp::PolicyRun& run, double wall) {
+    clear_line();
     if (!quiet)
       std::fprintf(stderr, "taebp: %-12s %.0f simulated s in %.2f s wall, %zu encounters\n",
                    run.policy.c_str(), run.simulated_seconds, wall, run.encounters.size());
   };
+  struct ClearOnExit {  // an error mid-run starts on a line of its own
+    std::function<void()> f;
+    ~ClearOnExit() { f(); }
+  } clear_on_exit{clear_line};
   const taebp::ExperimentResult result =
-      taebp::RunExperiment(config_path, overrides, run_options, observer);
+      taebp::RunExperiment(config_path, overrides, options, observer);
   taebp::WriteExperiment(result, folder);
   std::cout << result.Table();
   if (!quiet) std::fprintf(stderr, "taebp: results in %s\n", out_dir.c_str());

@@ -33,6 +33,14 @@ struct RunOptions {
   // Called once every simulated minute with the policy and the simulated time
   // (e.g. `taebp run --rss-log` for tools/soak); nothing when empty.
   std::function<void(const std::string& policy, double simulated_seconds)> every_minute;
+  // Called every 10 simulated seconds (and after the last step) with where
+  // the policy's run stands (e.g. the progress line of `taebp run`).
+  struct Progress {
+    std::string policy;
+    double simulated = 0, duration = 0;  // s
+    long vehicles = 0, encounters = 0;
+  };
+  std::function<void(const Progress&)> progress;
 };
 
 // Runs one policy (a persuasion policy name or "sumo_native") for

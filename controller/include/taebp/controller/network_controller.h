@@ -87,6 +87,10 @@ class NetworkController {
   void Step();
   // After the last step, SUMO still running: the totals so far.
   PolicyRun Finish();
+  // For progress reports: vehicles in the network now, encounters recorded
+  // so far (finished, after the warm-up).
+  long VehiclesNow() const;
+  long EncountersSoFar() const;
 
  private:
   struct Impl;

@@ -95,7 +95,7 @@ struct NetworkRun {
   long pending_max = 0;              // most vehicles waiting to be inserted at once
   long vehicles_max = 0;             // most vehicles in the network at once (sampled each second)
   long pending_end = 0;              // waiting to be inserted at the end (demand not served)
-  long pending_start = -1;           // waiting to be inserted when the measured time began
+  long pending_start = -1;           // waiting to be inserted at the warm-up's last step (-1: none)
   // The demand offered in the measured time: the vehicles due to depart in
   // it (departed + still waiting at the end - already waiting at its start).
   long Offered() const { return departed + pending_end - std::max(0L, pending_start); }
