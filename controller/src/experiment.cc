@@ -8,6 +8,12 @@
 
 #include <pugixml.hpp>
 
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -64,6 +70,57 @@ std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario
   return args;
 }
 
+// SUMO aborting (a failed assertion inside libsumo) takes this process with
+// it. While SUMO runs, SIGABRT passes SUMO's own output on, says what is
+// known to cause it, removes the scratch folder and exits 3 (SUMO failed).
+struct AbortState {
+  int capture = -1, stderr_fd = 2;
+  char message[4096] = {};
+  char scratch[4096] = {};
+};
+AbortState g_abort;
+
+extern "C" void OnSumoAbort(int) {
+  const AbortState& a = g_abort;
+  char buf[4096];
+  if (a.capture >= 0 && ::lseek(a.capture, 0, SEEK_SET) == 0)
+    for (ssize_t n; (n = ::read(a.capture, buf, sizeof buf)) > 0;)
+      if (::write(a.stderr_fd, buf, static_cast<std::size_t>(n)) < 0) break;
+  if (::write(a.stderr_fd, a.message, std::strlen(a.message)) < 0) {
+  }
+  // Not async-signal-safe; the process ends here either way.
+  std::error_code ec;
+  if (a.scratch[0]) fs::remove_all(a.scratch, ec);
+  ::_exit(3);
+}
+
+class AbortGuard {
+ public:
+  AbortGuard(const Scenario& scenario, const control::SumoMessages& messages) {
+    g_abort.capture = messages.capture_fd();
+    g_abort.stderr_fd = messages.real_stderr() >= 0 ? messages.real_stderr() : 2;
+    const std::string text =
+        "taebp: SUMO aborted: " +
+        (scenario.abort_hint.empty()
+             ? std::string("an assertion inside SUMO failed (its message is above)")
+             : scenario.abort_hint) +
+        "\n";
+    std::snprintf(g_abort.message, sizeof g_abort.message, "%s", text.c_str());
+    std::snprintf(g_abort.scratch, sizeof g_abort.scratch, "%s",
+                  scenario.scratch ? scenario.scratch->path().c_str() : "");
+    struct sigaction sa {};
+    sa.sa_handler = OnSumoAbort;
+    sigemptyset(&sa.sa_mask);
+    ::sigaction(SIGABRT, &sa, &previous_);
+  }
+  ~AbortGuard() { ::sigaction(SIGABRT, &previous_, nullptr); }
+  AbortGuard(const AbortGuard&) = delete;
+  AbortGuard& operator=(const AbortGuard&) = delete;
+
+ private:
+  struct sigaction previous_ {};
+};
+
 std::optional<persuasion::Policy> PolicyOf(const std::string& name) {
   if (name == kSumoNative) return std::nullopt;
   return persuasion::ParsePolicy(name);
@@ -99,6 +156,7 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
   NetworkController controller(config, PolicyOf(policy), scenario, *scenario.topology, copts);
   // SUMO's warnings (its stderr) from its start to its close.
   std::optional<control::SumoMessages> messages(std::in_place);
+  std::optional<AbortGuard> abort_guard(std::in_place, scenario, *messages);
   sumo::Start(SumoArgs(config, scenario, policy));
   PolicyRun run;
   // SUMO is closed on every way out: a scenario that does not fit or a stall
@@ -134,6 +192,7 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     throw;
   }
   sumo::Close();
+  abort_guard.reset();
   const control::SumoWarnings warned = messages->Finish();
   messages.reset();
   run.sumo_warnings = warned.count;

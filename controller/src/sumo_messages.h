@@ -39,6 +39,11 @@ class SumoMessages {
   // Puts stderr back; SUMO's warnings sorted, every other line passed on.
   SumoWarnings Finish();
 
+  // For a handler of SUMO's abort: the file collecting stderr and the
+  // descriptor of the real stderr (-1 when nothing is collected).
+  int capture_fd() const { return file_ ? ::fileno(file_) : -1; }
+  int real_stderr() const { return saved_; }
+
  private:
   std::string Restore();  // stderr back; what was captured
   std::FILE* file_ = nullptr;

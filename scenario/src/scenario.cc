@@ -515,6 +515,48 @@ void CheckAvsExist(const ExperimentConfig& config, const Scenario& s) {
                           "scenario.av_share to draw AVs among all vehicles");
 }
 
+// SUMO 1.15 aborts (MSLink.cpp:740, assertion 'waitingTime > 0') when
+// pedestrians cross at an all-way stop. Where the network SUMO runs has
+// crossings at allway_stop junctions and the demand has persons: a note,
+// and the hint for the message should SUMO abort.
+void PedestriansAtAllWayCrossings(Scenario* s) {
+  pugi::xml_document net;
+  if (!net.load_file(s->net.c_str())) return;
+  std::set<std::string> junctions;
+  for (const pugi::xpath_node& n : net.select_nodes("/net/edge[@function='crossing']")) {
+    const std::string id = n.node().attribute("id").value();  // ":J_c0"
+    const std::size_t c = id.rfind("_c");
+    if (id.size() < 2 || id[0] != ':' || c == std::string::npos) continue;
+    const std::string j = id.substr(1, c - 1);
+    if (const net::Junction* junction = s->topology->FindJunction(j);
+        junction && junction->type == "allway_stop")
+      junctions.insert(j);
+  }
+  if (junctions.empty()) return;
+  std::string with_persons;
+  for (const std::vector<std::string>* files : {&s->route_files, &s->additional_files})
+    for (const std::string& f : *files) {
+      pugi::xml_document doc;
+      if (doc.load_file(f.c_str()) && doc.select_node("//person | //personFlow")) {
+        with_persons = f;
+        break;
+      }
+    }
+  if (with_persons.empty()) return;
+  std::string list;
+  int shown = 0;
+  for (const std::string& j : junctions)
+    if (shown++ < 5) list += (list.empty() ? "" : ", ") + j;
+  if (junctions.size() > 5) list += ", ...";
+  s->abort_hint = "pedestrians (" + with_persons + ") cross at " +
+                  std::to_string(junctions.size()) + " all-way-stop junction(s) (" + list +
+                  "), which SUMO 1.15 cannot simulate: it aborts in MSLink.cpp:740 (assertion "
+                  "'waitingTime > 0'). Run without pedestrians, or with a network without "
+                  "crossings at all-way stops (netconvert --crossings.guess false, or "
+                  "priority_stop junctions)";
+  s->notes.push_back("SUMO may abort: " + s->abort_hint);
+}
+
 Scenario BuildNetwork(const ExperimentConfig& config, const std::string& config_dir) {
   const ScenarioConfig& sc = config.scenario;
   Scenario s;
@@ -570,6 +612,7 @@ Scenario BuildNetwork(const ExperimentConfig& config, const std::string& config_
     s.topology = std::make_shared<const net::NetFile>(LoadNet(s.net, key + " (patched)"));
   else
     s.topology = std::make_shared<const net::NetFile>(net);
+  PedestriansAtAllWayCrossings(&s);
   return s;
 }
 

@@ -56,6 +56,9 @@ struct Scenario {
   // network: the generated demand (a routes file in `scratch`), for outputs
   long generated_trips = 0;
   std::vector<std::string> notes;       // remarks for stderr and summary.json
+  // What in this scenario is known to make SUMO abort (it then takes the
+  // process with it), for the message when it does; empty: nothing known.
+  std::string abort_hint;
   std::shared_ptr<ScratchDir> scratch;  // generated files live here
 };
 
