@@ -17,10 +17,16 @@ AvDraw EncounterGame::Draw(int av, int hv) {
                 rng_);
 }
 
-// The paper's game needs "AV goes, HV drives recklessly" to be a collision:
-// predicted on the two movements' geometry from where the two vehicles would
-// start, the AV from its Go signal (s* ahead of where it is held when its
-// scheme nudges on Go). The figure-8's crossing is always the game.
+// The paper's game needs "AV goes, HV drives recklessly" to be a collision
+// and "AV waits" not to be one: predicted on the two movements' geometry
+// from where the two vehicles would start, each with its own SUMO type's
+// size and acceleration, the AV from its Go signal (s* ahead of where it is
+// held when its scheme nudges on Go). Not the game: both proceeding would not
+// collide (meetings_not_game); or the prediction cannot be trusted
+// (meetings_unpredictable): a merge whose outcome depends on SUMO's car
+// following, or an AV standing nudged by s* in the way of the HV driving
+// recklessly (waiting would not keep it safe). The figure-8's crossing is
+// always the game.
 bool EncounterGame::Game(int av, int hv, int av_movement, int hv_movement) {
   if (figure8::IsFigure8(s_)) return true;
   const Vehicle& a = s_.vehicles[av];
@@ -34,12 +40,25 @@ bool EncounterGame::Game(int av, int hv, int av_movement, int hv_movement) {
     m->accel = v->accel;
     m->max_speed = v->max_speed;
   }
-  ma.front = ma.entry - a.line_gap + s_.population->GoSignal(h.id);
+  const double signal = s_.population->GoSignal(h.id);
+  ma.front = ma.entry - a.line_gap + signal;
   mh.front = mh.entry - h.line_gap;
-  const bool collides = junction::BothProceedCollide(ma, mh, s_.dt);
-  verdicts_[{av, hv}] = collides;
-  if (collides || s_.sc.encounter_pairs == "all") return true;
-  if (s_.measuring()) ++s_.junctions[a.junction].run.meetings_not_game;
+  Premise premise = Premise::kNoCollision;
+  switch (junction::PredictBothProceed(ma, mh, s_.dt)) {
+    case junction::BothProceed::kCollide: premise = Premise::kHolds; break;
+    case junction::BothProceed::kClear: premise = Premise::kNoCollision; break;
+    case junction::BothProceed::kUncertain: premise = Premise::kUncertainMerge; break;
+  }
+  // The HV driving recklessly from its line must not touch the AV standing
+  // where the largest nudge of its scheme leaves it.
+  if (premise == Premise::kHolds && signal > 0 && !junction::PassedWay(mh, ma, -1.0, 0.0))
+    premise = Premise::kNudgeInHvWay;
+  verdicts_[{av, hv}] = premise;
+  if (premise == Premise::kHolds || s_.sc.encounter_pairs == "all") return true;
+  if (s_.measuring()) {
+    JunctionRun& run = s_.junctions[a.junction].run;
+    ++(premise == Premise::kNoCollision ? run.meetings_not_game : run.meetings_unpredictable);
+  }
   return false;
 }
 
@@ -52,7 +71,8 @@ HvReading EncounterGame::Read(int av, int hv, double observed) {
 void EncounterGame::Record(const JunctionState& j, const junction::EncounterOutcome& e) {
   EncounterRecord r;
   if (const auto it = verdicts_.find({e.av, e.hv}); it != verdicts_.end()) {
-    r.both_proceed_collides = it->second;
+    r.premise = it->second;
+    r.both_proceed_collides = it->second == Premise::kHolds || it->second == Premise::kNudgeInHvWay;
     verdicts_.erase(it);
   }
   // The HV's trust (before), the theory, and the updates of trust and beliefs.
@@ -77,6 +97,7 @@ void EncounterGame::Record(const JunctionState& j, const junction::EncounterOutc
     r.hv_dc = e.reading.drives_if_clear;
     r.av_first = e.draw.goes_first;
     r.collision = e.collision;
+    r.collision_after_handback = e.collision_after_handback;
     r.decided_at = e.decided_at;
     s_.out.encounters.push_back(r);
   }

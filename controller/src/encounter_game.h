@@ -1,8 +1,8 @@
 // The paper's game for the AV-HV pairs the interception logic forms
 // (junction::EncounterModel): the AV's draw from the scheme it committed to
 // for this HV, whether the meeting is the game at all (would "AV goes, HV
-// drives recklessly" collide on the junction's geometry:
-// conflict_geometry.h BothProceedCollide), and the HV's reading of the
+// drives recklessly" collide on the junction's geometry, and waiting not:
+// conflict_geometry.h PredictBothProceed, PassedWay), and the HV's reading of the
 // displacement SUMO reported, through the HV population (trust, designs,
 // learning: junction/hv_population.h). Record turns a finished encounter
 // into its row of encounters.csv.
@@ -36,7 +36,7 @@ class EncounterGame : public junction::EncounterModel {
   VehicleCommands* commands_ = nullptr;  // the HV's colour once it decided
   persuasion::AvHvParams params_;
   std::mt19937_64 rng_;
-  std::map<std::pair<int, int>, bool> verdicts_;  // (AV, HV) met: would both proceeding collide
+  std::map<std::pair<int, int>, Premise> verdicts_;  // (AV, HV) met: does the game's premise hold
 };
 
 }  // namespace taebp::control

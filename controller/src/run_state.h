@@ -28,6 +28,11 @@ constexpr int kModeDefault = 31;   // SUMO's own rules (stop signs included)
 constexpr int kModeReleased = 55;  // the controller decided the junction; keep car-following
 constexpr int kModeCreep = 0;      // exact commanded speeds during a nudge
 constexpr int kModeUnblocked = 63; // SUMO's rules, foes already in the junction disregarded
+// Lane-change modes: a held vehicle stays in its lane (SUMO would otherwise
+// move a standing vehicle to the next lane, off the movement its encounter
+// was predicted on); released, SUMO's default again.
+constexpr int kLaneChangeHeld = 0;
+constexpr int kLaneChangeDefault = 1621;
 
 constexpr double kHaltSpeed = 0.1;  // m/s: SUMO's halting threshold
 

@@ -12,13 +12,14 @@ namespace {
 
 constexpr double kMajorNear = 3.0;  // m: a major-road vehicle this near the line is entering
 
-// A free vehicle that was the front of a watched lane is no longer (SUMO let
-// it go, or the junction is no longer watched).
-void LeftLine(RunState& s, int h) {
+// A free vehicle that was the front of a watched lane (approach `a`) is no
+// longer (SUMO let it go, it changed lanes, or the junction is no longer
+// watched). Already the front of another lane: that lane's now.
+void LeftLine(RunState& s, int h, int a) {
   Vehicle& v = s.vehicles[h];
-  if (v.state != State::kFree) return;
+  if (v.state != State::kFree || v.approach != a) return;
   v.line_since = -1;
-  v.movement = v.junction = -1;
+  v.movement = v.junction = v.approach = -1;
 }
 
 }  // namespace
@@ -37,7 +38,7 @@ bool Watched(RunState& s, JunctionState& j) {
   const bool watched = (j.near_av > 0 && j.near_hv > 0) || j.logic->Busy();
   if (!watched && j.watched) {
     for (int a : s.topo.junctions()[s.Index(j)].approaches) {
-      if (s.approaches[a].front >= 0) LeftLine(s, s.approaches[a].front);
+      if (s.approaches[a].front >= 0) LeftLine(s, s.approaches[a].front, a);
       s.approaches[a].front = -1;
     }
   }
@@ -73,7 +74,7 @@ void Observe(RunState& s, JunctionState& j) {
     }
     // Only lanes no vehicle can change into ahead of their front.
     if (empty && info.only_lane) ap.next_look = s.step + StepsAway(s, info, info.length - reach);
-    if (ap.front >= 0 && ap.front != h) LeftLine(s, ap.front);
+    if (ap.front >= 0 && ap.front != h) LeftLine(s, ap.front, a);
     ap.front = h;
     if (h < 0) continue;
     Vehicle& v = s.vehicles[h];
@@ -82,10 +83,15 @@ void Observe(RunState& s, JunctionState& j) {
       continue;
     }
     if (v.state != State::kFree) continue;
-    if (v.junction != jx) {  // new at the front of this lane
+    // New at the front of this lane: coming to this junction, or having
+    // changed lanes on its way (its movement is the new lane's).
+    if (v.junction != jx || v.approach != a) {
+      if (v.junction != jx) {
+        CountProgress(s, h, s.sumo.RouteIndex(v.id));
+        figure8::KeepCirculating(s, h);
+      }
       v.junction = jx;
-      CountProgress(s, h, s.sumo.RouteIndex(v.id));
-      figure8::KeepCirculating(s, h);
+      v.approach = a;
       const int next = v.route_pos + 1;
       v.movement = next < static_cast<int>(v.route.size())
                        ? s.topo.MovementFor(jx, info.lane, s.topo.EdgeName(v.route[next]))

@@ -172,6 +172,9 @@ void AddVehicle(const std::string& id, const std::string& route, const std::stri
   TAEBP_SUMO_CALL(AddVehicle(id, route, type, depart_pos));
 }
 void SetSpeedMode(const std::string& veh, int mode) { TAEBP_SUMO_CALL(SetSpeedMode(veh, mode)); }
+void SetLaneChangeMode(const std::string& veh, int mode) {
+  TAEBP_SUMO_CALL(SetLaneChangeMode(veh, mode));
+}
 void SetSpeed(const std::string& veh, double speed) { TAEBP_SUMO_CALL(SetSpeed(veh, speed)); }
 void SetColor(const std::string& veh, int r, int g, int b) {
   TAEBP_SUMO_CALL(SetColor(veh, r, g, b));

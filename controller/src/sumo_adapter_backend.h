@@ -41,6 +41,7 @@ void AddRoute(const std::string& id, const std::vector<std::string>& edges);
 void AddVehicle(const std::string& id, const std::string& route, const std::string& type,
                 double depart_pos);
 void SetSpeedMode(const std::string& veh, int mode);
+void SetLaneChangeMode(const std::string& veh, int mode);
 void SetSpeed(const std::string& veh, double speed);
 void SetColor(const std::string& veh, int r, int g, int b);
 double Distance(const std::string& veh);

@@ -41,6 +41,9 @@ class AdapterWorld final : public SumoWorld {
 
   void SetSpeed(const std::string& veh, double speed) override { sumo::SetSpeed(veh, speed); }
   void SetSpeedMode(const std::string& veh, int mode) override { sumo::SetSpeedMode(veh, mode); }
+  void SetLaneChangeMode(const std::string& veh, int mode) override {
+    sumo::SetLaneChangeMode(veh, mode);
+  }
   void SetColor(const std::string& veh, int r, int g, int b) override {
     sumo::SetColor(veh, r, g, b);
   }

@@ -74,6 +74,7 @@ void VehicleCommands::SetPaint(int h, Paint paint) {
 void VehicleCommands::Hold(JunctionState& j, int h) {
   Vehicle& v = s_.vehicles[h];
   s_.sumo.SetSpeed(v.id, 0.0);
+  if (v.state != State::kHeld) s_.sumo.SetLaneChangeMode(v.id, kLaneChangeHeld);
   v.state = State::kHeld;
   v.junction = s_.Index(j);
   v.held_since = s_.now;
@@ -90,6 +91,7 @@ void VehicleCommands::CountWait(JunctionState& j, const Vehicle& v) {
 void VehicleCommands::Release(JunctionState& j, int h, bool reckless) {
   Vehicle& v = s_.vehicles[h];
   s_.sumo.SetSpeedMode(v.id, reckless ? kModeReleased : kModeDefault);
+  s_.sumo.SetLaneChangeMode(v.id, kLaneChangeDefault);
   s_.sumo.SetSpeed(v.id, -1);
   CountWait(j, v);
   v.state = State::kCrossing;
@@ -101,6 +103,7 @@ void VehicleCommands::Release(JunctionState& j, int h, bool reckless) {
 
 void VehicleCommands::HandBack(JunctionState& j, int h) {
   Vehicle& v = s_.vehicles[h];
+  s_.sumo.SetLaneChangeMode(v.id, kLaneChangeDefault);
   s_.sumo.SetSpeed(v.id, -1);
   CountWait(j, v);
   v.state = State::kFree;  // still its lane's front: Observe goes on looking
@@ -111,7 +114,7 @@ void VehicleCommands::Clear(int h) {
   s_.junctions[v.junction].logic->Cleared(h, s_.now);
   s_.crossing.erase(std::remove(s_.crossing.begin(), s_.crossing.end(), h), s_.crossing.end());
   v.state = State::kFree;
-  v.junction = v.movement = -1;
+  v.junction = v.movement = v.approach = -1;
   v.line_since = -1;
   if (!v.alive) return;
   if (v.reckless) s_.sumo.SetSpeedMode(v.id, kModeDefault);

@@ -38,6 +38,7 @@ struct Vehicle {
   int route_pos = 0;       // route index already counted
   State state = State::kFree;
   int junction = -1, movement = -1;
+  int approach = -1;  // the approach (lane) whose front it was when `movement` was found
   double held_since = 0, hold_odometer = 0;
   double line_since = -1;  // halted at its stop line since (-1: not there)
   double line_gap = 0;     // m from its front to the stop line when halted there

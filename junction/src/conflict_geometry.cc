@@ -79,6 +79,12 @@ bool Overlap(const Box& a, const Box& b) {
   return true;
 }
 
+// Two movements into the same exit lane: their paths end at the same point.
+bool Merge(const Mover& a, const Mover& b) {
+  if (a.path.empty() || b.path.empty()) return false;
+  return std::hypot(a.path.back().x - b.path.back().x, a.path.back().y - b.path.back().y) < 0.01;
+}
+
 double Limit(const Mover& m, double front) {
   double v = m.max_speed;
   for (const auto& [from, limit] : m.limits)
@@ -88,8 +94,9 @@ double Limit(const Mover& m, double front) {
 
 }  // namespace
 
-bool BothProceedCollide(const Mover& a, const Mover& b, double dt) {
+BothProceed PredictBothProceed(const Mover& a, const Mover& b, double dt) {
   const Arcs arcs_a(a.path), arcs_b(b.path);
+  const bool merge = Merge(a, b);
   double xa = a.front, xb = b.front, va = 0, vb = 0;
   for (int step = 0; step < 100000; ++step) {
     va = std::min(va + a.accel * dt, Limit(a, xa));
@@ -97,13 +104,32 @@ bool BothProceedCollide(const Mover& a, const Mover& b, double dt) {
     xa += va * dt;
     xb += vb * dt;
     // Once either has left the junction they can no longer meet on it.
-    if (xa - a.length >= a.exit || xb - b.length >= b.exit) return false;
+    if (xa - a.length >= a.exit || xb - b.length >= b.exit) return BothProceed::kClear;
     if (xa <= a.entry || xb <= b.entry) continue;  // not both on the junction yet
     if (Overlap(BoxOf(arcs_a.PointAt(xa - a.length), arcs_a.PointAt(xa), a.width),
-                BoxOf(arcs_b.PointAt(xb - b.length), arcs_b.PointAt(xb), b.width)))
-      return true;
+                BoxOf(arcs_b.PointAt(xb - b.length), arcs_b.PointAt(xb), b.width))) {
+      // On a merge, once a front is on the shared exit lane the other sees
+      // it as its leader and SUMO's car following brakes for it: whether the
+      // bodies still touch depends on that (trucks brake in time, bicycles
+      // do not), which this kinematics does not model.
+      if (merge && (xa >= a.exit || xb >= b.exit)) return BothProceed::kUncertain;
+      return BothProceed::kCollide;
+    }
   }
-  return false;
+  return BothProceed::kClear;
+}
+
+bool BothProceedCollide(const Mover& a, const Mover& b, double dt) {
+  return PredictBothProceed(a, b, dt) == BothProceed::kCollide;
+}
+
+const char* ToString(BothProceed p) {
+  switch (p) {
+    case BothProceed::kCollide: return "collide";
+    case BothProceed::kClear: return "clear";
+    case BothProceed::kUncertain: return "uncertain";
+  }
+  return "?";
 }
 
 bool PassedWay(const Mover& first, const Mover& second, double first_reach, double second_reach,

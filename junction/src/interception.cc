@@ -219,6 +219,7 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
       const bool partner_released = rel.av ? e.hv_released : e.av_released;
       (rel.av ? e.av_released : e.hv_released) = true;
       const bool game = rel.reckless || (rel.av && av_goes) || !partner_released;
+      if (!game) (rel.av ? e.av_handed_back : e.hv_handed_back) = true;
       Command c{game ? Command::Kind::kRelease : Command::Kind::kHandBack,
                 rel.av ? e.out.av : e.out.hv};
       c.in_encounter = true;
@@ -281,16 +282,20 @@ void Interception::NudgeDone(int av, double observed, double now, EncounterModel
 }
 
 bool Interception::Collided(int a, int b) {
-  auto pair = [&](EncounterOutcome& e) {
-    if ((e.av == a && e.hv == b) || (e.av == b && e.hv == a)) {
-      e.collision = true;
+  // A collision after one of the two went back to SUMO's rules is SUMO's
+  // (its junction model: e.g. a long vehicle on a small junction), not the
+  // game's outcome.
+  auto pair = [&](Active& e) {
+    EncounterOutcome& o = e.out;
+    if ((o.av == a && o.hv == b) || (o.av == b && o.hv == a)) {
+      (e.av_handed_back || e.hv_handed_back ? o.collision_after_handback : o.collision) = true;
       return true;
     }
     return false;
   };
-  if (encounter_ && encounter_->drawn && pair(encounter_->out)) return true;
+  if (encounter_ && encounter_->drawn && pair(*encounter_)) return true;
   for (Active& e : leaving_)
-    if (pair(e.out)) return true;
+    if (pair(e)) return true;
   return false;
 }
 

@@ -120,6 +120,7 @@ json JunctionJson(const PolicyRun& r, const JunctionRun& jr) {
                           {"queue_mean", a.samples ? a.queue_sum / a.samples : 0.0}});
   j["approaches"] = approaches;
   j["meetings_not_game"] = jr.meetings_not_game;
+  j["meetings_unpredictable"] = jr.meetings_unpredictable;
   j["meetings_abandoned"] = jr.meetings_abandoned;
   const json rates = RatesJson(ComputeAt(r, jr.id));
   for (auto it = rates.begin(); it != rates.end(); ++it) j[it.key()] = it.value();
@@ -266,7 +267,8 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
   out << "policy,junction,type,original_type,rule,crossings_av,crossings_hv,"
          "throughput_per_hour,held,wait_mean,wait_max,queue_max,queue_mean,encounters,dc,"
          "dc_rate,collisions,collision_rate,theory_dc_rate,theory_collision_rate,"
-         "meetings_not_game,meetings_abandoned,longest_gap_without_crossing\n";
+         "meetings_not_game,meetings_abandoned,longest_gap_without_crossing,"
+         "meetings_unpredictable\n";
   for (const PolicyRun& r : runs) {
     for (const JunctionRun& jr : r.junctions) {
       const Stats s = ComputeAt(r, jr.id);
@@ -292,7 +294,8 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
           << FormatDouble(s.n ? s.theory_dc_sum / s.n : 0.0) << ','
           << FormatDouble(s.n ? s.theory_collision_sum / s.n : 0.0) << ','
           << jr.meetings_not_game << ',' << jr.meetings_abandoned << ','
-          << FormatDouble(jr.longest_gap_without_crossing) << '\n';
+          << FormatDouble(jr.longest_gap_without_crossing) << ','
+          << jr.meetings_unpredictable << '\n';
     }
   }
   return out.str();
@@ -378,6 +381,10 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
                    {"tolerance", kNudgeTolerance}};
     j["other_collisions"] = r.other_collisions;
     j["other_collisions_game_move"] = r.other_collisions_game_move;
+    if (r.scenario_kind == "network")
+      j["collisions_after_handback"] = std::count_if(
+          r.encounters.begin(), r.encounters.end(),
+          [](const EncounterRecord& e) { return e.collision_after_handback; });
     j["unblocked"] = r.unblocked;
     j["teleports"] = r.teleports;
     j["sumo_warnings"] = {{"count", r.sumo_warnings},
@@ -488,6 +495,10 @@ const std::vector<EncounterColumn>& NetworkColumns() {
   static const std::vector<EncounterColumn> cols = {
       {"both_proceed_collides", [](const PolicyRun&, const EncounterRecord& e) {
          return std::string(e.both_proceed_collides ? "1" : "0"); }},
+      {"premise", [](const PolicyRun&, const EncounterRecord& e) {
+         return std::string(ToString(e.premise)); }},
+      {"collision_after_handback", [](const PolicyRun&, const EncounterRecord& e) {
+         return std::string(e.collision_after_handback ? "1" : "0"); }},
   };
   return cols;
 }
@@ -502,6 +513,16 @@ bool AnyBeyond(const std::vector<PolicyRun>& runs) {
 }
 
 }  // namespace
+
+const char* ToString(Premise p) {
+  switch (p) {
+    case Premise::kHolds: return "holds";
+    case Premise::kNoCollision: return "no_collision";
+    case Premise::kUncertainMerge: return "uncertain_merge";
+    case Premise::kNudgeInHvWay: return "nudge_in_hv_way";
+  }
+  return "?";
+}
 
 std::string CsvCell(const std::string& s) {
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;

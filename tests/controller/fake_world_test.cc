@@ -52,6 +52,7 @@ class FakeWorld : public SumoWorld {
   std::vector<std::string> departed, arrived;
   long reads = 0;
   std::vector<std::string> commands;
+  std::map<std::string, int> lane_change_modes;
 
   void Depart(const Car& c) {
     cars[c.id] = c;
@@ -131,6 +132,9 @@ class FakeWorld : public SumoWorld {
   }
   void SetSpeedMode(const std::string& v, int mode) override {
     commands.push_back("mode " + v + " " + std::to_string(mode));
+  }
+  void SetLaneChangeMode(const std::string& v, int mode) override {
+    lane_change_modes[v] = mode;
   }
   void SetColor(const std::string&, int, int, int) override {}
   void SetRouteID(const std::string& v, const std::string& route) override {

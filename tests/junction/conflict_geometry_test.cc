@@ -86,6 +86,42 @@ TEST(BothProceedCollide, AMergeTheLeaderReachesFirstDoesNotCollide) {
   EXPECT_FALSE(BothProceedCollide(ahead, merging(0.0), 0.1));
 }
 
+// The same touch, certain or not: a's front already 1 m past its exit, its
+// rear (4 m back) still on the junction; b 2 m before its own exit, its front
+// corner inside a's body, both accelerating alike (the touch holds from the
+// first step). On a crossing SUMO's junction check sees it: kCollide. On a
+// merge the two share the exit lane a's front is on, where b follows a by
+// SUMO's car following: kUncertain (BothProceedCollide: false).
+TEST(BothProceedCollide, AMergeTouchingAfterAFrontIsOnTheExitIsUncertain) {
+  Mover a = Straight(1, 0);  // along y = 0, exit at arc 35 (x = 5)
+  a.path = {{-30, 0}, {35, 0}};  // ending where the merge's path ends: one exit lane
+  a.front = a.exit + 1.0;        // front at x = 6, rear at x = 1
+  // b along x = 2, crossing a's path: front at y = -0.5 (b's arc 29.5).
+  Mover cross = Straight(0, 1);
+  for (Point2& p : cross.path) p.x += 2.0;
+  cross.front = 29.5;
+  EXPECT_EQ(PredictBothProceed(a, cross, 0.1), BothProceed::kCollide);
+  // b merging into a's exit from 30 degrees below, joining at (5, 0), its
+  // front 2 m before the join: (5 - 2 cos 30, -2 sin 30) = (3.27, -1.0); its
+  // left front corner 0.9 m across its heading, (2.82, -0.22), lies inside
+  // a's body (x in [1, 6], |y| <= 0.9).
+  Mover merge;
+  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+  merge.path = {{5 - 30 * c, -30 * s}, {5, 0}, {35, 0}};
+  merge.entry = 30 - 10 / c;
+  merge.exit = 30;
+  merge.front = 28;
+  EXPECT_EQ(PredictBothProceed(a, merge, 0.1), BothProceed::kUncertain);
+  EXPECT_EQ(PredictBothProceed(merge, a, 0.1), BothProceed::kUncertain);
+  EXPECT_FALSE(BothProceedCollide(a, merge, 0.1));
+  // Arriving at the join together (both fronts on the junction when they
+  // touch) stays certain.
+  Mover together = Straight(1, 0);
+  together.path = {{-30, 0}, {35, 0}};
+  merge.front = merge.entry + 10 / c - 10.0;
+  EXPECT_EQ(PredictBothProceed(together, merge, 0.1), BothProceed::kCollide);
+}
+
 // SUMO 1.15 netgenerate grid, junction B1 (4-way all-way stop, 3.2 m lanes):
 // the internal lanes of the four left turns.
 Mover Left(const std::vector<Point2>& internal) {

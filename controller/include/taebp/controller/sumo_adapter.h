@@ -92,6 +92,9 @@ void AddRoute(const std::string& id, const std::vector<std::string>& edges);
 void AddVehicle(const std::string& id, const std::string& route, const std::string& type,
                 double depart_pos);
 void SetSpeedMode(const std::string& veh, int mode);
+// SUMO's lane-change mode bits (1621: SUMO's default; 0: no lane change of
+// its own).
+void SetLaneChangeMode(const std::string& veh, int mode);
 void SetSpeed(const std::string& veh, double speed);  // < 0: back to car-following
 void SetColor(const std::string& veh, int r, int g, int b);
 double Distance(const std::string& veh);  // odometer (m)

@@ -43,7 +43,16 @@ struct Mover {
 // limit under the front. Paths that only merge
 // behind each other, or cross where one has passed before the other comes,
 // do not collide. `dt`: SUMO's step length.
+//
+// The prediction is certain except on a merge (both paths end on the same
+// exit lane) whose bodies first touch after one front is on the exit lane:
+// SUMO's car following then makes the one behind brake for the one ahead,
+// and whether they still touch depends on its braking (a truck stops in
+// time, a bicycle does not): kUncertain. BothProceedCollide: kCollide.
+enum class BothProceed { kCollide, kClear, kUncertain };
+BothProceed PredictBothProceed(const Mover& a, const Mover& b, double dt);
 bool BothProceedCollide(const Mover& a, const Mover& b, double dt);
+const char* ToString(BothProceed p);
 
 // Has `first` (moving on along its path) passed `second`'s way through the
 // junction, whatever their speeds from now on: no body of `first` from where

@@ -194,6 +194,9 @@ struct EncounterOutcome {
   AvDraw draw;
   HvReading reading;
   bool collision = false;
+  // SUMO reported the two colliding after one was handed back to SUMO's
+  // rules (not a move of the game: `collision` stays false).
+  bool collision_after_handback = false;
 };
 
 class Interception {
@@ -251,6 +254,7 @@ class Interception {
     bool av_released = false, hv_released = false;
     bool av_entered = false, hv_entered = false;
     bool av_cleared = false, hv_cleared = false;
+    bool av_handed_back = false, hv_handed_back = false;  // to SUMO's rules
   };
   bool ConflictsWithEncounter(int movement) const;
   // A meeting: the waiting ones held (the draw comes once both are).

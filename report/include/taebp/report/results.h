@@ -38,6 +38,15 @@ struct BeyondEncounter {
 inline constexpr double kNudgeTolerance = 1e-3;  // m
 inline constexpr double kNudgeOvershoot = 1e-6;  // m
 
+// Is an AV-HV meeting on a network the paper's game (README "Only meetings
+// that are the game")? kHolds: both proceeding collides on the junction's
+// geometry and the AV waiting, nudged or not, is out of the HV's way. Not
+// the game: kNoCollision (both proceeding would not collide), kUncertainMerge
+// (a merge whose outcome depends on SUMO's car following), kNudgeInHvWay (the
+// AV standing nudged is in the way of the HV driving recklessly).
+enum class Premise { kHolds, kNoCollision, kUncertainMerge, kNudgeInHvWay };
+const char* ToString(Premise p);
+
 struct EncounterRecord {
   double time = 0;          // simulated time the encounter formed (s)
   std::string junction;     // SUMO junction id
@@ -55,6 +64,11 @@ struct EncounterRecord {
   // Both proceeding would collide on the junction's geometry (network
   // scenarios: the meeting is the paper's game; conflict_geometry.h).
   bool both_proceed_collides = true;
+  Premise premise = Premise::kHolds;  // network scenarios
+  // SUMO reported a collision between the two after one of them had been
+  // handed back to SUMO's rules (its junction model, not a move of the game:
+  // not in `collision`).
+  bool collision_after_handback = false;
   double decided_at = 0;    // when the HV decided (after the nudge)
   double theory_dc = 0;         // library prediction for this AV-HV pair's design and HV
   double theory_collision = 0;
@@ -80,6 +94,9 @@ struct JunctionRun {
   // collide (a merge the AV leads, ...): not the paper's game, they went by
   // arrival (scenario.encounter_pairs: colliding).
   long meetings_not_game = 0;
+  // AV-HV meetings whose premise cannot be predicted (Premise
+  // kUncertainMerge, kNudgeInHvWay): not the game either.
+  long meetings_unpredictable = 0;
   // Meetings whose arriving partner never came to its line (the waiting one,
   // held for it, went back to SUMO; no game was drawn).
   long meetings_abandoned = 0;
