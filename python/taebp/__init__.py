@@ -253,7 +253,8 @@ def to_pandas(obj):
 
 def encounter_columns(beyond=False, network=False):
     """The columns of encounters.csv, in order; ``network=True``: those of a
-    network scenario (adds ``both_proceed_collides``); ``beyond=True``: those
+    network scenario (adds ``both_proceed_collides``, ``premise``,
+    ``collision_after_handback``); ``beyond=True``: those
     of a run beyond the paper (dynamic / learned trust, noise,
     population_mean), which add columns after those."""
     return list(_taebp.encounter_columns(bool(beyond), bool(network)))

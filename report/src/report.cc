@@ -267,8 +267,8 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
   out << "policy,junction,type,original_type,rule,crossings_av,crossings_hv,"
          "throughput_per_hour,held,wait_mean,wait_max,queue_max,queue_mean,encounters,dc,"
          "dc_rate,collisions,collision_rate,theory_dc_rate,theory_collision_rate,"
-         "meetings_not_game,meetings_abandoned,longest_gap_without_crossing,"
-         "meetings_unpredictable\n";
+         "meetings_not_game,meetings_unpredictable,meetings_abandoned,"
+         "longest_gap_without_crossing\n";
   for (const PolicyRun& r : runs) {
     for (const JunctionRun& jr : r.junctions) {
       const Stats s = ComputeAt(r, jr.id);
@@ -293,9 +293,9 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
           << FormatDouble(Rate(s.collisions, s.n)) << ','
           << FormatDouble(s.n ? s.theory_dc_sum / s.n : 0.0) << ','
           << FormatDouble(s.n ? s.theory_collision_sum / s.n : 0.0) << ','
-          << jr.meetings_not_game << ',' << jr.meetings_abandoned << ','
-          << FormatDouble(jr.longest_gap_without_crossing) << ','
-          << jr.meetings_unpredictable << '\n';
+          << jr.meetings_not_game << ',' << jr.meetings_unpredictable << ','
+          << jr.meetings_abandoned << ',' << FormatDouble(jr.longest_gap_without_crossing)
+          << '\n';
     }
   }
   return out.str();

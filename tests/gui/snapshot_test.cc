@@ -173,6 +173,64 @@ TEST(Snapshot, OnlyPngAndNeverAnEmptyOrHalfWrittenFile) {
     EXPECT_GT(fs::file_size(e.path()), 0u) << e.path() << " is empty";
 }
 
+// The RGB of one pixel of a PNG (python3-pil, which the legend needs too).
+std::vector<int> Pixel(const fs::path& png, int x, int y, const fs::path& log) {
+  const Result r = Shell("/usr/bin/python3 -c \"from PIL import Image; "
+                         "print(*Image.open('" + png.string() + "').convert('RGB').getpixel((" +
+                             std::to_string(x) + ", " + std::to_string(y) + ")))\"",
+                         log);
+  std::istringstream in(r.output);
+  std::vector<int> rgb(3, -1);
+  in >> rgb[0] >> rgb[1] >> rgb[2];
+  return rgb;
+}
+
+// --junction frames one junction: the centre of the view is its crossing
+// (road, dark), where the whole 4 x 4 grid's centre is the middle of a block
+// (white background). On the whole grid the vehicles are drawn larger than
+// life: the view is 550 m across (500 m of network, 5 % margin each side) in
+// a 1270 x 535 px view, 535/550 px per metre, so a 5 m car takes 14 px at
+// 14 / (5 * 535/550) = 2.9 times its size; the junction's 80 m need none.
+TEST(Snapshot, FramesOneJunctionAndDrawsVehiclesReadably) {
+  REQUIRE_GUI();
+  TempDir tmp;
+  const std::string grid = kSource + "/configs/grid_throughput.yaml";
+  const std::string common = "env -u DISPLAY " + kCli + " snapshot " + grid +
+                             " --policy ta_ebp --at 60 --out ";
+  const fs::path junction = tmp.path() / "b1.png", whole = tmp.path() / "grid.png";
+  Result r = Shell(common + junction.string() + " --junction B1", tmp.path() / "log.txt");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_THAT(r.output, ::testing::Not(HasSubstr("vehicles drawn")));
+  r = Shell(common + whole.string(), tmp.path() / "log.txt");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("vehicles drawn 2.9x their size"));
+  const std::vector<int> at_junction = Pixel(junction, 635, 267, tmp.path() / "p.txt");
+  const std::vector<int> at_block = Pixel(whole, 635, 267, tmp.path() / "p.txt");
+  ASSERT_GE(at_junction[0], 0) << "no pixel read";
+  EXPECT_LT(at_junction[0] + at_junction[1] + at_junction[2], 3 * 100) << "not on the road";
+  EXPECT_GT(at_block[0] + at_block[1] + at_block[2], 3 * 200) << "not the block between roads";
+  // --zoom 4 on the junction: 20 m across, the crossing fills the view.
+  const fs::path close = tmp.path() / "close.png";
+  r = Shell(common + close.string() + " --junction B1 --zoom 4", tmp.path() / "log.txt");
+  ASSERT_EQ(r.code, 0) << r.output;
+  // 400 px west of the centre and 40 px below the lane divider (15 m, 1.5 m).
+  const std::vector<int> corner = Pixel(close, 635 - 400, 267 + 40, tmp.path() / "p.txt");
+  EXPECT_LT(corner[0] + corner[1] + corner[2], 3 * 100) << "zoomed in, 400 px off centre is road";
+  const std::vector<int> corner_far = Pixel(junction, 635 - 400, 267 - 200, tmp.path() / "p.txt");
+  EXPECT_GT(corner_far[0] + corner_far[1] + corner_far[2], 3 * 200) << "80 m across: a block";
+  // Errors: an unknown junction names the network's own; a zoom that is not
+  // a positive number.
+  r = Shell(common + junction.string() + " --junction nowhere", tmp.path() / "log.txt");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--junction nowhere: no such junction"));
+  EXPECT_THAT(r.output, HasSubstr("B1"));
+  for (const std::string zoom : {"0", "-1", "nan"}) {
+    r = Shell(common + junction.string() + " --zoom " + zoom, tmp.path() / "log.txt");
+    EXPECT_EQ(r.code, 2) << zoom << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("--zoom")) << zoom;
+  }
+}
+
 TEST(Snapshot, MissingProgramsAreNamed) {
   if (!OnPath("sumo-gui")) GTEST_FAIL() << "sumo-gui is missing (Debian package sumo)";
   TempDir tmp;

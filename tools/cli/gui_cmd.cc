@@ -6,6 +6,7 @@
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/persuasion.h"
 #include "taebp/report/output_dir.h"
+#include "taebp/scenario/net_file.h"
 
 #include <CLI/CLI.hpp>
 
@@ -38,6 +39,14 @@ constexpr const char* kXvfbScreen = "-screen 0 1280x1024x24";
 // The sumo-gui window for snapshots: the view inside it is about 1270 x 535
 // pixels, the figure-8's aspect ratio (about 2.4 : 1).
 constexpr const char* kSnapshotWindow = "1280,720";
+constexpr double kViewWidthPx = 1270, kViewHeightPx = 535;
+// A junction framed by --junction: this many metres each side of its centre
+// (its approaches and the vehicles queued on them), divided by --zoom.
+constexpr double kJunctionHalfView = 40.0;
+// Vehicles are drawn at least this long (pixels; a 5 m car): sumo-gui's
+// vehicle exaggeration grows them when the view is wide (a city).
+constexpr double kMinCarPixels = 14.0;
+constexpr double kCarLength = 5.0;
 
 // Absolute path of an executable found on PATH, or "".
 std::string FindOnPath(const std::string& name) {
@@ -130,6 +139,71 @@ void AddLegend(const fs::path& shot, const fs::path& out, const std::string& tit
                    "; see its message above; --no-legend keeps sumo-gui's picture as it is)");
 }
 
+// What the snapshot shows: a box in network coordinates and how much larger
+// than life vehicles are drawn.
+struct Framing {
+  XY lo, hi;
+  double exaggeration = 1.0;
+};
+
+// The whole network (its convBoundary with FrameTrack's margin) or a box
+// around one junction, shrunk about its centre by `zoom`; vehicles drawn
+// large enough to be seen at that scale.
+Framing FrameFor(const std::string& net_path, const std::string& junction, double zoom) {
+  const net::NetFile net = net::NetFile::Load(net_path);
+  double cx, cy, hx, hy;
+  if (!junction.empty()) {
+    const net::Junction* j = net.FindJunction(junction);
+    if (!j || j->type == "internal") {
+      std::string some;
+      int n = 0;
+      for (const auto& [id, k] : net.junctions()) {
+        if (k.type == "internal" || k.type == "dead_end") continue;
+        if (n++ < 8) some += (some.empty() ? "" : ", ") + id;
+      }
+      throw persuasion::InvalidArgument("--junction " + junction + ": no such junction in " +
+                                        net_path + " (its junctions: " + some +
+                                        (n > 8 ? ", ... " + std::to_string(n) + " in all" : "") +
+                                        ")");
+    }
+    cx = j->pos.x;
+    cy = j->pos.y;
+    hx = hy = kJunctionHalfView;
+  } else {
+    const auto lo = net.boundary_min, hi = net.boundary_max;
+    const double margin = std::max(2.0, 0.05 * std::max(hi.x - lo.x, hi.y - lo.y));
+    cx = 0.5 * (lo.x + hi.x);
+    cy = 0.5 * (lo.y + hi.y);
+    hx = 0.5 * (hi.x - lo.x) + margin;
+    hy = 0.5 * (hi.y - lo.y) + margin;
+  }
+  hx /= zoom;
+  hy /= zoom;
+  Framing f;
+  f.lo = {cx - hx, cy - hy};
+  f.hi = {cx + hx, cy + hy};
+  // sumo-gui fits the box into the view: the tighter of the two scales.
+  const double px_per_m = std::min(kViewWidthPx / (2 * hx), kViewHeightPx / (2 * hy));
+  f.exaggeration = std::max(1.0, kMinCarPixels / (kCarLength * px_per_m));
+  return f;
+}
+
+// A sumo-gui scheme like "real world" with vehicles drawn `exaggeration`
+// times their size (SUMO 1.15's size settings: vehicle_exaggeration).
+void WriteGuiSettings(const fs::path& file, double exaggeration) {
+  std::ofstream out(file);
+  out << "<viewsettings>\n"
+         "  <scheme name=\"taebp\">\n"
+         "    <background backgroundColor=\"white\" showGrid=\"0\"/>\n"
+         "    <vehicles vehicleMode=\"0\" vehicleQuality=\"2\" vehicle_minSize=\"1\" "
+         "vehicle_exaggeration=\""
+      << exaggeration
+      << "\" vehicle_constantSize=\"0\" vehicle_constantSizeSelected=\"0\"/>\n"
+         "  </scheme>\n"
+         "</viewsettings>\n";
+  if (!out) throw GuiError("cannot write sumo-gui's settings to " + file.string());
+}
+
 }  // namespace
 
 void FrameTrack() {
@@ -177,6 +251,8 @@ struct Snapshot::Impl {
   double at = 60.0;
   std::vector<std::string> overrides;
   bool no_legend = false;
+  std::string junction;
+  double zoom = 1.0;
 };
 
 Snapshot::Snapshot(CLI::App& app) : impl_(std::make_unique<Impl>()) {
@@ -192,6 +268,13 @@ Snapshot::Snapshot(CLI::App& app) : impl_(std::make_unique<Impl>()) {
                     "override a config key, KEY=VALUE with VALUE read as YAML (repeatable)");
   o.cmd->add_option("--policy", o.policy,
                     "the policy to run (default: the config's first listed policy)");
+  o.cmd->add_option("--junction", o.junction,
+                    "frame this junction (SUMO id) and its approaches, 80 m across (default: "
+                    "the whole network)");
+  o.cmd->add_option("--zoom", o.zoom,
+                    "magnify the framed view this many times about its centre (> 0; 1: as "
+                    "framed)")
+      ->capture_default_str();
   o.cmd->add_flag("--no-legend", o.no_legend,
                   "keep sumo-gui's picture as it is (default: a strip below it with the "
                   "simulated time and the legend of the vehicle colours)");
@@ -205,6 +288,9 @@ int Snapshot::Run(int argc, char** argv) {
   if (!(std::isfinite(o.at) && o.at > 0))
     throw persuasion::InvalidArgument("--at " + Seconds(o.at) +
                                       ": the time must be a positive number of seconds");
+  if (!(std::isfinite(o.zoom) && o.zoom > 0))
+    throw persuasion::InvalidArgument("--zoom " + Seconds(o.zoom) +
+                                      ": the magnification must be a positive number");
   {
     std::string ext = fs::path(o.out).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -247,6 +333,10 @@ int Snapshot::Run(int argc, char** argv) {
   const std::string config_dir = fs::path(o.config_path).parent_path().string();
   const Scenario scenario = BuildScenario(config, config_dir);
   config.scenario.duration = o.at;
+  // The figure-8 as a whole keeps FrameTrack's view; a junction, a zoom or a
+  // network too wide for vehicles to be seen gets its own box and scheme.
+  const Framing framing = FrameFor(scenario.net, o.junction, o.zoom);
+  const bool own_frame = !o.junction.empty() || o.zoom != 1.0 || framing.exaggeration > 1.0;
 
   const fs::path out = fs::absolute(o.out);
   if (out.has_parent_path()) fs::create_directories(out.parent_path());
@@ -260,20 +350,32 @@ int Snapshot::Run(int argc, char** argv) {
   // goes to a second temporary name; either is renamed over --out.
   const fs::path composed = out.parent_path() / ("." + out.stem().string() + ".taebp-legend-" +
                                                  std::to_string(::getpid()) + ".png");
+  const fs::path settings = out.parent_path() / ("." + out.stem().string() + ".taebp-gui-" +
+                                                 std::to_string(::getpid()) + ".xml");
   fs::remove(tmp, ec);
   PolicyRun run;
   try {
-    sumo::SetBackend(sumo::Backend::kLibtraciGui,
-                     {"--window-size", kSnapshotWindow, "--delay", "0"});
+    std::vector<std::string> gui_args = {"--window-size", kSnapshotWindow, "--delay", "0"};
+    if (own_frame) {
+      WriteGuiSettings(settings, framing.exaggeration);
+      gui_args.insert(gui_args.end(), {"--gui-settings-file", settings.string()});
+    }
+    sumo::SetBackend(sumo::Backend::kLibtraciGui, gui_args);
     RunOptions ro;
     ro.colour_states = true;
     ro.after_start = FrameTrack;
+    if (own_frame)
+      ro.after_start = [&] {
+        sumo::gui::SetSchema("taebp");
+        sumo::gui::SetBoundary(framing.lo, framing.hi);
+      };
     ro.before_close = [&] {
       sumo::gui::Screenshot(tmp.string());
       sumo::Step();  // sumo-gui writes the picture during this step
     };
     run = RunPolicy(config, policy, scenario, ro);
     sumo::SetBackend(sumo::Backend::kLibsumo);
+    fs::remove(settings, ec);
 
     // sumo-gui has written the file by the end of the step; allow a moment
     // for the file system all the same.
@@ -286,8 +388,14 @@ int Snapshot::Run(int argc, char** argv) {
     if (o.no_legend) {
       fs::rename(tmp, out);
     } else {
-      const std::string title = o.config_path + " · " + PolicyTitle(name) + " · seed " +
-                                std::to_string(config.scenario.seed);
+      std::string title = o.config_path + " · " + PolicyTitle(name) + " · seed " +
+                          std::to_string(config.scenario.seed);
+      if (!o.junction.empty()) title += " · junction " + o.junction;
+      if (framing.exaggeration > 1.0) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, " · vehicles drawn %.1fx their size", framing.exaggeration);
+        title += buf;
+      }
       AddLegend(tmp, composed, title, o.at);
       fs::remove(tmp, ec);
       fs::rename(composed, out);
@@ -295,12 +403,15 @@ int Snapshot::Run(int argc, char** argv) {
   } catch (...) {
     fs::remove(tmp, ec);
     fs::remove(composed, ec);
+    fs::remove(settings, ec);
     throw;
   }
   const auto [w, h] = PngSize(out.string());
   std::fprintf(stderr, "taebp: snapshot of %s at t = %s s (%zu encounters so far): %s", name.c_str(),
                Seconds(o.at).c_str(), run.encounters.size(), out.string().c_str());
   if (w > 0) std::fprintf(stderr, " (%u x %u)", w, h);
+  if (framing.exaggeration > 1.0)
+    std::fprintf(stderr, "; vehicles drawn %.1fx their size", framing.exaggeration);
   std::fprintf(stderr, "\n");
   return 0;
 }
