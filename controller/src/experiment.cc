@@ -14,6 +14,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -35,6 +36,90 @@ std::string TripinfoPath(const Scenario& scenario, const std::string& policy) {
   return (fs::path(scenario.scratch->path()) / ("tripinfo-" + policy + ".xml")).string();
 }
 
+// SUMO's outputs of one policy (scenario.outputs, and those the user's
+// additional files name) are written into scratch/<policy>/ and end up in
+// the run folder as <policy>/NAME.
+fs::path PolicyOutputDir(const Scenario& scenario, const std::string& policy) {
+  return fs::path(scenario.scratch->path()) / "outputs" / policy;
+}
+
+// Elements of an additional file whose `file` attribute is an output SUMO
+// writes (detectors, mean data, probes); any other `file` or `href` is an
+// input (a rerouter's definitions, an include).
+bool IsOutputElement(const std::string& name) {
+  static const char* const kOutputs[] = {
+      "edgeData", "laneData", "edgeRelation", "tazRelation", "e1Detector", "inductionLoop",
+      "e2Detector", "laneAreaDetector", "e3Detector", "entryExitDetector",
+      "instantInductionLoop", "routeProbe", "vTypeProbe"};
+  for (const char* o : kOutputs)
+    if (name == o) return true;
+  return false;
+}
+
+// A copy of the additional file `path` for one policy: its outputs go into
+// `dir` (their own file names; each policy its own, none overwriting the
+// user's folder), its inputs stay where they were (made absolute). Returns
+// the copy, or `path` itself when it names no output. `names` collects the
+// outputs' file names.
+std::string PolicyAdditional(const std::string& path, const fs::path& dir, int index,
+                             std::vector<std::string>* names) {
+  pugi::xml_document doc;
+  if (!doc.load_file(path.c_str())) return path;  // SUMO reports what is wrong with it
+  const fs::path base = fs::absolute(fs::path(path)).parent_path();
+  bool any = false;
+  for (pugi::xpath_node n : doc.select_nodes("//*[@file or @href]")) {
+    pugi::xml_node e = n.node();
+    for (const char* attr : {"file", "href"}) {
+      pugi::xml_attribute a = e.attribute(attr);
+      if (!a) continue;
+      const std::string value = a.value();
+      if (std::string(attr) == "file" && IsOutputElement(e.name())) {
+        std::string name = fs::path(value).filename().string();
+        // Two outputs of one name: the second gets its element's id.
+        if (std::find(names->begin(), names->end(), name) != names->end())
+          name = std::string(e.attribute("id").value()) + "-" + name;
+        names->push_back(name);
+        a.set_value((dir / name).c_str());
+        any = true;
+      } else if (!value.empty() && fs::path(value).is_relative()) {
+        a.set_value((base / value).c_str());
+      }
+    }
+  }
+  if (!any) return path;
+  const fs::path copy = dir / (".additional-" + std::to_string(index) + "-" +
+                               fs::path(path).filename().string());
+  if (!doc.save_file(copy.c_str()))
+    throw ConfigError("scenario.additional: cannot write " + copy.string());
+  return copy.string();
+}
+
+// SUMO heads its outputs with a comment holding the date and this run's
+// scratch paths: replaced (streaming: an fcd output can be large) so the
+// same config and seed give the same bytes (the provenance is in
+// summary.json).
+constexpr const char* kOwnOutput = "<!-- SUMO's own output; provenance in summary.json -->";
+void StripGeneratedComment(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(1 << 16, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  const auto begin = head.find("<!-- generated on");
+  const auto end = begin == std::string::npos ? begin : head.find("-->", begin);
+  if (end == std::string::npos) return;
+  head.replace(begin, end + 3 - begin, kOwnOutput);
+  const fs::path tmp = file.string() + ".strip";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << head;
+    std::vector<char> buf(1 << 20);
+    while (in.read(buf.data(), static_cast<std::streamsize>(buf.size())) || in.gcount() > 0)
+      out.write(buf.data(), in.gcount());
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  fs::rename(tmp, file);
+}
+
 std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario& scenario,
                                   const std::string& policy) {
   const ScenarioConfig& sc = config.scenario;
@@ -54,9 +139,39 @@ std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario
     scale << sc.routes_scale;
     args.insert(args.end(), {"--scale", scale.str()});
   }
-  if (!scenario.additional_files.empty())
-    args.insert(args.end(), {"-a", Join(scenario.additional_files)});
+  std::vector<std::string> additional = scenario.additional_files;
   if (scenario.scratch) {
+    // SUMO's outputs for this policy, each in its own folder.
+    const fs::path dir = PolicyOutputDir(scenario, policy);
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    fs::create_directories(dir, ec);
+    if (ec) throw ConfigError("cannot create " + dir.string() + ": " + ec.message());
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < additional.size(); ++k)
+      additional[k] = PolicyAdditional(additional[k], dir, static_cast<int>(k), &names);
+    const OutputsConfig& o = sc.outputs;
+    if (o.fcd) args.insert(args.end(), {"--fcd-output", (dir / "fcd.xml").string()});
+    if (o.queue) args.insert(args.end(), {"--queue-output", (dir / "queue.xml").string()});
+    if (o.edgedata || o.lanedata) {
+      // Means over the measured time (from the warm-up's end).
+      std::ostringstream add;
+      add.precision(17);
+      add << "<additional>\n";
+      if (o.edgedata)
+        add << "  <edgeData id=\"taebp_edgedata\" file=\"" << (dir / "edgedata.xml").string()
+            << "\" begin=\"" << sc.warmup << "\"/>\n";
+      if (o.lanedata)
+        add << "  <laneData id=\"taebp_lanedata\" file=\"" << (dir / "lanedata.xml").string()
+            << "\" begin=\"" << sc.warmup << "\"/>\n";
+      add << "</additional>\n";
+      const fs::path file = dir / ".taebp-meandata.add.xml";
+      std::ofstream(file) << add.str();
+      additional.push_back(file.string());
+    }
+  }
+  if (!additional.empty()) args.insert(args.end(), {"-a", Join(additional)});
+  if (scenario.scratch && scenario.kind == "network") {
     // Vehicles still in the network at the end (or at a stall that stops the
     // run) get a record too (arrival -1, their times so far): the delay
     // counts them (ReadTripinfo).
@@ -209,6 +324,21 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
         "give every vehicle a route its edges connect)");
   }
   if (scenario.scratch) {
+    // SUMO's outputs of this policy (their files, as SUMO closed them).
+    std::error_code ec;
+    const fs::path dir = PolicyOutputDir(scenario, policy);
+    std::vector<std::string> names;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+      const std::string name = e.path().filename().string();
+      if (!name.empty() && name[0] != '.' && e.is_regular_file(ec)) names.push_back(name);
+    }
+    std::sort(names.begin(), names.end());
+    for (const std::string& name : names) {
+      StripGeneratedComment(dir / name);
+      run.sumo_output_files.emplace_back(policy + "/" + name, (dir / name).string());
+    }
+  }
+  if (scenario.scratch && scenario.kind == "network") {
     ReadTripinfo(TripinfoPath(scenario, policy), config.scenario.warmup, &run.network);
     // SUMO heads its outputs with a comment holding the date and this run's
     // scratch paths; dropped so the same config and seed give the same bytes
@@ -220,8 +350,7 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
       std::string s = text.str();
       const auto begin = s.find("<!-- generated on");
       const auto end = begin == std::string::npos ? begin : s.find("-->", begin);
-      if (end != std::string::npos)
-        s.replace(begin, end + 3 - begin, "<!-- SUMO's own output; provenance in summary.json -->");
+      if (end != std::string::npos) s.replace(begin, end + 3 - begin, kOwnOutput);
       return s;
     };
     if (config.scenario.tripinfo_output) run.sumo_tripinfo_xml = slurp(TripinfoPath(scenario, policy));

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <ctime>
 #include <filesystem>
+#include <set>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -143,12 +144,21 @@ FolderLock::~FolderLock() {
   if (fd_ >= 0) ::close(fd_);
 }
 
+bool IsPolicyFolder(const std::string& name) {
+  static const char* const kPolicies[] = {"sumo_native", "no_ebp", "no_trust", "ta_ebp",
+                                          "full_reveal"};
+  for (const char* p : kPolicies)
+    if (name == p) return true;
+  return false;
+}
+
 bool IsRunFile(const std::string& name) {
   static const char* const kFixed[] = {"summary.json", "encounters.csv", "junctions.csv",
                                        "config.yaml",  "timing.json",    "timeseries.csv",
-                                       "hv_trust.csv"};
+                                       "hv_trust.csv", "network.net.xml"};
   for (const char* f : kFixed)
     if (name == f) return true;
+  if (IsPolicyFolder(name)) return true;  // SUMO's outputs of a policy
   auto starts = [&](const char* p) { return name.rfind(p, 0) == 0; };
   auto ends = [&](const char* x) {
     const std::size_t n = std::strlen(x);
@@ -213,6 +223,21 @@ void WriteSynced(const fs::path& path, const std::string& content) {
   if (::close(fd) != 0) throw fail("close");
 }
 
+// A copy of `from` at `to`, on disk (fsync) before it counts.
+void CopySynced(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  fs::copy_file(from, to, fs::copy_options::overwrite_existing, ec);
+  if (ec) throw std::runtime_error("cannot copy " + from.string() + " to " + to.string() + ": " +
+                                   ec.message());
+  const int fd = ::open(to.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0 || ::fsync(fd) != 0) {
+    const std::string why = Errno();
+    if (fd >= 0) ::close(fd);
+    throw std::runtime_error("cannot write " + to.string() + ": fsync: " + why);
+  }
+  ::close(fd);
+}
+
 void SyncFolder(const fs::path& dir) {
   const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dfd >= 0) {
@@ -244,6 +269,7 @@ RunFolder::RunFolder(const std::string& dir, const std::string& option) : dir_(d
       if (!e.is_directory(ec) || e.is_symlink(ec)) continue;
       const long pid = StagingPid(name, kStagingTag);
       if (pid >= 0) continue;  // a run's staging inside a mount point (below)
+      if (IsPolicyFolder(name)) continue;  // an earlier run's SUMO outputs
       throw OutputError(what + " holds a folder, " + name +
                         ", that a run would replace with its own files; choose another "
                         "folder or move it");
@@ -287,7 +313,8 @@ RunFolder::~RunFolder() {
   lock_.reset();
 }
 
-void RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& files) {
+void RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& files,
+                        const std::vector<std::pair<std::string, std::string>>& copies) {
   std::error_code ec;
   // The real folder (a symbolic link to it stays a link).
   const fs::path dir = fs::weakly_canonical(fs::absolute(fs::path(dir_)), ec);
@@ -306,7 +333,20 @@ void RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& 
   }
   fs::permissions(staging, fs::status(dir, ec).permissions(), ec);
   try {
-    for (const auto& [name, content] : files) WriteSynced(staging / name, content);
+    std::set<fs::path> subfolders;
+    auto parent = [&](const std::string& name) {
+      const fs::path sub = fs::path(name).parent_path();
+      if (!sub.empty() && subfolders.insert(sub).second) fs::create_directories(staging / sub);
+    };
+    for (const auto& [name, content] : files) {
+      parent(name);
+      WriteSynced(staging / name, content);
+    }
+    for (const auto& [name, from] : copies) {
+      parent(name);
+      CopySynced(from, staging / name);
+    }
+    for (const fs::path& sub : subfolders) SyncFolder(staging / sub);
     // For a swap, the folder's other files go with the new set (links).
     if (swap) {
       for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
@@ -344,10 +384,21 @@ void RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& 
       throw std::runtime_error("cannot write " + dir_ + ": swapping in the new results: " + why);
     }
   }
-  // No swap: file by file, then the stale run files.
+  // No swap: file by file, then the stale run files (the policies' folders
+  // of the old set go first: theirs is not a set that can be mixed).
   try {
     replaced_ = true;  // from the first rename on, the folder holds this run's files
-    for (const auto& [name, content] : files) fs::rename(staging / name, dir / name);
+    for (const fs::directory_entry& e : fs::directory_iterator(dir, ec))
+      if (IsPolicyFolder(e.path().filename().string()) && e.is_directory(ec))
+        fs::remove_all(e.path(), ec);
+    std::vector<std::string> names;
+    for (const auto& f : files) names.push_back(f.first);
+    for (const auto& f : copies) names.push_back(f.first);
+    for (const std::string& name : names) {
+      const fs::path sub = fs::path(name).parent_path();
+      if (!sub.empty()) fs::create_directories(dir / sub);
+      fs::rename(staging / name, dir / name);
+    }
   } catch (...) {
     fs::remove_all(staging, ec);
     throw;
@@ -355,8 +406,10 @@ void RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& 
   for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
     const bool ours = std::any_of(files.begin(), files.end(),
+                                  [&](const auto& f) { return f.first == name; }) ||
+                      std::any_of(copies.begin(), copies.end(),
                                   [&](const auto& f) { return f.first == name; });
-    if (IsRunFile(name) && !ours) fs::remove(e.path(), ec);
+    if (IsRunFile(name) && !ours && !IsPolicyFolder(name)) fs::remove(e.path(), ec);
   }
   SyncFolder(dir);
   fs::remove_all(staging, ec);

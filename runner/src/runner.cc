@@ -41,6 +41,14 @@ std::vector<std::pair<std::string, std::string>> ExperimentResult::Files() const
   return files;
 }
 
+std::vector<std::pair<std::string, std::string>> ExperimentResult::CopiedFiles() const {
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const PolicyRun& r : runs)
+    files.insert(files.end(), r.sumo_output_files.begin(), r.sumo_output_files.end());
+  if (!network_ran.empty()) files.emplace_back("network.net.xml", network_ran);
+  return files;
+}
+
 std::string ExperimentResult::Table() const {
   std::ostringstream out;
   PrintTable(out, runs, warnings);
@@ -77,6 +85,9 @@ ExperimentResult RunExperiment(const std::string& config_path,
   const ExperimentConfig& config = result.config;
   const std::string config_dir = fs::path(config_path).parent_path().string();
   const Scenario scenario = BuildScenario(config, config_dir);
+  result.scratch = scenario.scratch;
+  if (scenario.kind == "network" && scenario.net != scenario.user_net)
+    result.network_ran = scenario.net;
   result.warnings = ScenarioWarnings(config);
   result.warnings.insert(result.warnings.end(), scenario.notes.begin(), scenario.notes.end());
   if (observer.warning)
@@ -149,7 +160,7 @@ ExperimentResult RunExperiment(const std::string& config_path,
 
 void WriteExperiment(const ExperimentResult& result, RunFolder& folder) {
   ThrowIfInterrupted();
-  folder.Replace(result.Files());
+  folder.Replace(result.Files(), result.CopiedFiles());
 }
 
 void WriteExperiment(const ExperimentResult& result, const std::string& out_dir) {

@@ -200,6 +200,7 @@ Scenario BuildFigure8(const ExperimentConfig& config, const std::string& config_
       throw ConfigError("scenario.network = '" + sc.network + "': " + why + " (" + p.string() +
                         ")");
     s.net = p.string();
+    s.user_net = s.net;
     key = "scenario.network = '" + sc.network + "'";
   }
   const net::NetFile net = LoadNet(s.net, key);
@@ -255,6 +256,7 @@ void ReadSumocfg(const fs::path& cfg, Scenario* s) {
   if (nets.size() != 1) throw ConfigError(key + ": names " + std::to_string(nets.size()) +
                                           " net-files (needs exactly one)");
   s->net = nets[0];
+  s->user_net = s->net;
   for (const std::string& f : values("route-files")) s->route_files.push_back(f);
   for (const std::string& f : values("additional-files")) s->additional_files.push_back(f);
   // Every other option of the file is not applied: said, with taebp's own
@@ -578,6 +580,7 @@ Scenario BuildNetwork(const ExperimentConfig& config, const std::string& config_
   }
   if (const std::string why = NotAFile(s.net); !why.empty())
     throw ConfigError(key + ": the network file " + s.net + ": " + why);
+  if (!sc.grid && sc.sumocfg.empty()) s.user_net = s.net;
   for (const std::string& r : sc.routes) {
     const fs::path p = Resolve(r, config_dir);
     if (const std::string why = NotAFile(p.string()); !why.empty())
@@ -673,8 +676,11 @@ double RequiredLoopLength(const ScenarioConfig& sc) {
 }
 
 Scenario BuildScenario(const ExperimentConfig& config, const std::string& config_dir) {
-  return config.scenario.IsNetwork() ? BuildNetwork(config, config_dir)
-                                     : BuildFigure8(config, config_dir);
+  Scenario s = config.scenario.IsNetwork() ? BuildNetwork(config, config_dir)
+                                           : BuildFigure8(config, config_dir);
+  // SUMO's outputs are written there first (per policy).
+  if (!s.scratch && config.scenario.outputs.Any()) s.scratch = std::make_shared<ScratchDir>();
+  return s;
 }
 
 std::vector<std::string> ScenarioWarnings(const ExperimentConfig& config) {

@@ -214,6 +214,11 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
   if (!plan.base.sweep)
     throw ConfigError(config_path +
                       ": no 'sweep:' section (taebp sweep needs sweep.grid and sweep.replicates)");
+  if (plan.base.scenario.outputs.Any())
+    throw ConfigError(config_path +
+                      ": scenario.outputs: SUMO's outputs are kept by `taebp run` (a folder per "
+                      "run, DIR/<policy>/...); a sweep keeps its tables only: run the point you "
+                      "want to look at with `taebp run CONFIG --set KEY=VALUE...`");
   plan.hash = ConfigHash(plan.base);
   const SweepConfig& spec = *plan.base.sweep;
   plan.replicates = spec.replicates;

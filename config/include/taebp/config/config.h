@@ -92,6 +92,26 @@ struct DemandConfig {
   }
 };
 
+// SUMO's own outputs, per policy, in the run folder as DIR/<policy>/NAME
+// (README "Outputs"): fcd.xml (every vehicle's position each step),
+// edgedata.xml / lanedata.xml (SUMO's edge / lane means over the measured
+// time), queue.xml (queues per lane each step).
+struct OutputsConfig {
+  bool fcd = false;
+  bool edgedata = false;
+  bool lanedata = false;
+  bool queue = false;
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("fcd", &fcd);
+    a->Visit("edgedata", &edgedata);
+    a->Visit("lanedata", &lanedata);
+    a->Visit("queue", &queue);
+  }
+  bool Any() const { return fcd || edgedata || lanedata || queue; }
+};
+
 struct ScenarioConfig {
   // figure8: the paper's track, vehicles circulating (avs, hvs, loop_length,
   // stop_distance). network: any SUMO network with vehicles entering and
@@ -133,6 +153,7 @@ struct ScenarioConfig {
   double critical_gap = 5.0;    // s: a minor head at a two-way stop needs this gap on the major road
   bool tripinfo_output = false;  // keep SUMO's tripinfo.xml in the output directory
   bool summary_output = false;   // keep SUMO's summary.xml in the output directory
+  OutputsConfig outputs;         // SUMO's outputs per policy: DIR/<policy>/...
   // A nudge SUMO did not realise (observed outside [s, s + 1 mm]): error
   // (stop the run) or count (record it and go on).
   std::string nudge_check = "error";
@@ -183,6 +204,7 @@ struct ScenarioConfig {
     a->Visit("critical_gap", &critical_gap);
     a->Visit("tripinfo_output", &tripinfo_output);
     a->Visit("summary_output", &summary_output);
+    a->Visit("outputs", &outputs);
     a->Visit("nudge_check", &nudge_check);
     a->Visit("stall_action", &stall_action);
     a->Visit("encounter_pairs", &encounter_pairs);

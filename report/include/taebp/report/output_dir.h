@@ -51,6 +51,8 @@ class FolderLock {
 // tripinfo-*.xml, summary-*.xml) or a temporary one of an earlier version's
 // writer (NAME.tmp.PID).
 bool IsRunFile(const std::string& name);
+// A folder named after a policy: that policy's SUMO outputs (a run file).
+bool IsPolicyFolder(const std::string& name);
 
 // A run's output folder (taebp run, taebp.run(..., out=...)) for the life of
 // the run. On construction, before any simulation:
@@ -80,7 +82,11 @@ class RunFolder {
   // old set that the new one lacks (a rerun with fewer policies) are gone.
   // Where the file system cannot swap folders, the files are renamed into
   // place one by one and stale run files removed.
-  void Replace(const std::vector<std::pair<std::string, std::string>>& files);
+  // `copies`: files copied into the set (name -> the file), e.g. SUMO's
+  // outputs; a name may hold one folder level (POLICY/NAME: a policy's
+  // folder, a run file like the others).
+  void Replace(const std::vector<std::pair<std::string, std::string>>& files,
+               const std::vector<std::pair<std::string, std::string>>& copies = {});
 
   const std::string& dir() const { return dir_; }
 

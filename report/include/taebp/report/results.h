@@ -229,6 +229,10 @@ struct PolicyRun {
   // SUMO's own outputs when the config asks for them (scenario.tripinfo_output,
   // summary_output): the files' text, written next to the results.
   std::string sumo_tripinfo_xml, sumo_summary_xml;
+  // SUMO's outputs of this policy (scenario.outputs and those of the user's
+  // additional files): (name in the run folder, "POLICY/NAME"; the file SUMO
+  // wrote, in the scenario's scratch folder).
+  std::vector<std::pair<std::string, std::string>> sumo_output_files;
   BeyondRun beyond;
 };
 

@@ -9,6 +9,7 @@
 #include "taebp/report/report.h"
 
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -29,6 +30,13 @@ struct ExperimentResult {
   Stopped stopped;
   // The result files (name -> content), as WriteExperiment writes them.
   std::vector<std::pair<std::string, std::string>> Files() const;
+  // The files copied into the run folder beside them (name -> the file):
+  // SUMO's outputs per policy (POLICY/NAME) and, where taebp generated or
+  // patched the network SUMO ran, that network (network.net.xml).
+  std::vector<std::pair<std::string, std::string>> CopiedFiles() const;
+  // Keeps the scenario's scratch folder (SUMO's outputs) until written.
+  std::shared_ptr<void> scratch;
+  std::string network_ran;  // the generated or patched network; empty: the user's
   // The Table I printout of `taebp run` (PrintTable with the warnings).
   std::string Table() const;
 };

@@ -45,6 +45,10 @@ class ScratchDir {
 struct Scenario {
   std::string kind;                     // figure8 | network
   std::string net;                      // the .net.xml SUMO loads
+  // The user's own network file when `net` is it unchanged; empty when taebp
+  // generated or patched the network SUMO loads (a run keeps that one in its
+  // folder: network.net.xml).
+  std::string user_net;
   std::shared_ptr<const net::NetFile> topology;  // `net`, read
   std::vector<std::string> route_files;       // -r
   std::vector<std::string> additional_files;  // -a
