@@ -92,7 +92,7 @@ struct DemandConfig {
   }
 };
 
-// SUMO's own outputs, per policy, in the run folder as DIR/<policy>/NAME
+// SUMO's own outputs, per policy, in the run folder as DIR/POLICY/NAME
 // (README "Outputs"): fcd.xml (every vehicle's position each step),
 // edgedata.xml / lanedata.xml (SUMO's edge / lane means over the measured
 // time), queue.xml (queues per lane each step).
@@ -153,7 +153,7 @@ struct ScenarioConfig {
   double critical_gap = 5.0;    // s: a minor head at a two-way stop needs this gap on the major road
   bool tripinfo_output = false;  // keep SUMO's tripinfo.xml in the output directory
   bool summary_output = false;   // keep SUMO's summary.xml in the output directory
-  OutputsConfig outputs;         // SUMO's outputs per policy: DIR/<policy>/...
+  OutputsConfig outputs;         // SUMO's outputs per policy: DIR/POLICY/...
   // A nudge SUMO did not realise (observed outside [s, s + 1 mm]): error
   // (stop the run) or count (record it and go on).
   std::string nudge_check = "error";
