@@ -490,6 +490,12 @@ TEST_P(PremiseOnOtherVehicles, SumoCollidesExactlyWherePredicted) {
     EXPECT_GT(n["holds go"], 8) << "too few both-proceed pairs to check";
     EXPECT_GT(n["holds wait"], 20);
     EXPECT_GT(n["no_collision go"], 5) << "no pair where both proceeding does not collide";
+    // A waiting AV handed back to SUMO's rules follows a 12 m truck into the
+    // small junction and SUMO's own model collides (sumo_native does too):
+    // recorded as such, not as the game's collision.
+    if (mix.name == "trucks") EXPECT_GT(n["after hand-back"], 0);
+    for (const EncounterRecord& e : r.encounters)
+      if (e.collision_after_handback) EXPECT_FALSE(e.av_first && e.premise == Premise::kHolds);
     std::cout << mix.name << ":";
     for (const auto& [k, v] : n) std::cout << " " << k << " " << v << ";";
     std::cout << "\n";
