@@ -340,18 +340,14 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
   }
   if (scenario.scratch && scenario.kind == "network") {
     ReadTripinfo(TripinfoPath(scenario, policy), config.scenario.warmup, &run.network);
-    // SUMO heads its outputs with a comment holding the date and this run's
-    // scratch paths; dropped so the same config and seed give the same bytes
-    // (the provenance is in summary.json).
+    // SUMO's tripinfo and summary, their dated header replaced as for the
+    // outputs (StripGeneratedComment).
     auto slurp = [](const fs::path& path) {
+      StripGeneratedComment(path);
       std::ifstream in(path, std::ios::binary);
       std::ostringstream text;
       text << in.rdbuf();
-      std::string s = text.str();
-      const auto begin = s.find("<!-- generated on");
-      const auto end = begin == std::string::npos ? begin : s.find("-->", begin);
-      if (end != std::string::npos) s.replace(begin, end + 3 - begin, kOwnOutput);
-      return s;
+      return text.str();
     };
     if (config.scenario.tripinfo_output) run.sumo_tripinfo_xml = slurp(TripinfoPath(scenario, policy));
     if (config.scenario.summary_output)
