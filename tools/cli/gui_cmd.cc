@@ -139,6 +139,12 @@ void AddLegend(const fs::path& shot, const fs::path& out, const std::string& tit
                    "; see its message above; --no-legend keeps sumo-gui's picture as it is)");
 }
 
+// The margin around a network's bounding box in a framed view: 5 % of its
+// larger side, at least 2 m.
+double FrameMargin(double width, double height) {
+  return std::max(2.0, 0.05 * std::max(width, height));
+}
+
 // What the snapshot shows: a box in network coordinates and how much larger
 // than life vehicles are drawn.
 struct Framing {
@@ -171,7 +177,7 @@ Framing FrameFor(const std::string& net_path, const std::string& junction, doubl
     hx = hy = kJunctionHalfView;
   } else {
     const auto lo = net.boundary_min, hi = net.boundary_max;
-    const double margin = std::max(2.0, 0.05 * std::max(hi.x - lo.x, hi.y - lo.y));
+    const double margin = FrameMargin(hi.x - lo.x, hi.y - lo.y);
     cx = 0.5 * (lo.x + hi.x);
     cy = 0.5 * (lo.y + hi.y);
     hx = 0.5 * (hi.x - lo.x) + margin;
@@ -208,7 +214,7 @@ void WriteGuiSettings(const fs::path& file, double exaggeration) {
 
 void FrameTrack() {
   const auto [lo, hi] = sumo::NetBoundary();
-  const double margin = std::max(2.0, 0.05 * std::max(hi.x - lo.x, hi.y - lo.y));
+  const double margin = FrameMargin(hi.x - lo.x, hi.y - lo.y);
   sumo::gui::SetSchema("real world");
   sumo::gui::SetBoundary({lo.x - margin, lo.y - margin}, {hi.x + margin, hi.y + margin});
 }
