@@ -100,7 +100,7 @@ TEST(SumoOutputs, PerPolicyFoldersTheUsersEdgeDataAndTheNetworkThatRan) {
   r = RunCli({"run", config.string(), "--out", again.string(), "--quiet"});
   ASSERT_EQ(r.exit_code, 0) << r.Describe();
   for (const std::string& f : expected)
-    if (!fs::is_directory(out / f)) EXPECT_EQ(ReadText(out / f), ReadText(again / f)) << f;
+    if (!fs::is_directory(out / f)) { EXPECT_EQ(ReadText(out / f), ReadText(again / f)) << f; }
   EXPECT_THAT(native_fcd, ::testing::Not(HasSubstr("generated on")));
   // The network that ran (netgenerate's grid) is the one in the folder, and
   // SUMO loads it.

@@ -493,9 +493,9 @@ TEST_P(PremiseOnOtherVehicles, SumoCollidesExactlyWherePredicted) {
     // A waiting AV handed back to SUMO's rules follows a 12 m truck into the
     // small junction and SUMO's own model collides (sumo_native does too):
     // recorded as such, not as the game's collision.
-    if (mix.name == "trucks") EXPECT_GT(n["after hand-back"], 0);
+    if (mix.name == "trucks") { EXPECT_GT(n["after hand-back"], 0); }
     for (const EncounterRecord& e : r.encounters)
-      if (e.collision_after_handback) EXPECT_FALSE(e.av_first && e.premise == Premise::kHolds);
+      if (e.collision_after_handback) { EXPECT_FALSE(e.av_first && e.premise == Premise::kHolds); }
     std::cout << mix.name << ":";
     for (const auto& [k, v] : n) std::cout << " " << k << " " << v << ";";
     std::cout << "\n";
@@ -519,8 +519,8 @@ TEST_P(PremiseOnOtherVehicles, SumoCollidesExactlyWherePredicted) {
     }
     EXPECT_GT(r.encounters.size(), 40u);
     EXPECT_GT(not_game, 0);
-    if (policy == "ta_ebp") EXPECT_EQ(collisions, 0);
-    if (policy == "no_trust") EXPECT_GT(collisions, 3);
+    if (policy == "ta_ebp") { EXPECT_EQ(collisions, 0); }
+    if (policy == "no_trust") { EXPECT_GT(collisions, 3); }
     std::cout << mix.name << " " << policy << ": " << r.encounters.size() << " encounters, "
               << collisions << " collisions, not the game " << not_game << ", unpredictable "
               << unpredictable << "\n";
