@@ -10,7 +10,7 @@
 // counts the time a run waited for a core. A benchmark, not a test: run it on demand
 // (tools/bench), not in ctest.
 #include "taebp/config/config.h"
-#include "taebp/controller/experiment.h"
+#include "taebp/controller/policy_run.h"
 
 #include <algorithm>
 #include <chrono>

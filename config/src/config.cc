@@ -1,4 +1,5 @@
 #include "taebp/config/config.h"
+#include "taebp/config/model.h"
 
 #include "taebp/persuasion/outcomes.h"
 
@@ -30,6 +31,13 @@ class Checker {
     ok_ = false;
     if (why_) *why_ = msg;
   }
+  // A model struct's own check (its IsValid), its message after the config
+  // section's key: "model.trust_dynamics." + "forgetting rho = 1.5 is ...".
+  template <typename M>
+  void Model(const std::string& section, const M& model) {
+    std::string why;
+    if (!model.IsValid(&why)) Fail(section + why);
+  }
   void Positive(const char* key, double v) {
     if (!(std::isfinite(v) && v > 0)) Fail(std::string(key) + " = " + Num(v) + " must be > 0");
   }
@@ -51,9 +59,9 @@ class Checker {
 }  // namespace
 
 double TrustSpec::Mean() const {
-  if (dist == "uniform") return 0.5 * (low + high);
-  if (dist == "beta") return alpha / (alpha + beta);
-  if (dist == "discrete") {
+  if (dist == TrustDist::kUniform) return 0.5 * (low + high);
+  if (dist == TrustDist::kBeta) return alpha / (alpha + beta);
+  if (dist == TrustDist::kDiscrete) {
     double m = 0;
     for (std::size_t i = 0; i < values.size(); ++i) m += Weight(i) * values[i];
     const double w = TotalWeight();
@@ -70,13 +78,13 @@ double TrustSpec::TotalWeight() const {
 
 double TrustSpec::Quantile(double q) const {
   q = std::clamp(q, 0.0, 1.0);
-  if (dist == "uniform") return low + q * (high - low);
-  if (dist == "beta") {
+  if (dist == TrustDist::kUniform) return low + q * (high - low);
+  if (dist == TrustDist::kBeta) {
     if (q <= 0) return 0.0;
     if (q >= 1) return 1.0;
     return boost::math::ibeta_inv(alpha, beta, q);
   }
-  if (dist == "discrete") {
+  if (dist == TrustDist::kDiscrete) {
     const double total = TotalWeight();
     double acc = 0;
     for (std::size_t i = 0; i < values.size(); ++i) {
@@ -90,17 +98,17 @@ double TrustSpec::Quantile(double q) const {
 
 bool TrustSpec::IsValid(const std::string& key, std::string* why) const {
   Checker c(why);
-  if (dist == "fixed") {
+  if (dist == TrustDist::kFixed) {
     c.Closed01(key.c_str(), value);
-  } else if (dist == "uniform") {
+  } else if (dist == TrustDist::kUniform) {
     c.Closed01((key + ".low").c_str(), low);
     c.Closed01((key + ".high").c_str(), high);
     if (c.ok() && low > high)
       c.Fail(key + ".low = " + Num(low) + " is above " + key + ".high = " + Num(high));
-  } else if (dist == "beta") {
+  } else if (dist == TrustDist::kBeta) {
     c.Positive((key + ".alpha").c_str(), alpha);
     c.Positive((key + ".beta").c_str(), beta);
-  } else if (dist == "discrete") {
+  } else {  // discrete
     if (values.empty()) c.Fail(key + ".values is empty");
     for (double v : values) c.Closed01((key + ".values").c_str(), v);
     if (!weights.empty() && weights.size() != values.size())
@@ -112,16 +120,14 @@ bool TrustSpec::IsValid(const std::string& key, std::string* why) const {
       total += w;
     }
     if (c.ok() && !weights.empty() && total <= 0) c.Fail(key + ".weights sum to 0");
-  } else {
-    c.Fail(key + ".dist = '" + dist + "' is not one of: uniform, beta, discrete");
   }
   return c.ok();
 }
 
 std::string TrustSpec::ToString() const {
-  if (dist == "uniform") return "uniform(" + Num(low) + "," + Num(high) + ")";
-  if (dist == "beta") return "beta(" + Num(alpha) + "," + Num(beta) + ")";
-  if (dist == "discrete") {
+  if (dist == TrustDist::kUniform) return "uniform(" + Num(low) + "," + Num(high) + ")";
+  if (dist == TrustDist::kBeta) return "beta(" + Num(alpha) + "," + Num(beta) + ")";
+  if (dist == TrustDist::kDiscrete) {
     std::string s = "discrete(";
     for (std::size_t i = 0; i < values.size(); ++i) {
       s += (i ? "," : "") + Num(values[i]);
@@ -193,9 +199,7 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   c.NonNegative("scenario.confirm_delay", s.confirm_delay);
   c.Positive("scenario.creep_speed", s.creep_speed);
   c.Positive("scenario.loop_length", s.loop_length);
-  if (s.kind != "figure8" && s.kind != "network")
-    c.Fail("scenario.kind = '" + s.kind + "' is not one of: figure8, network");
-  if (s.kind == "figure8" && c.ok() && s.stop_distance < 1.7 - 1e-9)
+  if (!s.IsNetwork() && c.ok() && s.stop_distance < 1.7 - 1e-9)
     c.Fail("scenario.stop_distance = " + Num(s.stop_distance) +
            " is inside the junction: on the figure-8 the stop line is 1.6 m from the centre and "
            "SUMO holds vehicles 0.1 m before it, so it must be >= 1.7");
@@ -212,7 +216,7 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   }
   if (!(std::isfinite(s.routes_scale) && s.routes_scale > 0.0 && s.routes_scale <= 100.0))
     c.Fail("scenario.routes_scale = " + Num(s.routes_scale) + " must be in (0, 100] (SUMO's --scale)");
-  if (s.routes_scale != 1.0 && s.kind != "network")
+  if (s.routes_scale != 1.0 && !s.IsNetwork())
     c.Fail("scenario.routes_scale = " + Num(s.routes_scale) +
            " applies to scenario.kind = 'network' only (the figure-8 has exact vehicle counts)");
   if (s.grid) {
@@ -230,19 +234,12 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     if (g.lanes < 1 || g.lanes > 4)
       c.Fail("scenario.grid.lanes = " + std::to_string(g.lanes) + " must be in 1..4");
     c.Positive("scenario.grid.speed", g.speed);
-    static const std::set<std::string> kGridTypes = {"allway_stop", "priority_stop", "priority",
-                                                     "right_before_left"};
-    if (!kGridTypes.count(g.junction_type))
-      c.Fail("scenario.grid.junction_type = '" + g.junction_type +
-             "' is not one of: allway_stop, priority_stop, priority, right_before_left");
   }
   if (s.demand) {
     const DemandConfig& d = *s.demand;
     if (!(std::isfinite(d.flow) && d.flow > 0 && d.flow <= 3600.0 / s.step_length))
       c.Fail("scenario.demand.flow = " + Num(d.flow) +
              " veh/h must be > 0 and at most one vehicle per step and edge");
-    if (d.routing != "random")
-      c.Fail("scenario.demand.routing = '" + d.routing + "' is not one of: random");
     if (!(std::isfinite(d.end)))
       c.Fail("scenario.demand.end = " + Num(d.end) + " must be a number of seconds");
   }
@@ -255,12 +252,6 @@ bool ExperimentConfig::IsValid(std::string* why) const {
         c.Fail("scenario.junctions.types: '" + t +
                "' is not a junction type the rules cover (allway_stop, priority_stop, priority, "
                "right_before_left, unregulated)");
-    for (const auto& [key, value] : {std::pair<const char*, const std::string*>{"priority", &j.priority},
-                                     {"right_before_left", &j.right_before_left},
-                                     {"unregulated", &j.unregulated}})
-      if (*value != "all_way" && *value != "two_way")
-        c.Fail(std::string("scenario.junctions.") + key + " = '" + *value +
-               "' is not one of: all_way, two_way");
   }
   c.NonNegative("scenario.junctions.max_speed", s.junctions.max_speed);
   if (s.av_share) c.Closed01("scenario.av_share", *s.av_share);
@@ -269,36 +260,23 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     c.Fail("scenario.warmup = " + Num(s.warmup) + " leaves nothing of scenario.duration = " +
            Num(s.duration));
   c.Positive("scenario.critical_gap", s.critical_gap);
-  if (s.stall_action != "error" && s.stall_action != "record")
-    c.Fail("scenario.stall_action = '" + s.stall_action + "' is not one of: error, record");
-  if (s.encounter_pairs != "colliding" && s.encounter_pairs != "all")
-    c.Fail("scenario.encounter_pairs = '" + s.encounter_pairs +
-           "' is not one of: colliding, all");
-  else if (!s.IsNetwork() && s.encounter_pairs == "all")
+  if (!s.IsNetwork() && s.encounter_pairs == EncounterPairs::kAll)
     c.Fail("scenario.encounter_pairs = 'all' applies to scenario.kind = 'network' only (the "
            "figure-8's crossing is always the game)");
-  if (s.nudge_check != "error" && s.nudge_check != "count")
-    c.Fail("scenario.nudge_check = '" + s.nudge_check + "' is not one of: error, count");
 
   const ModelConfig& m = model;
-  c.Open01("model.prior_go", m.prior_go);
-  c.Positive("model.collision_penalty", m.collision_penalty);
+  // The model's sections are checked by the model itself (config/model.h).
+  c.Model("model.", ToModel(m));
   {
     std::string why_trust;
     if (!m.trust.IsValid("model.trust", &why_trust)) c.Fail(why_trust);
   }
   if (m.assumed_trust) c.Closed01("model.assumed_trust", *m.assumed_trust);
-  if (!m.trust_knowledge.empty() && m.trust_knowledge != "exact" &&
-      m.trust_knowledge != "population_mean" && m.trust_knowledge != "assumed")
-    c.Fail("model.trust_knowledge = '" + m.trust_knowledge +
-           "' is not one of: exact, population_mean, assumed");
-  if (m.Knowledge() == "assumed" && !m.assumed_trust)
+  if (m.Knowledge() == TrustKnowledge::kAssumed && !m.assumed_trust)
     c.Fail("model.trust_knowledge = 'assumed' needs model.assumed_trust");
   const LikelihoodConfig& l = m.likelihood;
-  if (l.type != "linear" && l.type != "logistic")
-    c.Fail("model.likelihood.type = '" + l.type + "' is not one of: linear, logistic");
   c.Positive("model.likelihood.s_max", l.s_max);
-  if (l.type == "logistic") {
+  if (l.type == LikelihoodType::kLogistic) {
     c.Positive("model.likelihood.steepness", l.steepness);
     if (!(l.midpoint >= 0 && l.midpoint <= l.s_max))
       c.Fail("model.likelihood.midpoint = " + Num(l.midpoint) + " is outside [0, s_max]");
@@ -310,15 +288,7 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   if (m.trust_dynamics) {
     const TrustDynamicsConfig& d = *m.trust_dynamics;
     c.Positive("model.trust_dynamics.strength", d.strength);
-    c.NonNegative("model.trust_dynamics.success_weight", d.success_weight);
-    c.NonNegative("model.trust_dynamics.failure_weight", d.failure_weight);
-    c.Closed01("model.trust_dynamics.forgetting", d.forgetting);
-    const TrustQualityConfig& q = d.quality;
-    c.Closed01("model.trust_dynamics.quality.nudge_go", q.nudge_go);
-    c.Closed01("model.trust_dynamics.quality.nudge_stop", q.nudge_stop);
-    c.Closed01("model.trust_dynamics.quality.still_stop", q.still_stop);
-    c.Closed01("model.trust_dynamics.quality.still_go", q.still_go);
-    c.Closed01("model.trust_dynamics.quality.collision", q.collision);
+    c.Model("model.trust_dynamics.", ToModel(d));
     // Each HV's initial state is Beta(mean * strength, (1 - mean) * strength):
     // its drawn trust must lie strictly inside (0, 1).
     const TrustSpec& t = m.trust;
@@ -328,33 +298,24 @@ bool ExperimentConfig::IsValid(std::string* why) const {
                " must lie strictly inside (0, 1) with model.trust_dynamics (the HV's trust is the "
                "mean of a Beta distribution)");
     };
-    if (t.dist == "fixed") inside("model.trust", t.value);
-    if (t.dist == "discrete")
+    if (t.dist == TrustDist::kFixed) inside("model.trust", t.value);
+    if (t.dist == TrustDist::kDiscrete)
       for (double v : t.values) inside("model.trust.values", v);
-    if (t.dist == "uniform") {
+    if (t.dist == TrustDist::kUniform) {
       inside("model.trust.low", t.low);
       inside("model.trust.high", t.high);
     }
   }
   if (m.noise) {
     const NoiseConfig& n = *m.noise;
-    if (n.kind != "none" && n.kind != "gaussian" && n.kind != "uniform")
-      c.Fail("model.noise.kind = '" + n.kind + "' is not one of: none, gaussian, uniform");
-    if (n.kind != "none") c.Positive("model.noise.scale", n.scale);
-    if (!std::isfinite(n.bias))
-      c.Fail("model.noise.bias = " + Num(n.bias) + " must be a finite number of metres");
+    c.Model("model.", ToModel(n));
     c.Open01("model.noise.delta", n.delta);
-    if (n.design != "aware" && n.design != "paper")
-      c.Fail("model.noise.design = '" + n.design + "' is not one of: aware, paper");
   }
   const bool learned =
       std::find(policies.begin(), policies.end(), "ta_ebp_learned") != policies.end();
   if (m.learning) {
     const LearningConfig& l = *m.learning;
-    c.Open01("model.learning.delta", l.delta);
-    if (!(std::isfinite(l.decay) && l.decay > 0))
-      c.Fail("model.learning.decay = " + Num(l.decay) +
-             " must be > 0 and finite (model.learning.constant_level: true for a constant level)");
+    c.Model("model.learning.", ToModel(l));
     if (l.prior) {
       std::string why_prior;
       if (!l.prior->IsValid("model.learning.prior", &why_prior)) c.Fail(why_prior);

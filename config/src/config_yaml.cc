@@ -170,6 +170,12 @@ class YamlReader {
     ReadScalarCheck(node, key, "a string");
     *value = node.Scalar();
   }
+  // An option with a fixed set of values (enums.h): its name, checked here once.
+  template <typename E, std::enable_if_t<HasEnumNames<E>::value, int> = 0>
+  void Read(const YAML::Node& node, const std::string& key, E* value) {
+    if (!node.IsScalar() || !ParseEnum(node.Scalar(), value))
+      Fail(key, node, key + " = " + Show(node) + " is not one of: " + EnumChoices<E>());
+  }
   void Read(const YAML::Node& node, const std::string& key, TrustSpec* value) {
     if (node.IsScalar()) {
       double v = 0;
@@ -184,13 +190,14 @@ class YamlReader {
     if (!dist.IsDefined())
       Fail(key, node, "key '" + key + ".dist' is missing (uniform, beta or discrete)");
     RejectDuplicates(node, key);
-    Read(dist, key + ".dist", &t.dist);
+    // A fixed trust is a number (trust: 0.6), not a map.
+    if (!dist.IsScalar() || !ParseEnum(dist.Scalar(), &t.dist) || t.IsFixed())
+      Fail(key + ".dist", dist, key + ".dist = " + Show(dist) +
+                                    " is not one of: uniform, beta, discrete");
     std::vector<std::string> allowed;
-    if (t.dist == "uniform") allowed = {"low", "high"};
-    else if (t.dist == "beta") allowed = {"alpha", "beta"};
-    else if (t.dist == "discrete") allowed = {"values", "weights"};
-    else Fail(key + ".dist", dist, "key '" + key + ".dist' = " + Show(dist) +
-                                       " is not one of: uniform, beta, discrete");
+    if (t.dist == TrustDist::kUniform) allowed = {"low", "high"};
+    else if (t.dist == TrustDist::kBeta) allowed = {"alpha", "beta"};
+    else allowed = {"values", "weights"};
     for (const auto& kv : node) {
       const std::string name = kv.first.as<std::string>();
       if (name == "dist") continue;
@@ -198,19 +205,21 @@ class YamlReader {
         std::string known;
         for (const auto& a : allowed) known += (known.empty() ? "" : ", ") + a;
         Fail(key + "." + name, kv.first, "unknown key '" + key + "." + name + "' for dist " +
-                                             t.dist + " (known keys: dist, " + known + ")");
+                                             EnumName(t.dist) + " (known keys: dist, " + known +
+                                             ")");
       }
     }
     auto need = [&](const char* name) {
       const YAML::Node n = node[name];
       if (!n.IsDefined())
-        Fail(key, node, "key '" + key + "." + name + "' is missing for dist " + t.dist);
+        Fail(key, node, "key '" + key + "." + name + "' is missing for dist " +
+                            EnumName(t.dist));
       return n;
     };
-    if (t.dist == "uniform") {
+    if (t.dist == TrustDist::kUniform) {
       Read(need("low"), key + ".low", &t.low);
       Read(need("high"), key + ".high", &t.high);
-    } else if (t.dist == "beta") {
+    } else if (t.dist == TrustDist::kBeta) {
       Read(need("alpha"), key + ".alpha", &t.alpha);
       Read(need("beta"), key + ".beta", &t.beta);
     } else {
@@ -318,11 +327,11 @@ class JsonWriter {
       return;
     }
     *j = nlohmann::ordered_json::object();
-    (*j)["dist"] = t.dist;
-    if (t.dist == "uniform") {
+    (*j)["dist"] = EnumName(t.dist);
+    if (t.dist == TrustDist::kUniform) {
       (*j)["low"] = t.low;
       (*j)["high"] = t.high;
-    } else if (t.dist == "beta") {
+    } else if (t.dist == TrustDist::kBeta) {
       (*j)["alpha"] = t.alpha;
       (*j)["beta"] = t.beta;
     } else {
@@ -352,6 +361,8 @@ class JsonWriter {
       }
     } else if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>) {
       *j = v;
+    } else if constexpr (HasEnumNames<T>::value) {
+      *j = EnumName(v);
     } else {
       *j = nlohmann::ordered_json::object();
       JsonWriter sub(j);

@@ -1,14 +1,13 @@
 #include "encounter_game.h"
 
 #include "figure8.h"
+#include "taebp/config/model.h"
 #include "vehicle_commands.h"
 
 namespace taebp::control {
 
-EncounterGame::EncounterGame(RunState& s) : s_(s), rng_(s.sc.seed) {
-  params_.prior_go = s.cfg.model.prior_go;
-  params_.collision_penalty = s.cfg.model.collision_penalty;
-}
+EncounterGame::EncounterGame(RunState& s)
+    : s_(s), params_(ToModel(s.cfg.model)), rng_(s.sc.seed) {}
 
 AvDraw EncounterGame::Draw(int av, int hv) {
   ++s_.vehicles[av].open_encounters;
@@ -54,7 +53,7 @@ bool EncounterGame::Game(int av, int hv, int av_movement, int hv_movement) {
   if (premise == Premise::kHolds && signal > 0 && !junction::PassedWay(mh, ma, -1.0, 0.0))
     premise = Premise::kNudgeInHvWay;
   verdicts_[{av, hv}] = premise;
-  if (premise == Premise::kHolds || s_.sc.encounter_pairs == "all") return true;
+  if (premise == Premise::kHolds || s_.sc.encounter_pairs == EncounterPairs::kAll) return true;
   if (s_.measuring()) {
     JunctionRun& run = s_.junctions[a.junction].run;
     ++(premise == Premise::kNoCollision ? run.meetings_not_game : run.meetings_unpredictable);

@@ -4,7 +4,7 @@
 // drives recklessly" collide on the junction's geometry, and waiting not:
 // conflict_geometry.h PredictBothProceed, PassedWay), and the HV's reading of the
 // displacement SUMO reported, through the HV population (trust, designs,
-// learning: junction/hv_population.h). Record turns a finished encounter
+// learning: encounter/hv_population.h). Record turns a finished encounter
 // into its row of encounters.csv.
 #pragma once
 

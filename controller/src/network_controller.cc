@@ -39,7 +39,7 @@ RunState::RunState(const ExperimentConfig& config, std::optional<persuasion::Pol
       sample_every(std::max(1L, std::lround(1.0 / config.scenario.step_length))),
       topo(config.scenario, scenario, net, sample_every * config.scenario.step_length) {
   out.policy = policy ? persuasion::ToString(*policy) : kSumoNative;
-  out.scenario_kind = sc.kind;
+  out.scenario_kind = EnumName(sc.kind);
   if (policy) {
     // Each HV's trust, the AV's design for it, its reading (hv_population.h).
     population = std::make_unique<HvPopulation>(config, *policy);

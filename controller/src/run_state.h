@@ -8,7 +8,7 @@
 
 #include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_world.h"
-#include "taebp/junction/hv_population.h"
+#include "taebp/encounter/hv_population.h"
 #include "taebp/junction/interception.h"
 #include "topology.h"
 #include "vehicles.h"

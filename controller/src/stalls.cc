@@ -72,7 +72,7 @@ void CheckStalls(RunState& s) {
     j.stall_recorded = true;
     j.stall_since = progress;
     s.out.stalls.push_back({info.info.id, progress, s.now});
-    if (s.sc.stall_action == "error" && s.policy && !error)
+    if (s.sc.stall_action == StallAction::kError && s.policy && !error)
       error.emplace(what + StallDetail(s, j), info.info.id, progress, s.now);
   }
   if (error) throw *error;

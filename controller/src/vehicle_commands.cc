@@ -188,7 +188,7 @@ void VehicleCommands::FinishNudge(int h, double observed) {
   Vehicle& v = s_.vehicles[h];
   const double s = v.commanded;
   if (!NudgeRealised(s, observed, kNudgeTolerance)) {
-    if (s_.sc.nudge_check == "error")
+    if (s_.sc.nudge_check == NudgeCheck::kError)
       throw NudgeError("junction '" + s_.topo.junctions()[v.junction].info.id + "', AV " + v.id +
                        " at t = " + Fmt(s_.now) + " s: commanded nudge " + Fmt(s) +
                        " m, SUMO reported " + Fmt(observed) + " m (tolerance " +

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "taebp/config/config.h"
-#include "taebp/junction/intersection.h"
+#include "taebp/encounter/encounter.h"
 
 #include <cstdint>
 #include <functional>

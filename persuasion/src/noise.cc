@@ -52,9 +52,9 @@ bool PerceptionNoise::IsValid(std::string* why) const {
     if (why != nullptr) *why = message;
     return false;
   };
-  if (!std::isfinite(bias)) return fail("noise bias = " + Num(bias) + " must be finite");
+  if (!std::isfinite(bias)) return fail("noise.bias = " + Num(bias) + " must be finite");
   if (kind != Kind::kNone && !(scale > 0.0 && std::isfinite(scale))) {
-    return fail(std::string("noise scale = ") + Num(scale) + " must be > 0 and finite for " +
+    return fail(std::string("noise.scale = ") + Num(scale) + " must be > 0 and finite for " +
                 ToString(kind) + " noise");
   }
   return true;

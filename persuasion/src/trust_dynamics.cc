@@ -81,7 +81,7 @@ bool OutcomeQuality::IsValid(std::string* why) const {
     const double q = Of(outcome);
     if (!(q >= 0.0 && q <= 1.0)) {
       if (why != nullptr) {
-        *why = std::string("quality ") + ToString(outcome) + " = " + Num(q) + " is outside [0, 1]";
+        *why = std::string("quality.") + ToString(outcome) + " = " + Num(q) + " is outside [0, 1]";
       }
       return false;
     }

@@ -369,7 +369,7 @@ bool ExplorationSchedule::IsValid(std::string* why) const {
     return false;
   };
   if (!(delta > 0.0 && delta < 1.0)) return fail("delta = " + Num(delta) + " is outside (0, 1)");
-  if (!(decay > 0.0)) return fail("exploration decay = " + Num(decay) + " must be > 0");
+  if (!(decay > 0.0)) return fail("decay = " + Num(decay) + " must be > 0");
   return true;
 }
 

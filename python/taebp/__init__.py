@@ -21,6 +21,7 @@ Functions
     run(config, overrides=(), out=None)  every policy of a config in SUMO
     sweep(config, overrides=(), out=None, jobs=None)  a study with the sweep engine
     load_run(dir), load_sweep(dir)  results already written
+    stats.wilson(k, n, z)  the Wilson interval the outputs report (taebp.stats)
 
 Errors are exceptions with the program's messages: ConfigError and
 InvalidArgument (both ValueError), OutputError (OSError: an out= folder that

@@ -31,9 +31,6 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-// 97.5% standard normal quantile.
-constexpr double kZ95 = 1.959963984540054;
-
 std::string PolicyLabel(const std::string& p) {
   if (p == "no_ebp") return "No EBP";
   if (p == "no_trust") return "No Trust";
@@ -84,8 +81,8 @@ Stats ComputeAt(const PolicyRun& r, const std::string& junction) {
 double PerHour(double count, double seconds) { return seconds > 0 ? count * 3600.0 / seconds : 0.0; }
 
 json RatesJson(const Stats& s) {
-  const Interval ci_c = Wilson95(s.collisions, s.n);
-  const Interval ci_d = Wilson95(s.dc, s.n);
+  const Interval ci_c = Wilson(s.collisions, s.n);
+  const Interval ci_d = Wilson(s.dc, s.n);
   json j;
   j["encounters"] = s.n;
   j["collisions"] = s.collisions;
@@ -198,7 +195,7 @@ void BeyondJson(const PolicyRun& r, json* out) {
                  {"collisions", coll},
                  {"per_encounter", s.n ? regret / n : 0.0}};
   const Window w = LastHour(r);
-  const Interval wd = Wilson95(w.dc, w.n), wc = Wilson95(w.collisions, w.n);
+  const Interval wd = Wilson(w.dc, w.n), wc = Wilson(w.collisions, w.n);
   j["last_hour"] = {{"from", w.from},
                     {"encounters", w.n},
                     {"dc", w.dc},
@@ -307,13 +304,13 @@ std::string FormatDouble(double v) {
   return std::string(buf, res.ptr);
 }
 
-Interval Wilson95(long k, long n) {
+Interval Wilson(long k, long n, double z) {
   if (n <= 0) return {0.0, 1.0};
   const double p = static_cast<double>(k) / n;
-  const double z2 = kZ95 * kZ95;
+  const double z2 = z * z;
   const double denom = 1 + z2 / n;
   const double centre = (p + z2 / (2.0 * n)) / denom;
-  const double half = kZ95 * std::sqrt(p * (1 - p) / n + z2 / (4.0 * n * n)) / denom;
+  const double half = z * std::sqrt(p * (1 - p) / n + z2 / (4.0 * n * n)) / denom;
   // At k = 0 (k = n) the bound is exactly 0 (1); avoid round-off residue.
   return {k == 0 ? 0.0 : std::max(0.0, centre - half), k == n ? 1.0 : std::min(1.0, centre + half)};
 }
@@ -342,8 +339,8 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
   pol = json::object();
   for (const PolicyRun& r : runs) {
     const Stats s = Compute(r);
-    const Interval ci_c = Wilson95(s.collisions, s.n);
-    const Interval ci_d = Wilson95(s.dc, s.n);
+    const Interval ci_c = Wilson(s.collisions, s.n);
+    const Interval ci_d = Wilson(s.dc, s.n);
     const double hours = r.measured_seconds / 3600.0;
     json j;
     j["encounters"] = s.n;
@@ -622,7 +619,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
   out << "\n";
   bool flagged = false;
   auto cell = [&](long k, long n, double theory) {
-    const Interval ci = Wilson95(k, n);
+    const Interval ci = Wilson(k, n);
     char buf[96];
     if (n == 0 && theory < 0) return std::string("- (SUMO's own logic)");
     if (n == 0) {
@@ -716,7 +713,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
     row("Last hour DC rate", [](const PolicyRun& r) {
       if (r.policy == "sumo_native") return std::string("-");
       const Window win = LastHour(r);
-      const Interval ci = Wilson95(win.dc, win.n);
+      const Interval ci = Wilson(win.dc, win.n);
       char buf[96];
       std::snprintf(buf, sizeof buf, "%.3f [%.3f,%.3f] or %.3f", Rate(win.dc, win.n), ci.low,
                     ci.high, win.n ? win.oracle_dc / win.n : 0.0);

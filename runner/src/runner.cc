@@ -86,7 +86,7 @@ ExperimentResult RunExperiment(const std::string& config_path,
   const std::string config_dir = fs::path(config_path).parent_path().string();
   const Scenario scenario = BuildScenario(config, config_dir);
   result.scratch = scenario.scratch;
-  if (scenario.kind == "network" && scenario.net != scenario.user_net)
+  if (scenario.kind == ScenarioKind::kNetwork && scenario.net != scenario.user_net)
     result.network_ran = scenario.net;
   result.warnings = ScenarioWarnings(config);
   result.warnings.insert(result.warnings.end(), scenario.notes.begin(), scenario.notes.end());

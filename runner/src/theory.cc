@@ -1,6 +1,6 @@
 #include "taebp/runner/theory.h"
 
-#include "taebp/junction/design.h"
+#include "taebp/encounter/design.h"
 #include "taebp/persuasion/lp.h"
 #include "taebp/persuasion/noise.h"
 
@@ -42,7 +42,11 @@ per::PerceptionNoise TheoryRequest::Noise() const {
 per::AvHvParams TheoryRequest::Params() const { return per::AvHvParams{prior, penalty}; }
 
 LikelihoodConfig TheoryRequest::Likelihood() const {
-  return LikelihoodConfig{likelihood, s_max, steepness, midpoint};
+  LikelihoodConfig c{LikelihoodType::kLinear, s_max, steepness, midpoint};
+  if (!ParseEnum(likelihood, &c.type))
+    throw per::InvalidArgument("likelihood '" + likelihood + "' is not one of: " +
+                               EnumChoices<LikelihoodType>());
+  return c;
 }
 
 per::TaebpDesign Design(const TheoryRequest& r) {

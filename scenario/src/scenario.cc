@@ -167,7 +167,7 @@ std::vector<PlacedVehicle> PlaceFigure8(const ScenarioConfig& sc, const net::Net
 
 Scenario BuildFigure8(const ExperimentConfig& config, const std::string& config_dir) {
   Scenario s;
-  s.kind = "figure8";
+  s.kind = ScenarioKind::kFigure8;
   const ScenarioConfig& sc = config.scenario;
   std::string key;
   if (sc.network.empty()) {
@@ -287,14 +287,14 @@ std::string GeneratedGrid(const GridConfig& g) {
   std::ostringstream name;
   name << "grid-" << g.columns << "x" << g.rows << "-L" << Fixed(g.length, 2) << "-A"
        << Fixed(g.attach_length, 2) << "-n" << g.lanes << "-v" << Fixed(g.speed, 3) << "-"
-       << g.junction_type;
+       << EnumName(g.junction_type);
   return Cached(name.str(), "grid.net.xml", [&](const fs::path& dir, const std::string& log) {
            std::vector<std::string> args = {
                "netgenerate", "--grid", "--grid.x-number", std::to_string(g.columns),
                "--grid.y-number", std::to_string(g.rows), "--grid.x-length", Fixed(g.length, 2),
                "--grid.y-length", Fixed(g.length, 2), "--default.lanenumber",
                std::to_string(g.lanes), "--default.speed", Fixed(g.speed, 3),
-               "--default-junction-type", g.junction_type, "--no-turnarounds", "true",
+               "--default-junction-type", EnumName(g.junction_type), "--no-turnarounds", "true",
                "--tls.guess", "false", "--precision", "4", "--xml-validation", "never",
                "--output-file", (dir / "grid.net.xml").string()};
            if (g.attach_length > 0) {
@@ -309,8 +309,8 @@ std::string GeneratedGrid(const GridConfig& g) {
 
 // The rule a selected junction is run under, as a SUMO type.
 std::string StopType(const std::string& type, const JunctionSelection& sel) {
-  auto as = [](const std::string& rule) {
-    return rule == "two_way" ? "priority_stop" : "allway_stop";
+  auto as = [](StopRule rule) {
+    return rule == StopRule::kTwoWay ? "priority_stop" : "allway_stop";
   };
   if (type == "allway_stop" || type == "priority_stop") return type;
   if (type == "priority") return as(sel.priority);
@@ -562,7 +562,7 @@ void PedestriansAtAllWayCrossings(Scenario* s) {
 Scenario BuildNetwork(const ExperimentConfig& config, const std::string& config_dir) {
   const ScenarioConfig& sc = config.scenario;
   Scenario s;
-  s.kind = "network";
+  s.kind = ScenarioKind::kNetwork;
   s.scratch = std::make_shared<ScratchDir>();
   std::string key;
   if (!sc.sumocfg.empty()) {

@@ -698,8 +698,8 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       out << ',' << a.enc;
       const double n = static_cast<double>(a.enc);
       if (a.enc > 0) {
-        const Interval ci_c = Wilson95(a.collisions, a.enc);
-        const Interval ci_d = Wilson95(a.dc, a.enc);
+        const Interval ci_c = Wilson(a.collisions, a.enc);
+        const Interval ci_d = Wilson(a.dc, a.enc);
         out << ',' << num(a.collisions / n) << ',' << num(ci_c.low) << ',' << num(ci_c.high)
             << ',' << num(a.dc / n) << ',' << num(ci_d.low) << ',' << num(ci_d.high) << ','
             << num(a.ref_c + a.th_c_w / n) << ',' << num(a.ref_d + a.th_d_w / n) << ','
@@ -725,8 +725,8 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
           << ',' << a.lh_n;
       if (a.lh_n > 0) {
         const double ln = static_cast<double>(a.lh_n);
-        const Interval ci_d = Wilson95(a.lh_dc, a.lh_n);
-        const Interval ci_c = Wilson95(a.lh_collisions, a.lh_n);
+        const Interval ci_d = Wilson(a.lh_dc, a.lh_n);
+        const Interval ci_c = Wilson(a.lh_collisions, a.lh_n);
         out << ',' << num(a.lh_dc / ln) << ',' << num(ci_d.low) << ',' << num(ci_d.high) << ','
             << num(a.lh_collisions / ln) << ',' << num(ci_c.low) << ',' << num(ci_c.high) << ','
             << num(a.lh_oracle_w / ln);

@@ -472,7 +472,7 @@ TEST(CliRun, BadInputExitsNonZeroAndLeavesTheOutputUntouched) {
   };
   const std::vector<Case> cases = {
       {"model.trust=1.3", kExitConfig, {"--set model.trust=1.3", "model.trust = 1.3"}},
-      {"model.prior_go=0", kExitConfig, {"--set model.prior_go=0", "model.prior_go = 0"}},
+      {"model.prior_go=0", kExitConfig, {"--set model.prior_go=0", "model.prior_go (lambda) = 0 is outside (0, 1)"}},
       {"scenario.duration=-1", kExitConfig, {"scenario.duration = -1"}},
       {"scenario.avs=-1", kExitConfig, {"scenario.avs = -1"}},
       {"scenario.avss=1", kExitConfig, {"--set scenario.avss=1", "scenario.avss"}},

@@ -2,14 +2,18 @@
 // load and save, and errors that name the key, the value and where they came
 // from (file:line or the --set text).
 #include "taebp/config/config.h"
+#include "taebp/config/model.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <functional>
 
 #include <sys/stat.h>
 
 #include "test_support.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -70,8 +74,8 @@ TEST(ConfigLoad, PaperYamlHasTheDocumentedValues) {
   EXPECT_TRUE(m.trust.IsFixed());
   EXPECT_EQ(m.trust.value, 0.6);
   EXPECT_FALSE(m.assumed_trust.has_value());
-  EXPECT_EQ(m.Knowledge(), "exact");
-  EXPECT_EQ(m.likelihood.type, "linear");
+  EXPECT_EQ(m.Knowledge(), TrustKnowledge::kExact);
+  EXPECT_EQ(m.likelihood.type, LikelihoodType::kLinear);
   EXPECT_EQ(m.likelihood.s_max, 2.0);
   EXPECT_EQ(c.policies, (std::vector<std::string>{"no_ebp", "no_trust", "ta_ebp"}));
   EXPECT_FALSE(c.sweep.has_value());
@@ -121,6 +125,147 @@ TEST(ConfigLoad, ToYamlRoundTripGivesIdenticalJson) {
   EXPECT_EQ(*back.model.assumed_trust, 0.9);
   // And the YAML we write is itself stable.
   EXPECT_EQ(ToYaml(back), rich_yaml);
+}
+
+// Every option with a fixed set of values is an enum (enums.h): each of its
+// names loads as that value and is written back as the same name (YAML and
+// JSON), and a name outside the set is refused when the file is read, naming
+// the key, the value, the file and line, and the choices.
+template <typename E>
+void ExpectEnumKey(const std::string& key, const std::function<E(const ExperimentConfig&)>& get,
+                   const std::string& context = "") {
+  SCOPED_TRACE(key);
+  int names = 0;
+  for (const auto& [value, name] : EnumNames<E>::kNames) {
+    ++names;
+    E parsed{};
+    ASSERT_TRUE(ParseEnum(name, &parsed));
+    EXPECT_EQ(parsed, value);
+    EXPECT_STREQ(EnumName(value), name);
+    if (context == "-") continue;  // not loadable alone (e.g. trust dist fixed)
+    const ExperimentConfig c =
+        LoadExperimentConfig(kPaper, {context.empty() ? key + "=" + name : context, key + "=" + name});
+    EXPECT_EQ(get(c), value) << name;
+    EXPECT_THAT(ToYaml(c), HasSubstr(key.substr(key.rfind('.') + 1) + ": " + name)) << name;
+    EXPECT_EQ(ToJson(ParseExperimentConfig(ToYaml(c), "again.yaml")), ToJson(c));
+  }
+  EXPECT_GE(names, 1);
+  E untouched = EnumNames<E>::kNames[0].first;
+  EXPECT_FALSE(ParseEnum("no_such_value", &untouched));
+  EXPECT_EQ(untouched, EnumNames<E>::kNames[0].first);
+  // Nested keys as a YAML file: the message has the file and line.
+  std::string yaml, indent;
+  std::string rest = key;
+  for (std::size_t dot; (dot = rest.find('.')) != std::string::npos; rest = rest.substr(dot + 1)) {
+    yaml += indent + rest.substr(0, dot) + ":\n";
+    indent += "  ";
+  }
+  yaml += indent + rest + ": no_such_value\n";
+  const FileError e = LoadError(yaml);
+  // (a trust distribution map offers its map forms only: a fixed trust is a number)
+  const std::string choices = std::is_same_v<E, TrustDist> ? "uniform, beta, discrete" : EnumChoices<E>();
+  EXPECT_THAT(e.message, HasSubstr(key + " = 'no_such_value' is not one of: " + choices));
+  EXPECT_THAT(e.message, HasSubstr(e.path + ":"));
+}
+
+TEST(ConfigEnums, EveryNameLoadsSavesAndAnUnknownOneIsRefusedWithTheChoices) {
+  ExpectEnumKey<ScenarioKind>("scenario.kind", [](const ExperimentConfig& c) { return c.scenario.kind; },
+                              "scenario={grid: {}, demand: {flow: 10}}");
+  ExpectEnumKey<NudgeCheck>("scenario.nudge_check",
+                            [](const ExperimentConfig& c) { return c.scenario.nudge_check; });
+  ExpectEnumKey<StallAction>("scenario.stall_action",
+                             [](const ExperimentConfig& c) { return c.scenario.stall_action; });
+  ExpectEnumKey<EncounterPairs>(
+      "scenario.encounter_pairs", [](const ExperimentConfig& c) { return c.scenario.encounter_pairs; },
+      "scenario={kind: network, grid: {}, demand: {flow: 10}}");
+  ExpectEnumKey<StopRule>("scenario.junctions.priority",
+                          [](const ExperimentConfig& c) { return c.scenario.junctions.priority; });
+  ExpectEnumKey<StopRule>("scenario.junctions.right_before_left", [](const ExperimentConfig& c) {
+    return c.scenario.junctions.right_before_left;
+  });
+  ExpectEnumKey<StopRule>("scenario.junctions.unregulated",
+                          [](const ExperimentConfig& c) { return c.scenario.junctions.unregulated; });
+  ExpectEnumKey<GridJunctionType>(
+      "scenario.grid.junction_type",
+      [](const ExperimentConfig& c) { return c.scenario.grid->junction_type; },
+      "scenario={kind: network, grid: {}, demand: {flow: 10}}");
+  ExpectEnumKey<Routing>("scenario.demand.routing",
+                         [](const ExperimentConfig& c) { return c.scenario.demand->routing; },
+                         "scenario={kind: network, grid: {}, demand: {flow: 10}}");
+  ExpectEnumKey<LikelihoodType>("model.likelihood.type",
+                                [](const ExperimentConfig& c) { return c.model.likelihood.type; });
+  ExpectEnumKey<TrustKnowledge>(
+      "model.trust_knowledge", [](const ExperimentConfig& c) { return c.model.Knowledge(); },
+      "model.assumed_trust=0.5");
+  ExpectEnumKey<NoiseKind>("model.noise.kind",
+                           [](const ExperimentConfig& c) { return c.model.noise->kind; });
+  ExpectEnumKey<NoiseDesign>("model.noise.design",
+                             [](const ExperimentConfig& c) { return c.model.noise->design; });
+  ExpectEnumKey<TrustDist>("model.trust.dist",
+                           [](const ExperimentConfig& c) { return c.model.trust.dist; }, "-");
+}
+
+// A distribution map cannot be dist: fixed (a fixed trust is a number).
+TEST(ConfigEnums, TrustDistributionsAreMapsAndAFixedTrustIsANumber) {
+  EXPECT_THAT(LoadError("model: {trust: {dist: fixed, value: 0.3}}\n").message,
+              HasSubstr("model.trust.dist = 'fixed' is not one of: uniform, beta, discrete"));
+  EXPECT_THAT(LoadError("model: {trust: {dist: gamma}}\n").message,
+              HasSubstr("model.trust.dist = 'gamma' is not one of: uniform, beta, discrete"));
+}
+
+// config/model.h: the one conversion from the config to the model carries
+// every field (distinct values in, the same values out), and a config is valid
+// exactly when the model's own check passes (one check per field).
+TEST(ConfigModel, ToModelCarriesEveryFieldAndTheModelChecksItsRanges) {
+  const ExperimentConfig c = LoadExperimentConfig(
+      kPaper, {"model.prior_go=0.15", "model.collision_penalty=2.5",
+               "model.noise={kind: uniform, scale: 0.07, bias: -0.01}",
+               "model.trust_dynamics={success_weight: 0.7, failure_weight: 1.3, forgetting: 0.05, "
+               "quality: {nudge_go: 0.9, nudge_stop: 0.1, still_stop: 0.8, still_go: 0.2, "
+               "collision: 0.05}}",
+               "model.learning={delta: 0.02, decay: 2.5, probe: false}"});
+  const persuasion::AvHvParams p = ToModel(c.model);
+  EXPECT_EQ(p.prior_go, 0.15);
+  EXPECT_EQ(p.collision_penalty, 2.5);
+  const persuasion::PerceptionNoise n = ToModel(*c.model.noise);
+  EXPECT_EQ(n.kind, persuasion::PerceptionNoise::Kind::kUniform);
+  EXPECT_EQ(n.scale, 0.07);
+  EXPECT_EQ(n.bias, -0.01);
+  const persuasion::TrustUpdateRule r = ToModel(*c.model.trust_dynamics);
+  EXPECT_EQ(r.success_weight, 0.7);
+  EXPECT_EQ(r.failure_weight, 1.3);
+  EXPECT_EQ(r.forgetting, 0.05);
+  EXPECT_EQ(r.quality.nudge_go, 0.9);
+  EXPECT_EQ(r.quality.nudge_stop, 0.1);
+  EXPECT_EQ(r.quality.still_stop, 0.8);
+  EXPECT_EQ(r.quality.still_go, 0.2);
+  EXPECT_EQ(r.quality.collision, 0.05);
+  const persuasion::ExplorationSchedule e = ToModel(*c.model.learning);
+  EXPECT_EQ(e.delta, 0.02);
+  EXPECT_EQ(e.decay, 2.5);
+  EXPECT_FALSE(e.probe);
+  LearningConfig constant;
+  constant.constant_level = true;
+  EXPECT_TRUE(std::isinf(ToModel(constant).decay));
+  EXPECT_EQ(ToModel(TrustSpec::Fixed(0.3)).Mean(), 0.3);
+
+  for (double v : {-0.5, 0.0, 0.5, 1.0, 1.5}) {
+    const std::string set = "model.trust_dynamics={forgetting: " + std::to_string(v) + "}";
+    std::string why;
+    persuasion::TrustUpdateRule rule;
+    rule.forgetting = v;
+    const bool model_ok = rule.IsValid(&why);
+    std::string err;
+    try {
+      LoadExperimentConfig(kPaper, {set});
+    } catch (const ConfigError& e) {
+      err = e.what();
+    }
+    EXPECT_EQ(err.empty(), model_ok) << v << ": " << err;
+    if (!model_ok) {
+      EXPECT_THAT(err, HasSubstr("model.trust_dynamics." + why)) << v;
+    }
+  }
 }
 
 // Found by replaying configs/sweep_trust.yaml through the fuzz target: the
@@ -259,9 +404,9 @@ TEST(ConfigErrors, OutOfRangeValuesNameKeyAndValue) {
   };
   const std::vector<Case> cases = {
       {"model: {trust: 1.3}\n", "model.trust = 1.3"},
-      {"model: {prior_go: 0}\n", "model.prior_go = 0"},
-      {"model: {prior_go: 1}\n", "model.prior_go = 1"},
-      {"model: {collision_penalty: -2}\n", "model.collision_penalty = -2"},
+      {"model: {prior_go: 0}\n", "model.prior_go (lambda) = 0 is outside (0, 1)"},
+      {"model: {prior_go: 1}\n", "model.prior_go (lambda) = 1 is outside (0, 1)"},
+      {"model: {collision_penalty: -2}\n", "model.collision_penalty r = -2 must be > 0"},
       {"model: {assumed_trust: -0.1}\n", "model.assumed_trust = -0.1"},
       {"model: {likelihood: {s_max: 0}}\n", "model.likelihood.s_max = 0"},
       {"model: {likelihood: {type: cubic}}\n", "model.likelihood.type = 'cubic'"},
@@ -522,8 +667,8 @@ TEST(ConfigOverrides, LaterOverridesWinAndCreateMissingSections) {
   EXPECT_EQ(c.scenario.avs, 5);
   ASSERT_TRUE(c.model.assumed_trust.has_value());
   EXPECT_EQ(*c.model.assumed_trust, 0.9);
-  EXPECT_EQ(c.model.Knowledge(), "assumed");
-  EXPECT_EQ(c.model.likelihood.type, "logistic");
+  EXPECT_EQ(c.model.Knowledge(), TrustKnowledge::kAssumed);
+  EXPECT_EQ(c.model.likelihood.type, LikelihoodType::kLogistic);
   EXPECT_EQ(c.model.likelihood.steepness, 3.0);
 }
 
@@ -575,9 +720,9 @@ TEST(ConfigOverrides, MapValueMergesIntoASection) {
       "sweep: {replicates: 3, grid: {model.prior_go: [0.1, 0.2], scenario.avs: [1, 2]}}\n");
   const ExperimentConfig m = LoadExperimentConfig(
       path, {"model={trust: {dist: beta, alpha: 2, beta: 5}}", "sweep={grid: {model.trust: [0.5]}}"});
-  EXPECT_EQ(m.model.trust.dist, "beta");  // a distribution replaces the old one
+  EXPECT_EQ(m.model.trust.dist, TrustDist::kBeta);  // a distribution replaces the old one
   EXPECT_EQ(m.model.trust.alpha, 2.0);
-  EXPECT_EQ(m.model.likelihood.type, "logistic");  // kept from the file
+  EXPECT_EQ(m.model.likelihood.type, LikelihoodType::kLogistic);  // kept from the file
   ASSERT_TRUE(m.sweep.has_value());
   EXPECT_EQ(m.sweep->replicates, 3);  // kept from the file
   ASSERT_EQ(m.sweep->grid.size(), 1u);  // the grid is one value: replaced
@@ -719,8 +864,8 @@ TEST(ConfigBeyond, DefaultsOfEachSection) {
   EXPECT_EQ(c.model.trust_dynamics->strength, 10.0);
   EXPECT_EQ(c.model.trust_dynamics->quality.nudge_stop, 0.0);
   EXPECT_EQ(c.model.trust_dynamics->quality.still_stop, 1.0);
-  EXPECT_EQ(c.model.noise->kind, "gaussian");
-  EXPECT_EQ(c.model.noise->design, "aware");
+  EXPECT_EQ(c.model.noise->kind, NoiseKind::kGaussian);
+  EXPECT_EQ(c.model.noise->design, NoiseDesign::kAware);
   EXPECT_EQ(c.model.noise->delta, 0.01);
   EXPECT_EQ(c.model.learning->delta, 0.01);
   EXPECT_FALSE(c.model.learning->prior.has_value());

@@ -28,17 +28,6 @@ using test::TempDir;
 
 const std::string kSource = TAEBP_SOURCE_DIR;
 const std::string kPaper = kSource + "/configs/paper.yaml";
-constexpr double kZ999 = 3.2905267314919255;
-
-Interval Wilson(long k, long n, double z) {
-  const double p = static_cast<double>(k) / n;
-  const double z2 = z * z;
-  const double denom = 1 + z2 / n;
-  const double centre = (p + z2 / (2.0 * n)) / denom;
-  const double half = z * std::sqrt(p * (1 - p) / n + z2 / (4.0 * n * n)) / denom;
-  return {k == 0 ? 0.0 : centre - half, k == n ? 1.0 : centre + half};
-}
-
 std::string ReadText(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;

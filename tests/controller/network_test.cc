@@ -5,7 +5,8 @@
 // own foes matrix (read back with net::NetFile), at all-way stops with
 // turning demand and at two-way stops.
 #include "taebp/config/config.h"
-#include "taebp/controller/experiment.h"
+#include "taebp/controller/policy_run.h"
+#include "taebp/report/report.h"
 #include "taebp/scenario/demand.h"
 #include "taebp/scenario/net_file.h"
 #include "taebp/scenario/scenario.h"
@@ -32,18 +33,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::TempDir;
-
-constexpr double kZ999 = 3.2905267314919255;
-
-// Wilson interval of k/n at z.
-std::pair<double, double> Wilson(long k, long n, double z) {
-  const double p = static_cast<double>(k) / n;
-  const double z2 = z * z;
-  const double denom = 1 + z2 / n;
-  const double centre = (p + z2 / (2.0 * n)) / denom;
-  const double half = z * std::sqrt(p * (1 - p) / n + z2 / (4.0 * n * n)) / denom;
-  return {centre - half, centre + half};
-}
 
 const char* const kModel =
     "model:\n"

@@ -3,7 +3,7 @@
 // collision), the measured rates against the library's theory (99.9% Wilson
 // intervals), determinism, the run's health and bad input.
 #include "taebp/config/config.h"
-#include "taebp/controller/experiment.h"
+#include "taebp/controller/policy_run.h"
 #include "taebp/report/report.h"
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/av_hv.h"
@@ -35,20 +35,6 @@ namespace fs = std::filesystem;
 
 const std::string kPaper = std::string(TAEBP_SOURCE_DIR) + "/configs/paper.yaml";
 
-// Two-sided normal quantile for 99.9%: a true rate falls outside the interval
-// with probability ~0.001 per check.
-constexpr double kZ999 = 3.2905267314919255;
-constexpr double kZ95 = 1.959963984540054;
-
-Interval Wilson(long k, long n, double z) {
-  const double p = static_cast<double>(k) / n;
-  const double z2 = z * z;
-  const double denom = 1 + z2 / n;
-  const double centre = (p + z2 / (2.0 * n)) / denom;
-  const double half = z * std::sqrt(p * (1 - p) / n + z2 / (4.0 * n * n)) / denom;
-  return {centre - half, centre + half};
-}
-
 // k of n against a theory probability p: exact for p = 0 or 1, else p must lie
 // in the 99.9% Wilson interval of k/n.
 void ExpectAgrees(long k, long n, double p, const std::string& what) {
@@ -72,18 +58,6 @@ ExperimentConfig Config(const std::vector<std::string>& overrides) {
 
 PolicyRun RunOne(const ExperimentConfig& config, const std::string& policy) {
   return RunPolicy(config, policy, BuildScenario(config, ""));
-}
-
-TEST(Wilson, OurIntervalMatchesReportAt95) {
-  for (auto [k, n] : {std::pair{0L, 10L}, std::pair{3L, 10L}, std::pair{50L, 127L},
-                      std::pair{127L, 127L}, std::pair{1L, 1000L}}) {
-    const Interval ours = Wilson(k, n, kZ95);
-    const Interval theirs = Wilson95(k, n);
-    EXPECT_NEAR(theirs.low, std::max(0.0, ours.low), 1e-12) << k << "/" << n;
-    EXPECT_NEAR(theirs.high, std::min(1.0, ours.high), 1e-12) << k << "/" << n;
-  }
-  EXPECT_EQ(Wilson95(0, 0).low, 0.0);
-  EXPECT_EQ(Wilson95(0, 0).high, 1.0);
 }
 
 // ------------------------------------------------------------------ theory points

@@ -2,7 +2,7 @@
 // theory over a trust distribution (against an independent integration), the
 // per-HV draws in SUMO, and tracks that grow to fit the vehicles.
 #include "taebp/config/config.h"
-#include "taebp/controller/experiment.h"
+#include "taebp/controller/policy_run.h"
 #include "taebp/report/report.h"
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/outcomes.h"
@@ -33,7 +33,7 @@ std::string ErrorOf(const std::string& yaml, const std::vector<std::string>& ove
 
 TEST(TrustSpec, UniformMeanAndQuantile) {
   TrustSpec t;
-  t.dist = "uniform";
+  t.dist = TrustDist::kUniform;
   t.low = 0.2;
   t.high = 0.8;
   EXPECT_DOUBLE_EQ(t.Mean(), 0.5);
@@ -43,7 +43,7 @@ TEST(TrustSpec, UniformMeanAndQuantile) {
 
 TEST(TrustSpec, BetaQuantileInvertsTheCdfAndMeanMatchesIntegration) {
   TrustSpec t;
-  t.dist = "beta";
+  t.dist = TrustDist::kBeta;
   t.alpha = 2;
   t.beta = 5;
   EXPECT_DOUBLE_EQ(t.Mean(), 2.0 / 7.0);
@@ -61,7 +61,7 @@ TEST(TrustSpec, BetaQuantileInvertsTheCdfAndMeanMatchesIntegration) {
 
 TEST(TrustSpec, DiscreteWeightsAndQuantile) {
   TrustSpec t;
-  t.dist = "discrete";
+  t.dist = TrustDist::kDiscrete;
   t.values = {0.2, 0.8};
   t.weights = {1, 3};
   EXPECT_DOUBLE_EQ(t.Mean(), 0.65);
@@ -75,7 +75,7 @@ TEST(TrustYaml, NumberDistributionsAndRoundTrip) {
   EXPECT_DOUBLE_EQ(a.model.trust.value, 0.3);
   const ExperimentConfig b =
       ParseExperimentConfig("model: {trust: {dist: beta, alpha: 2, beta: 5}}", "t.yaml");
-  EXPECT_EQ(b.model.trust.dist, "beta");
+  EXPECT_EQ(b.model.trust.dist, TrustDist::kBeta);
   EXPECT_DOUBLE_EQ(b.model.trust.beta, 5);
   const ExperimentConfig c = ParseExperimentConfig(
       "model: {trust: {dist: discrete, values: [0.2, 0.8], weights: [1, 3]}}", "t.yaml");
@@ -126,7 +126,7 @@ TEST(ExpectedOutcome, FixedTrustIsThePrediction) {
 // rule on [theta*, high] (an independent method from the quantile rule).
 TEST(ExpectedOutcome, UniformTrustMatchesSimpsonIntegralOfEqB) {
   ModelConfig m;
-  m.trust.dist = "uniform";
+  m.trust.dist = TrustDist::kUniform;
   m.trust.low = 0.1;
   m.trust.high = 0.9;
   const double lambda = m.prior_go, p_star = 0.4, theta_star = 0.25;
@@ -154,9 +154,9 @@ TEST(ExpectedOutcome, UniformTrustMatchesSimpsonIntegralOfEqB) {
 // needs drive recklessly while the AV goes.
 TEST(ExpectedOutcome, PopulationMeanDesignCollidesWithLowTrustHvs) {
   ModelConfig m;
-  m.trust.dist = "discrete";
+  m.trust.dist = TrustDist::kDiscrete;
   m.trust.values = {0.3, 0.9};
-  m.trust_knowledge = "population_mean";  // mean 0.6
+  m.trust_knowledge = TrustKnowledge::kPopulationMean;  // mean 0.6
   const per::AvHvParams params{m.prior_go, m.collision_penalty};
   per::LinearLikelihood lik(2.0);
   const auto scheme = per::CommitScheme(per::Policy::kTaEbp, params, 0.6, lik);
@@ -207,12 +207,10 @@ TEST(HeterogeneousRun, DrawsPerHvTrustAndAgreesWithTheoryGivenHvs) {
   EXPECT_EQ(col, 0);  // exact knowledge: never a collision
   const long n = static_cast<long>(run.encounters.size());
   theory_dc /= n;
-  // 99.9% Wilson interval (z = 3.2905) around the measured DC rate.
-  const double z = 3.2905, p = static_cast<double>(dc) / n;
-  const double den = 1 + z * z / n, c = (p + z * z / (2.0 * n)) / den;
-  const double half = z * std::sqrt(p * (1 - p) / n + z * z / (4.0 * n * n)) / den;
-  EXPECT_GE(theory_dc, c - half);
-  EXPECT_LE(theory_dc, c + half);
+  // The 99.9% Wilson interval around the measured DC rate.
+  const Interval ci = Wilson(dc, n, kZ999);
+  EXPECT_GE(theory_dc, ci.low);
+  EXPECT_LE(theory_dc, ci.high);
 }
 
 TEST(Penetration, TrackGrowsToFitAndSaysSo) {

@@ -67,11 +67,11 @@ TEST(PerceptionNoise, NamesAndErrors) {
   EXPECT_THAT(InvalidArgumentMessage([] { ParseNoiseKind("laplace"); }),
               HasSubstr("noise kind 'laplace' is unknown"));
   EXPECT_THAT(InvalidArgumentMessage([] { Gaussian(0.0).Validate(); }),
-              HasSubstr("noise scale = 0 must be > 0 and finite for gaussian noise"));
+              HasSubstr("noise.scale = 0 must be > 0 and finite for gaussian noise"));
   EXPECT_THAT(InvalidArgumentMessage([] { Uniform(-1.0).Validate(); }),
-              HasSubstr("noise scale = -1 must be > 0 and finite for uniform noise"));
+              HasSubstr("noise.scale = -1 must be > 0 and finite for uniform noise"));
   EXPECT_THAT(InvalidArgumentMessage([] { Gaussian(0.1, NAN).Validate(); }),
-              HasSubstr("noise bias = nan must be finite"));
+              HasSubstr("noise.bias = nan must be finite"));
   EXPECT_THAT(InvalidArgumentMessage([] { Gaussian(0.1).Quantile(1.0); }),
               HasSubstr("noise quantile level p = 1 is outside (0, 1)"));
   EXPECT_THAT(InvalidArgumentMessage([] { NoisyReading(Gaussian(0.1), 1.0, 2.0, 1.0); }),

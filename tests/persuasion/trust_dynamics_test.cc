@@ -66,11 +66,11 @@ TEST(OutcomeQuality, DefaultsAndValidation) {
   OutcomeQuality bad;
   bad.nudge_stop = 1.5;
   EXPECT_THAT(InvalidArgumentMessage([&] { bad.Validate(); }),
-              HasSubstr("quality nudge_stop = 1.5 is outside [0, 1]"));
+              HasSubstr("quality.nudge_stop = 1.5 is outside [0, 1]"));
   bad = OutcomeQuality{};
   bad.near_miss = -0.25;
   EXPECT_THAT(InvalidArgumentMessage([&] { bad.Validate(); }),
-              HasSubstr("quality near_miss = -0.25 is outside [0, 1]"));
+              HasSubstr("quality.near_miss = -0.25 is outside [0, 1]"));
 }
 
 TEST(TrustUpdateRule, Validation) {

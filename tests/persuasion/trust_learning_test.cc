@@ -280,7 +280,7 @@ TEST(ExplorationSchedule, LevelsAndValidation) {
   s = ExplorationSchedule{};
   s.decay = 0.0;
   EXPECT_THAT(InvalidArgumentMessage([&] { s.Validate(); }),
-              HasSubstr("exploration decay = 0 must be > 0"));
+              HasSubstr("decay = 0 must be > 0"));
   EXPECT_THAT(InvalidArgumentMessage([] { ExplorationSchedule{}.Level(-1); }),
               HasSubstr("observations = -1 must be >= 0"));
 }

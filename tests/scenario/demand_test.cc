@@ -4,6 +4,7 @@
 #include "taebp/scenario/demand.h"
 
 #include "taebp/config/config.h"
+#include "taebp/report/report.h"  // kZ999
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/scenario/scenario.h"
 
@@ -28,7 +29,6 @@ using ::testing::HasSubstr;
 using test::ErrorOf;
 using test::TempDir;
 
-constexpr double kZ999 = 3.2905267314919255;  // two-sided 99.9% normal quantile
 
 double Chi2Quantile(double df, double p) {
   return boost::math::quantile(boost::math::chi_squared(df), p);

@@ -1,7 +1,7 @@
 #include "gui_cmd.h"
 
 #include "taebp/config/config.h"
-#include "taebp/controller/experiment.h"
+#include "taebp/controller/policy_run.h"
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/persuasion.h"

@@ -6,7 +6,7 @@
 // state (RunOptions::colour_states) and the view is framed on the track.
 #pragma once
 
-#include "taebp/controller/experiment.h"
+#include "taebp/controller/policy_run.h"
 
 #include <memory>
 #include <stdexcept>

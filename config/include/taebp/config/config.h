@@ -4,6 +4,8 @@
 // yaml-cpp include.
 #pragma once
 
+#include "taebp/config/enums.h"
+
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -29,9 +31,9 @@ class ConfigError : public std::runtime_error {
 struct JunctionSelection {
   std::vector<std::string> ids;    // junction ids
   std::vector<std::string> types = {"allway_stop", "priority_stop"};
-  std::string priority = "two_way";           // two_way | all_way
-  std::string right_before_left = "all_way";  // all_way | two_way
-  std::string unregulated = "all_way";        // all_way | two_way
+  StopRule priority = StopRule::kTwoWay;
+  StopRule right_before_left = StopRule::kAllWay;
+  StopRule unregulated = StopRule::kAllWay;
   // Only junctions whose incoming lanes all have speed limits at most this
   // (m/s; 0: any), e.g. 13.9 keeps an OSM import's town streets and leaves
   // its motorway and trunk junctions to SUMO. Applies to `types`, not `ids`.
@@ -62,7 +64,7 @@ struct GridConfig {
   double attach_length = 100.0;  // m of the fringe edges (0: none)
   int lanes = 1;                 // per direction
   double speed = 13.89;          // m/s speed limit
-  std::string junction_type = "allway_stop";  // allway_stop | priority_stop | priority | right_before_left
+  GridJunctionType junction_type = GridJunctionType::kAllwayStop;
 
   template <typename Archive>
   void Serialize(Archive* a) {
@@ -81,7 +83,7 @@ struct GridConfig {
 // fringe exit (routing: random) and routed by SUMO on the fastest path.
 struct DemandConfig {
   double flow = 300.0;           // veh/h entering per fringe edge
-  std::string routing = "random";  // random: uniformly random fringe exit (not the way back)
+  Routing routing = Routing::kRandom;  // random: uniformly random fringe exit (not the way back)
   double end = -1.0;             // s, last departure (< 0: scenario.duration)
 
   template <typename Archive>
@@ -116,7 +118,7 @@ struct ScenarioConfig {
   // figure8: the paper's track, vehicles circulating (avs, hvs, loop_length,
   // stop_distance). network: any SUMO network with vehicles entering and
   // leaving (network or sumocfg or grid; routes and/or demand).
-  std::string kind = "figure8";
+  ScenarioKind kind = ScenarioKind::kFigure8;
   int avs = 8;                  // number of autonomous vehicles (blue)
   int hvs = 8;                  // number of human-driven vehicles (red)
   double cruise_speed = 4.0;    // m/s
@@ -156,19 +158,19 @@ struct ScenarioConfig {
   OutputsConfig outputs;         // SUMO's outputs per policy: DIR/POLICY/...
   // A nudge SUMO did not realise (observed outside [s, s + 1 mm]): error
   // (stop the run) or count (record it and go on).
-  std::string nudge_check = "error";
+  NudgeCheck nudge_check = NudgeCheck::kError;
   // Traffic stalled at a junction (vehicles wait, none passes it for the
   // stall limit; see RunOptions): error (stop the run, say where and why) or
   // record (note it in the outputs and go on: a gridlocked network measured
   // as it is, e.g. beyond saturation).
-  std::string stall_action = "error";
+  StallAction stall_action = StallAction::kError;
   // Network scenarios: which AV-HV meetings on conflicting movements are the
   // paper's game. colliding: those where both proceeding would collide on the
   // junction's geometry (the game's premise; a merge the AV leads is not one
   // and goes by arrival); all: every conflicting pair (SUMO then decides
   // collisions that the theory's "AV goes, HV drives recklessly" may not
   // produce). The figure-8's crossing is always the game.
-  std::string encounter_pairs = "colliding";
+  EncounterPairs encounter_pairs = EncounterPairs::kColliding;
 
   template <typename Archive>
   void Serialize(Archive* a) {
@@ -209,11 +211,11 @@ struct ScenarioConfig {
     a->Visit("stall_action", &stall_action);
     a->Visit("encounter_pairs", &encounter_pairs);
   }
-  bool IsNetwork() const { return kind == "network"; }
+  bool IsNetwork() const { return kind == ScenarioKind::kNetwork; }
 };
 
 struct LikelihoodConfig {
-  std::string type = "linear";  // linear | logistic
+  LikelihoodType type = LikelihoodType::kLinear;
   double s_max = 2.0;           // m
   double steepness = 4.0;       // logistic only
   double midpoint = 1.0;        // logistic only
@@ -233,7 +235,7 @@ struct LikelihoodConfig {
 // `trust: {dist: beta, alpha: 2, beta: 5}`,
 // `trust: {dist: discrete, values: [0.2, 0.8], weights: [1, 3]}`.
 struct TrustSpec {
-  std::string dist = "fixed";  // fixed | uniform | beta | discrete
+  TrustDist dist = TrustDist::kFixed;
   double value = 0.6;          // fixed
   double low = 0.0, high = 1.0;         // uniform
   double alpha = 1.0, beta = 1.0;       // beta
@@ -244,7 +246,7 @@ struct TrustSpec {
     t.value = v;
     return t;
   }
-  bool IsFixed() const { return dist == "fixed"; }
+  bool IsFixed() const { return dist == TrustDist::kFixed; }
   double Mean() const;
   // dist discrete: the weight of values[i] (1 when no weights are given) and
   // the sum of all weights.
@@ -306,11 +308,11 @@ struct TrustDynamicsConfig {
 // that the noisy reading still persuades with probability >= 1 - delta;
 // paper = they keep the paper's s* (to measure what noise does to it).
 struct NoiseConfig {
-  std::string kind = "gaussian";  // none | gaussian | uniform
+  NoiseKind kind = NoiseKind::kGaussian;
   double scale = 0.05;            // m: Gaussian sigma, or the uniform half-width
   double bias = 0.0;              // m, added to every reading
   double delta = 0.01;            // the noise-aware design's failure budget, in (0, 1)
-  std::string design = "aware";   // aware | paper
+  NoiseDesign design = NoiseDesign::kAware;
 
   template <typename Archive>
   void Serialize(Archive* a) {
@@ -351,9 +353,9 @@ struct ModelConfig {
   TrustSpec trust = TrustSpec::Fixed(0.6);  // theta of the HVs
   // What the AV knows of each HV's trust when it designs its scheme (ta_ebp):
   // exact (that HV's own theta), population_mean (one design for the mean),
-  // assumed (one design for assumed_trust). Empty: assumed if assumed_trust is
+  // assumed (one design for assumed_trust). Unset: assumed if assumed_trust is
   // set, else exact.
-  std::string trust_knowledge;
+  std::optional<TrustKnowledge> trust_knowledge;
   std::optional<double> assumed_trust;  // theta_hat for trust_knowledge = assumed
   LikelihoodConfig likelihood;
   // Beyond the paper (unset: the paper's static, exactly seen, known trust).
@@ -374,9 +376,9 @@ struct ModelConfig {
     a->Visit("learning", &learning);
   }
   // trust_knowledge with the default resolved.
-  std::string Knowledge() const {
-    if (!trust_knowledge.empty()) return trust_knowledge;
-    return assumed_trust ? "assumed" : "exact";
+  TrustKnowledge Knowledge() const {
+    if (trust_knowledge) return *trust_knowledge;
+    return assumed_trust ? TrustKnowledge::kAssumed : TrustKnowledge::kExact;
   }
 };
 

@@ -70,7 +70,7 @@
 //   checked); the encounter is recorded when both have left the junction.
 #pragma once
 
-#include "taebp/junction/intersection.h"
+#include "taebp/encounter/encounter.h"
 
 #include <functional>
 #include <optional>

@@ -66,7 +66,7 @@ struct OutcomeQuality {
   double collision = 0.0;
   double near_miss = 0.0;
   double Of(EncounterOutcome outcome) const;
-  // Each in [0, 1]; the message names the outcome, e.g. "quality nudge_stop = 1.5 is outside [0,
+  // Each in [0, 1]; the message names the outcome, e.g. "quality.nudge_stop = 1.5 is outside [0,
   // 1]".
   bool IsValid(std::string* why) const;
   void Validate() const;

@@ -13,8 +13,17 @@ namespace taebp {
 struct Interval {
   double low = 0, high = 0;
 };
-// 95% Wilson score interval for k successes out of n (n = 0 -> [0, 1]).
-Interval Wilson95(long k, long n);
+// Two-sided standard normal quantiles of the intervals taebp uses: 95 % (what
+// every output reports) and 99.9 % (tests and readme-check comparing a measured
+// rate with its theory, where a false alarm should be rare).
+inline constexpr double kZ95 = 1.959963984540054;
+inline constexpr double kZ999 = 3.2905267314919255;
+// The Wilson score interval for k successes out of n at normal quantile z
+// (Wilson 1927; Newcombe 1998, method 3, without continuity correction): the
+// one interval taebp computes in C++ (python/taebp/stats.py is Python's).
+// Edges: n = 0 -> [0, 1]; k = 0 -> low exactly 0; k = n -> high exactly 1;
+// always inside [0, 1]. Needs 0 <= k <= n.
+Interval Wilson(long k, long n, double z = kZ95);
 
 struct Provenance {
   std::string config_path;

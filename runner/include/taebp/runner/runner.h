@@ -4,7 +4,7 @@
 #pragma once
 
 #include "taebp/config/config.h"
-#include "taebp/controller/experiment.h"
+#include "taebp/controller/policy_run.h"
 #include "taebp/report/output_dir.h"
 #include "taebp/report/report.h"
 

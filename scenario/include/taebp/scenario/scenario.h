@@ -43,7 +43,7 @@ class ScratchDir {
 };
 
 struct Scenario {
-  std::string kind;                     // figure8 | network
+  ScenarioKind kind = ScenarioKind::kFigure8;
   std::string net;                      // the .net.xml SUMO loads
   // The user's own network file when `net` is it unchanged; empty when taebp
   // generated or patched the network SUMO loads (a run keeps that one in its

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "taebp/config/config.h"
+#include "taebp/config/model.h"  // MakeLikelihood
 #include "taebp/persuasion/outcomes.h"
 
 #include <functional>
@@ -34,8 +35,5 @@ persuasion::PredictedOutcome ExpectedOver(
 persuasion::PredictedOutcome ExpectedOutcome(const ModelConfig& model, persuasion::Policy policy,
                                              int points = 4000);
 
-// The HV likelihood model named by the config; throws persuasion::InvalidArgument
-// naming the type when it is not linear or logistic.
-std::unique_ptr<persuasion::LikelihoodModel> MakeLikelihood(const LikelihoodConfig& config);
 
 }  // namespace taebp

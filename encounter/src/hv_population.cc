@@ -1,6 +1,7 @@
-#include "taebp/junction/hv_population.h"
+#include "taebp/encounter/hv_population.h"
 
-#include "taebp/junction/design.h"
+#include "taebp/config/model.h"
+#include "taebp/encounter/design.h"
 #include "taebp/persuasion/random.h"
 
 #include <algorithm>
@@ -38,30 +39,6 @@ std::string Num(double v) {
   return os.str();
 }
 
-// The population prior of the learner from a trust distribution's YAML form:
-// Beta as it is; fixed and discrete as atoms; uniform on [low, high] as a
-// histogram of 1000 cells (exact when low and high are multiples of 1/1000).
-per::TrustPrior PriorFrom(const TrustSpec& t) {
-  if (t.dist == "beta") return per::TrustPrior::Beta(t.alpha, t.beta);
-  if (t.dist == "discrete") {
-    std::vector<double> w;
-    for (std::size_t i = 0; i < t.values.size(); ++i) w.push_back(t.Weight(i));
-    return per::TrustPrior::Discrete(t.values, w);
-  }
-  if (t.dist == "uniform") {
-    if (t.low == t.high) return per::TrustPrior::Discrete({t.low}, {1.0});
-    if (t.low == 0.0 && t.high == 1.0) return per::TrustPrior::Beta(1.0, 1.0);
-    constexpr int kCells = 1000;
-    std::vector<double> w(kCells, 0.0);
-    for (int k = 0; k < kCells; ++k) {
-      const double a = static_cast<double>(k) / kCells, b = static_cast<double>(k + 1) / kCells;
-      w[k] = std::max(0.0, std::min(b, t.high) - std::max(a, t.low));
-    }
-    return per::TrustPrior::Histogram(w);
-  }
-  return per::TrustPrior::Discrete({t.value}, {1.0});
-}
-
 bool TaebpFamily(Policy p) {
   return p == Policy::kTaEbp || p == Policy::kPopulationMean || p == Policy::kTaEbpLearned;
 }
@@ -79,31 +56,18 @@ HvPopulation::HvPopulation(const ExperimentConfig& config, Policy policy)
       noise_rng_(StreamSeed(config.scenario.seed, kSaltNoise)),
       probe_rng_(StreamSeed(config.scenario.seed, kSaltProbe)) {
   const ModelConfig& m = config.model;
-  params_.prior_go = m.prior_go;
-  params_.collision_penalty = m.collision_penalty;
+  params_ = ToModel(m);
   beyond_ = config.BeyondPaper();
   dynamic_ = m.trust_dynamics.has_value();
   learned_ = policy == Policy::kTaEbpLearned;
   next_sample_ = config.scenario.warmup;
   if (m.noise) {
-    per::PerceptionNoise n;
-    n.kind = per::ParseNoiseKind(m.noise->kind);
-    n.scale = m.noise->scale;
-    n.bias = m.noise->bias;
-    noise_ = n;
-    noise_aware_ = m.noise->design == "aware";
+    noise_ = ToModel(*m.noise);
+    noise_aware_ = m.noise->design == NoiseDesign::kAware;
     noise_delta_ = m.noise->delta;
   }
   if (dynamic_) {
-    const TrustDynamicsConfig& d = *m.trust_dynamics;
-    rule_.success_weight = d.success_weight;
-    rule_.failure_weight = d.failure_weight;
-    rule_.forgetting = d.forgetting;
-    rule_.quality.nudge_go = d.quality.nudge_go;
-    rule_.quality.nudge_stop = d.quality.nudge_stop;
-    rule_.quality.still_stop = d.quality.still_stop;
-    rule_.quality.still_go = d.quality.still_go;
-    rule_.quality.collision = d.quality.collision;
+    rule_ = ToModel(*m.trust_dynamics);
     rule_.Validate();
     // The mean-field and long-run theory (noise-free models of trust_dynamics.h).
     if (!noise_ && !learned_) {
@@ -112,20 +76,18 @@ HvPopulation::HvPopulation(const ExperimentConfig& config, Policy policy)
       if (policy == Policy::kPopulationMean) {
         r.assumed_trust = m.trust.Mean();
       } else if (policy == Policy::kTaEbp) {
-        const std::string k = m.Knowledge();
-        if (k == "population_mean") r.assumed_trust = m.trust.Mean();
-        if (k == "assumed") r.assumed_trust = m.assumed_trust;
+        const TrustKnowledge k = m.Knowledge();
+        if (k == TrustKnowledge::kPopulationMean) r.assumed_trust = m.trust.Mean();
+        if (k == TrustKnowledge::kAssumed) r.assumed_trust = m.assumed_trust;
       }
       design_rule_ = r;
     }
   }
   if (learned_) {
     const LearningConfig l = m.learning.value_or(LearningConfig{});
-    schedule_.delta = l.delta;
-    schedule_.decay = l.constant_level ? std::numeric_limits<double>::infinity() : l.decay;
-    schedule_.probe = l.probe;
+    schedule_ = ToModel(l);
     schedule_.Validate();
-    fleet_ = std::make_unique<per::FleetTrustBeliefs>(PriorFrom(l.prior.value_or(m.trust)));
+    fleet_ = std::make_unique<per::FleetTrustBeliefs>(ToModel(l.prior.value_or(m.trust)));
     const per::TrustBelief fresh(std::make_shared<per::TrustPrior>(fleet_->Population()));
     // The design for an HV never met, without a probe.
     const per::LearnedDesign ld =
@@ -507,8 +469,8 @@ BeyondRun HvPopulation::Results(double end) {
   if (noise_) {
     out.noise = true;
     const NoiseConfig& n = *m.noise;
-    out.noise_kind = n.kind;
-    out.noise_design = n.design;
+    out.noise_kind = EnumName(n.kind);
+    out.noise_design = EnumName(n.design);
     out.noise_scale = n.scale;
     out.noise_bias = n.bias;
     out.noise_delta = n.delta;

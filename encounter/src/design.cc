@@ -1,4 +1,4 @@
-#include "taebp/junction/design.h"
+#include "taebp/encounter/design.h"
 
 #include <utility>
 #include <vector>
@@ -11,9 +11,9 @@ double DesignTrust(const ModelConfig& model, Policy policy, double theta) {
   if (policy == Policy::kNoTrust) return 1.0;
   if (policy == Policy::kPopulationMean) return model.trust.Mean();
   if (policy == Policy::kTaEbpLearned) return theta;
-  const std::string k = model.Knowledge();
-  if (k == "assumed") return model.assumed_trust.value_or(theta);
-  if (k == "population_mean") return model.trust.Mean();
+  const TrustKnowledge k = model.Knowledge();
+  if (k == TrustKnowledge::kAssumed) return model.assumed_trust.value_or(theta);
+  if (k == TrustKnowledge::kPopulationMean) return model.trust.Mean();
   return theta;
 }
 
@@ -21,7 +21,7 @@ std::vector<std::pair<double, double>> TrustNodes(const TrustSpec& t, int points
   std::vector<std::pair<double, double>> nodes;  // (theta, weight)
   if (t.IsFixed()) {
     nodes.emplace_back(t.value, 1.0);
-  } else if (t.dist == "discrete") {
+  } else if (t.dist == TrustDist::kDiscrete) {
     const double total = t.TotalWeight();
     for (std::size_t i = 0; i < t.values.size(); ++i)
       nodes.emplace_back(t.values[i], t.Weight(i) / total);
@@ -47,7 +47,7 @@ persuasion::PredictedOutcome ExpectedOver(
 }
 
 persuasion::PredictedOutcome ExpectedOutcome(const ModelConfig& model, Policy policy, int points) {
-  persuasion::AvHvParams params{model.prior_go, model.collision_penalty};
+  const persuasion::AvHvParams params = ToModel(model);
   const auto lik = MakeLikelihood(model.likelihood);
   auto at = [&](double theta) {
     const auto scheme =
@@ -55,13 +55,6 @@ persuasion::PredictedOutcome ExpectedOutcome(const ModelConfig& model, Policy po
     return persuasion::PredictOutcome(scheme, params, theta, *lik);
   };
   return ExpectedOver(model.trust, at, points);
-}
-
-std::unique_ptr<persuasion::LikelihoodModel> MakeLikelihood(const LikelihoodConfig& c) {
-  if (c.type == "logistic")
-    return std::make_unique<persuasion::LogisticLikelihood>(c.s_max, c.steepness, c.midpoint);
-  if (c.type == "linear") return std::make_unique<persuasion::LinearLikelihood>(c.s_max);
-  throw persuasion::InvalidArgument("likelihood '" + c.type + "' is not linear or logistic");
 }
 
 }  // namespace taebp

@@ -1,7 +1,8 @@
 // The pieces of one AV-HV encounter, free of SUMO so they can be unit-tested:
 // the AV's draw of intent and signal, the HV's reading of the observed nudge,
 // the encounter's sequence of releases, and the creep profile of a nudge.
-// (Who meets whom at a junction: interception.h.)
+// (Who meets whom at a junction, and when each is held and handed back:
+// junction/interception.h.)
 #pragma once
 
 #include "taebp/persuasion/outcomes.h"

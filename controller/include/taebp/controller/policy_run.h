@@ -4,8 +4,8 @@
 #pragma once
 
 #include "taebp/config/config.h"
-#include "taebp/junction/design.h"
-#include "taebp/junction/intersection.h"
+#include "taebp/encounter/design.h"
+#include "taebp/encounter/encounter.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/report/results.h"
 #include "taebp/scenario/scenario.h"

@@ -1,4 +1,4 @@
-#include "taebp/junction/intersection.h"
+#include "taebp/encounter/encounter.h"
 
 #include <algorithm>
 #include <cmath>

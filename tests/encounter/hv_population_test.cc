@@ -3,11 +3,11 @@
 // SUMO). The paper's setting must be exactly the controller's old computation;
 // each capability is checked against the persuasion library's closed forms,
 // its own arithmetic, and binomial bands of many simulated readings.
-#include "taebp/junction/hv_population.h"
+#include "taebp/encounter/hv_population.h"
 
 #include "taebp/config/config.h"
-#include "taebp/junction/design.h"
-#include "taebp/junction/intersection.h"
+#include "taebp/encounter/design.h"
+#include "taebp/encounter/encounter.h"
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/likelihood.h"
 #include "taebp/persuasion/noise.h"

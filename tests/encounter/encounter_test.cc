@@ -1,7 +1,7 @@
 // The SUMO-free pieces of an encounter: the AV's draws, the HV's reading of a
 // nudge, the release sequence and the creep profile of a nudge. (Right of way
 // at a junction: interception_test.cc.)
-#include "taebp/junction/intersection.h"
+#include "taebp/encounter/encounter.h"
 
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/likelihood.h"

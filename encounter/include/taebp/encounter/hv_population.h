@@ -18,7 +18,7 @@
 #pragma once
 
 #include "taebp/config/config.h"
-#include "taebp/junction/intersection.h"
+#include "taebp/encounter/encounter.h"
 #include "taebp/persuasion/noise.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/trust_dynamics.h"

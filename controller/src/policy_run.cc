@@ -1,4 +1,4 @@
-#include "taebp/controller/experiment.h"
+#include "taebp/controller/policy_run.h"
 
 #include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_adapter.h"
@@ -171,7 +171,7 @@ std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario
     }
   }
   if (!additional.empty()) args.insert(args.end(), {"-a", Join(additional)});
-  if (scenario.scratch && scenario.kind == "network") {
+  if (scenario.scratch && scenario.kind == ScenarioKind::kNetwork) {
     // Vehicles still in the network at the end (or at a stall that stops the
     // run) get a record too (arrival -1, their times so far): the delay
     // counts them (ReadTripinfo).
@@ -338,7 +338,7 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
       run.sumo_output_files.emplace_back(policy + "/" + name, (dir / name).string());
     }
   }
-  if (scenario.scratch && scenario.kind == "network") {
+  if (scenario.scratch && scenario.kind == ScenarioKind::kNetwork) {
     ReadTripinfo(TripinfoPath(scenario, policy), config.scenario.warmup, &run.network);
     // SUMO's tripinfo and summary, their dated header replaced as for the
     // outputs (StripGeneratedComment).

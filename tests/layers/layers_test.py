@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""The house's layers, checked on the includes: no arrow runs back up.
+
+Each library folder may include its own headers and those of the layers listed
+for it below, nothing else; libsumo and libtraci only in the SUMO adapter.
+Fails naming the file, the line and the rule it breaks (a newcomer who adds
+`#include "taebp/config/config.h"` to junction/ learns why here)."""
+import os
+import re
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+# Bottom up (README "Layout"). junction/ is right of way only: no config, no report.
+ALLOWED = {
+    "persuasion": {"persuasion"},
+    "config": {"config", "persuasion"},
+    "report": {"report", "persuasion"},
+    "encounter": {"encounter", "persuasion", "config", "report"},
+    "junction": {"junction", "encounter", "persuasion"},
+    "scenario": {"scenario", "config", "persuasion"},
+    "controller": {"controller", "junction", "encounter", "scenario", "report", "config",
+                   "persuasion"},
+    "runner": {"runner", "controller", "encounter", "scenario", "report", "config", "persuasion"},
+    "sweep": {"sweep", "runner", "controller", "scenario", "report", "config", "persuasion"},
+}
+SUMO_ADAPTER = {"controller/src/sumo_adapter.cc", "controller/src/sumo_adapter_libtraci.cc"}
+INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]')
+
+
+def main():
+    problems = []
+    checked = 0
+    for layer, allowed in ALLOWED.items():
+        for base, _, files in os.walk(os.path.join(ROOT, layer)):
+            for name in files:
+                if not name.endswith((".h", ".cc", ".inc")):
+                    continue
+                path = os.path.join(base, name)
+                rel = os.path.relpath(path, ROOT)
+                checked += 1
+                with open(path, encoding="utf-8") as f:
+                    for n, line in enumerate(f, 1):
+                        m = INCLUDE.match(line)
+                        if not m:
+                            continue
+                        target = m.group(1)
+                        parts = target.split("/")
+                        if parts[0] == "taebp" and len(parts) > 2 and parts[1] not in allowed:
+                            problems.append("%s:%d: %s/ includes %s (allowed: %s)" % (
+                                rel, n, layer, target, ", ".join(sorted(allowed))))
+                        if parts[0] in ("libsumo", "libtraci") and rel not in SUMO_ADAPTER:
+                            problems.append("%s:%d: %s outside the SUMO adapter (%s)" % (
+                                rel, n, target, ", ".join(sorted(SUMO_ADAPTER))))
+    if checked < 50:
+        problems.append("only %d source files found under %s: wrong root?" % (checked, ROOT))
+    for p in problems:
+        print(p, file=sys.stderr)
+    print("layers: %d files, %d problems" % (checked, len(problems)))
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

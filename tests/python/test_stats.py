@@ -1,0 +1,77 @@
+"""taebp.stats.wilson: the one Wilson interval of the Python code, against the
+values tests/report/wilson_test.cc checks the C++ one with; and no second copy
+of the interval anywhere in the tree."""
+import os
+import re
+import subprocess
+
+import pytest
+
+import taebp
+from taebp import stats
+from conftest import ROOT
+
+
+# Newcombe (1998), Statistics in Medicine 17:857-872, Table II, method 3
+# (Wilson score, no continuity correction), 95 %, four decimals as printed.
+@pytest.mark.parametrize("k,n,low,high", [(81, 263, 0.2553, 0.3662), (15, 148, 0.0624, 0.1605),
+                                          (0, 20, 0.0, 0.1611), (1, 29, 0.0061, 0.1718)])
+def test_newcombes_published_examples(k, n, low, high):
+    lo, hi = stats.wilson(k, n)
+    assert abs(lo - low) < 5e-5 and abs(hi - high) < 5e-5
+
+
+@pytest.mark.parametrize("z", [stats.Z95, stats.Z999])
+@pytest.mark.parametrize("n", [1, 2, 10, 1000])
+def test_edges_are_exact_closed_forms(z, n):
+    edge = z * z / (n + z * z)
+    lo, hi = stats.wilson(0, n, z)
+    assert lo == 0.0 and abs(hi - edge) < 1e-14
+    lo, hi = stats.wilson(n, n, z)
+    assert abs(lo - (1 - edge)) < 1e-14 and hi == 1.0
+
+
+def test_small_samples_and_bad_counts():
+    assert abs(stats.wilson(0, 1)[1] - 0.7935) < 5e-5
+    assert abs(stats.wilson(1, 1)[0] - 0.2065) < 5e-5
+    assert stats.wilson(0, 0) == (0.0, 1.0)
+    for k, n in ((2, 1), (-1, 3)):
+        with pytest.raises(ValueError, match="0 <= k <= n"):
+            stats.wilson(k, n)
+
+
+def test_the_same_numbers_as_the_cpp_interval_in_a_run(tmp_path):
+    # summary.json's intervals come from taebp::Wilson: the Python one gives the
+    # same bounds for the same counts.
+    r = taebp.run(os.path.join(ROOT, "configs", "paper.yaml"),
+                  overrides=["scenario.duration=300", "policies=[no_trust,ta_ebp]"])
+    checked = 0
+    for name, p in r.summary["policies"].items():
+        n = p["encounters"]
+        for key, k in (("collision_rate_ci95", p["collisions"]), ("dc_rate_ci95", p["dc"])):
+            lo, hi = stats.wilson(k, n)
+            assert p[key][0] == pytest.approx(lo, abs=1e-12), (name, key)
+            assert p[key][1] == pytest.approx(hi, abs=1e-12), (name, key)
+            checked += 1
+    assert checked == 4
+
+
+# The formula's signature, as any copy would spell it: z^2 / (4 n^2) under the root.
+WILSON_BODY = re.compile(r"z2?\s*\*?\s*z?\s*/\s*\(\s*4(\.0)?\s*\*\s*n\s*\*\s*n\s*\)")
+
+
+def test_no_second_wilson_interval_in_the_tree():
+    files = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard"], cwd=ROOT, capture_output=True, text=True,
+                           check=True).stdout.split()
+    homes = {"report/src/report.cc", "python/taebp/stats.py"}
+    found = set()
+    for f in files:
+        if not f.endswith((".cc", ".h", ".py")) and not f.startswith("tools/"):
+            continue
+        path = os.path.join(ROOT, f)
+        if not os.path.isfile(path):
+            continue
+        with open(path, encoding="utf-8", errors="replace") as fh:
+            if WILSON_BODY.search(fh.read()):
+                found.add(f)
+    assert found == homes, "Wilson's formula outside its two homes: %s" % sorted(found - homes)
