@@ -147,5 +147,68 @@ for ax, metric, paper in ((dc_ax, "DC", 0.375), (coll_ax, "collision", 0.0)):
     check(curves and all(min(l.get_xdata()) > 0 for l in curves),
           "noise: %s theory curves start at sigma > 0" % metric)
 
+# ---- the map of a network run: a real run of a small grid
+import subprocess  # noqa: E402
+
+run = os.path.join(work, "grid_run")
+r = subprocess.run([taebp, "run", os.path.join(source, "configs", "grid_throughput.yaml"), "--quiet",
+                    "--out", run, "--set", "scenario.grid={columns: 3, rows: 3}",
+                    "--set", "scenario.duration=600", "--set", "scenario.warmup=60",
+                    "--set", "scenario.demand.flow=300", "--set", "policies=[sumo_native, no_ebp, ta_ebp]"],
+                   capture_output=True, text=True)
+check(r.returncode == 0, "map: the grid run finished (%s)" % r.stderr.strip()[-300:])
+with open(os.path.join(run, "summary.json")) as f:
+    summary = json.load(f)
+figures.clear()
+assert plot.main([run]) == 0
+check(os.path.isfile(os.path.join(run, "network_map.png")), "map: network_map.png written")
+fig = figures[-1]
+panels = [ax for ax in fig.axes if ax.get_title()]
+all_texts = texts(fig)
+check(len(panels) == 2, "map: one panel per controller policy (no_ebp, ta_ebp)")
+for ax, policy in zip(panels, ("no_ebp", "ta_ebp")):
+    total = summary["policies"][policy]["encounters"]
+    check(ax.get_title().startswith(("No EBP" if policy == "no_ebp" else "TA-EBP") + ": %d AV-HV encounter" % total),
+          "map: %s's panel names its %d encounters" % (policy, total))
+    # Every controlled junction is one marker, at its place in the net.
+    offsets = [o for c in ax.collections if hasattr(c, "get_offsets") and
+               c.__class__.__name__ == "PathCollection" for o in c.get_offsets()]
+    check(len(offsets) == 9, "map: %s: 9 junction markers (got %d)" % (policy, len(offsets)))
+    # The marker colour follows the sign of the queueing-delay change.
+    base = {j["id"]: plot.queueing_delay(j) for j in summary["policies"]["sumo_native"]["junctions"]}
+    lanes, nodes = plot.read_net(os.path.join(run, "network.net.xml"))
+    signs_ok = True
+    compared = []
+    ramp = matplotlib.colormaps["RdBu_r"]
+    for c in ax.collections:
+        if c.__class__.__name__ != "PathCollection":
+            continue
+        for (x, y), colour in zip(c.get_offsets(), c.get_facecolors()):
+            jid = min(nodes, key=lambda k: (nodes[k][0] - x) ** 2 + (nodes[k][1] - y) ** 2)
+            j = [q for q in summary["policies"][policy]["junctions"] if q["id"] == jid][0]
+            d, b = plot.queueing_delay(j), base.get(jid)
+            if d is None or b is None or abs(d - b) < 1e-3:
+                continue
+            red, blue = colour[0], colour[2]
+            signs_ok = signs_ok and ((red > blue) == (d > b))
+            # the colour's place on the colour map (0: bluest, 1: reddest)
+            place = min(range(256), key=lambda i: sum((a - q) ** 2 for a, q in
+                                                      zip(ramp(i / 255.0)[:3], colour[:3])))
+            compared.append((d - b, place))
+    check(signs_ok and len(compared) >= 3,
+          "map: %s: red where the delay grew, blue where it fell (%d junctions)" % (policy, len(compared)))
+    check(all(rb1 <= rb2 + 1e-9 for c1, rb1 in compared for c2, rb2 in compared if c1 < c2),
+          "map: %s: the colour runs with the delay change (more red, more delay)" % policy)
+    check(any(t.get_text() == "N" for t in ax.texts), "map: %s: a north arrow" % policy)
+    check(any(t.get_text().endswith(" m") for t in ax.texts), "map: %s: a scale bar in metres" % policy)
+    check(ax.get_aspect() == 1.0, "map: %s: equal aspect (metres both ways)" % policy)
+check(any("against SUMO native" in t for t in [a.get_ylabel() for a in fig.axes]),
+      "map: the colour bar says what the colour is against")
+check(any(t == "no encounter" for t in all_texts), "map: the legend explains the small markers")
+check(fig._suptitle is not None and "Little's law" in fig._suptitle.get_text(),
+      "map: the title says how the delay is measured")
+top = fig._suptitle.get_window_extent(fig.canvas.get_renderer())
+check(top.x0 >= 0 and top.x1 <= fig.bbox.width + 1, "map: the title fits inside the figure")
+
 print("%d checks failed" % len(failures) if failures else "all checks passed")
 sys.exit(1 if failures else 0)
