@@ -344,7 +344,7 @@ const std::vector<std::string>& MetricColumns() {
       "theory_given_hvs_collision_rate", "theory_given_hvs_dc_rate",
       "throughput_av", "throughput_hv", "throughput_all",
       "wait_mean", "wait_max", "nudges", "other_collisions", "teleports",
-      "longest_gap_without_crossing",
+      "longest_gap_without_crossing", "stalled",
       // kind: network (empty for the figure-8)
       "served_flow", "offered_flow", "time_loss_mean", "waiting_time_mean", "waiting_to_depart_end",
       "nudges_unrealised",
@@ -410,6 +410,11 @@ Json MetricsFromSummary(const Json& s, const std::vector<std::string>& policies)
     m["other_collisions"] = get({"other_collisions"});
     m["teleports"] = get({"teleports"});
     m["longest_gap_without_crossing"] = get({"longest_gap_without_crossing"});
+    // 1 when the run stalled (its flow and delay are a gridlock's), as a number
+    // (journal entries hold numbers only); absent in older files.
+    m["stalled"] = j.contains("stalled") && j["stalled"].is_boolean()
+                       ? Json(j["stalled"].get<bool>() ? 1 : 0)
+                       : Json(nullptr);
     // Optional: absent for the figure-8 (no network section) or older files.
     auto opt = [&](std::initializer_list<const char*> path) -> Json {
       const Json* cur = &j;
@@ -588,6 +593,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
     double th_c_w = 0, th_d_w = 0, th_c = 0, th_d = 0, thg_c_w = 0, thg_d_w = 0;
     std::vector<double> tp_av, tp_hv, tp_all, wait;
     std::vector<double> served, offered, loss, waiting, pending;  // kind: network
+    long stalled = 0;  // runs that stalled
     // Beyond the paper.
     std::vector<double> final_trust, long_run, regret_per_encounter;
     double oracle_dc_w = 0;  // sum of encounters x oracle DC rate
@@ -606,6 +612,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       return;
     }
     ++a.ok;
+    if (m["stalled"].is_number() && m["stalled"].get<double>() > 0) ++a.stalled;
     const long n = m["encounters"].is_number() ? m["encounters"].get<long>() : 0;
     a.enc += n;
     a.collisions += m["collisions"].is_number() ? m["collisions"].get<long>() : 0;
@@ -681,7 +688,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
          "regret_per_encounter,regret_per_encounter_sd,last_hour_encounters,last_hour_dc_rate,"
          "last_hour_dc_rate_lo,last_hour_dc_rate_hi,last_hour_collision_rate,"
          "last_hour_collision_rate_lo,last_hour_collision_rate_hi,last_hour_oracle_dc_rate,"
-         "offered_flow\n";
+         "offered_flow,stalled_runs\n";
   for (const auto& [point_index, by_policy] : acc) {
     const Point& p = plan.points[static_cast<std::size_t>(point_index)];
     for (const std::string& policy : p.policies) {
@@ -692,7 +699,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       for (const auto& v : p.values) out << ',' << CsvCell(v);
       out << ',' << CsvCell(policy) << ',' << a.ok << ',' << a.failed;
       if (a.ok == 0) {
-        out << std::string(23 + 14 + 1, ',') << '\n';  // one empty cell per metric column
+        out << std::string(23 + 14 + 2, ',') << '\n';  // one empty cell per metric column
         continue;
       }
       out << ',' << a.enc;
@@ -716,7 +723,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
           << num(mean(a.loss)) << ',' << num(sd(a.loss)) << ',' << num(mean(a.waiting)) << ','
           << num(mean(a.pending));
       if (!a.beyond) {
-        out << std::string(14, ',') << ',' << num(mean(a.offered)) << '\n';
+        out << std::string(14, ',') << ',' << num(mean(a.offered)) << ',' << a.stalled << '\n';
         continue;
       }
       out << ',' << num(mean(a.final_trust)) << ',' << num(sd(a.final_trust)) << ','
@@ -733,7 +740,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       } else {
         out << ",,,,,,,";
       }
-      out << ',' << num(mean(a.offered)) << '\n';
+      out << ',' << num(mean(a.offered)) << ',' << a.stalled << '\n';
     }
   }
   return out.str();

@@ -117,6 +117,19 @@ check(wait_ax.containers and all(c.has_yerr for c in wait_ax.containers),
       "penetration: error bars on the waits")
 check(any("80 m loops" in t for t in all_text), "penetration: the loop length in the title")
 check(any("Caveat" in t and "track" in t for t in all_text), "penetration: the track caveat")
+check(not any("stalled" in t for t in all_text), "penetration: no stall mark without stalled runs")
+# The same with one run of the second row stalled: ringed on the throughput panel.
+lines = [lines[0] + ",stalled_runs"] + [l + (",1" if i == 1 else ",0") for i, l in enumerate(lines[1:])]
+with open(os.path.join(d, "aggregate.csv"), "w") as f:
+    f.write("\n".join(lines) + "\n")
+figures.clear()
+assert plot.main([d, "--no-theory-binary"]) == 0
+fig = figures[-1]
+rings = [l for l in fig.axes[0].get_lines()
+         if l.get_markerfacecolor() == "none" and l.get_markeredgecolor() == "red"]
+check(len(rings) == 1 and any("stalled" in t.get_text() for t in fig.axes[0].texts),
+      "penetration: a stalled run ringed and counted on the throughput panel")
+check(any("a seed stalled" in t for t in texts(fig)), "penetration: the legend explains the ring")
 
 # ---- noise: the sigma = 0 limit is the paper's result, not the curves' end
 d = os.path.join(work, "noise")
@@ -146,6 +159,47 @@ for ax, metric, paper in ((dc_ax, "DC", 0.375), (coll_ax, "collision", 0.0)):
     curves = [l for l in ax.get_lines() if len(l.get_xdata()) > 10]
     check(curves and all(min(l.get_xdata()) > 0 for l in curves),
           "noise: %s theory curves start at sigma > 0" % metric)
+
+# ---- network throughput against demand: stalled runs marked, encounters per point,
+# served = offered, the title inside the figure
+d = os.path.join(work, "network_sweep")
+os.makedirs(d)
+cols = ("point,scenario.demand.flow,scenario.av_share,policy,runs_ok,runs_failed,encounters,"
+        "served_flow,served_flow_sd,time_loss_mean,time_loss_mean_sd,waiting_to_depart_end,"
+        "offered_flow,stalled_runs")
+rows = []
+for point, flow in enumerate((100, 200, 300)):
+    for policy, enc in (("sumo_native", 0), ("no_ebp", 40 * (point + 1)), ("ta_ebp", 37 * (point + 1))):
+        stalled = 2 if (policy == "ta_ebp" and flow == 300) else 0
+        rows.append("%d,%d,0.5,%s,3,0,%d,%d,5,%g,1,0,%d,%d"
+                    % (point, flow, policy, enc, 16 * flow * (0.7 if stalled else 1), 20 + flow / 10,
+                       16 * flow, stalled))
+with open(os.path.join(d, "aggregate.csv"), "w") as f:
+    f.write("\n".join([cols] + rows) + "\n")
+with open(os.path.join(d, "sweep.json"), "w") as f:
+    json.dump({"config": {"scenario": {"kind": "network", "duration": 1200,
+                                       "grid": {"columns": 4, "rows": 4, "attach_length": 100,
+                                                "junction_type": "allway_stop"}}},
+               "replicates": 3}, f)
+figures.clear()
+assert plot.main([d, "--no-theory-binary"]) == 0
+fig = figures[-1]
+flow_ax = fig.axes[0]
+rings = [l for ax in fig.axes for l in ax.get_lines()
+         if l.get_markerfacecolor() == "none" and l.get_markeredgecolor() == "red"]
+check(len(rings) == 3 and all(list(l.get_xdata()) == [300] for l in rings),
+      "network: the stalled point (TA-EBP at 300 veh/h) ringed on each of the 3 panels")
+notes = [t.get_text() for t in flow_ax.texts]
+check("2/3 stalled" in notes, "network: the stalled point says 2 of its 3 seeds stalled")
+for enc in ("40", "80", "120", "37", "74", "111"):
+    check(enc in notes, "network: encounter count %s beside its point" % enc)
+check("0" not in notes, "network: no encounter count for SUMO's own logic")
+check(any("served = offered" in t for t in texts(fig)), "network: served = offered drawn and named")
+check(any("a seed stalled" in t for t in texts(fig)), "network: the legend explains the rings")
+fig.canvas.draw()
+title = fig._suptitle.get_window_extent(fig.canvas.get_renderer())
+check(title.x0 >= 0 and title.x1 <= fig.bbox.width + 1 and title.y1 <= fig.bbox.height + 1,
+      "network: the title fits inside the figure")
 
 # ---- the map of a network run: a real run of a small grid
 import subprocess  # noqa: E402
