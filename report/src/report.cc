@@ -1,5 +1,8 @@
 #include "taebp/report/report.h"
 
+#include "metric_facts.h"
+#include "taebp/report/metrics.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -39,175 +42,63 @@ std::string PolicyLabel(const std::string& p) {
   return p;
 }
 
-struct Stats {
-  long n = 0, collisions = 0, dc = 0, nudges = 0;
-  double commanded_sum = 0, observed_sum = 0, max_abs_error = 0;
-  double min_excess = 0;  // min over nudges of observed - commanded
-  double theory_dc_sum = 0, theory_collision_sum = 0;  // per-encounter predictions
-};
 
-Stats Compute(const PolicyRun& r) {
-  Stats s;
-  s.n = static_cast<long>(r.encounters.size());
-  bool first = true;
-  for (const EncounterRecord& e : r.encounters) {
-    s.collisions += e.collision;
-    s.dc += e.hv_dc;
-    s.theory_dc_sum += e.theory_dc;
-    s.theory_collision_sum += e.theory_collision;
-    if (e.commanded > 0) {
-      ++s.nudges;
-      s.commanded_sum += e.commanded;
-      s.observed_sum += e.observed;
-      const double excess = e.observed - e.commanded;
-      s.max_abs_error = std::max(s.max_abs_error, std::abs(excess));
-      s.min_excess = first ? excess : std::min(s.min_excess, excess);
-      first = false;
+// One metric's value as summary.json writes it (metrics.h): null where undefined.
+json MetricJson(const Metric& m, double v) {
+  if (!std::isfinite(v)) return nullptr;
+  switch (m.type) {
+    case MetricType::kCount: return static_cast<long long>(v);
+    case MetricType::kFlag: return v != 0;
+    case MetricType::kReal: return v;
+  }
+  return v;
+}
+
+// A CSV cell of a metric's JSON value: empty for null, 1 / 0 for a flag.
+std::string JsonCell(const json& v) {
+  if (v.is_null()) return "";
+  if (v.is_boolean()) return v.get<bool>() ? "1" : "0";
+  if (v.is_number_integer()) return std::to_string(v.get<long long>());
+  if (v.is_number()) return FormatDouble(v.get<double>());
+  return CsvCell(v.get<std::string>());
+}
+
+// Every metric of `level` in scope for the run, in table order, with a rate's
+// 95 % interval as NAME_lo / NAME_hi.
+void PutMetrics(const MetricFacts& f, MetricLevel level, json* out) {
+  for (const Metric& m : RunMetrics()) {
+    if (!(m.levels & level) || !InScope(m.scope, *f.run)) continue;
+    (*out)[m.name] = MetricJson(m, m.value(f));
+    if (m.pool == Pool::kRate) {
+      const long k = std::lround(FindMetric(m.count)->value(f));
+      const long n = std::lround(FindMetric(m.per)->value(f));
+      const Interval ci = Wilson(k, n);
+      (*out)[std::string(m.name) + "_lo"] = ci.low;
+      (*out)[std::string(m.name) + "_hi"] = ci.high;
     }
   }
-  return s;
-}
-
-double Rate(long k, long n) { return n > 0 ? static_cast<double>(k) / n : 0.0; }
-
-// The encounter statistics of one junction.
-Stats ComputeAt(const PolicyRun& r, const std::string& junction) {
-  PolicyRun only;
-  for (const EncounterRecord& e : r.encounters)
-    if (e.junction == junction) only.encounters.push_back(e);
-  return Compute(only);
-}
-
-double PerHour(double count, double seconds) { return seconds > 0 ? count * 3600.0 / seconds : 0.0; }
-
-json RatesJson(const Stats& s) {
-  const Interval ci_c = Wilson(s.collisions, s.n);
-  const Interval ci_d = Wilson(s.dc, s.n);
-  json j;
-  j["encounters"] = s.n;
-  j["collisions"] = s.collisions;
-  j["collision_rate"] = Rate(s.collisions, s.n);
-  j["collision_rate_ci95"] = {ci_c.low, ci_c.high};
-  j["dc"] = s.dc;
-  j["dc_rate"] = Rate(s.dc, s.n);
-  j["dc_rate_ci95"] = {ci_d.low, ci_d.high};
-  j["theory_given_hvs"] = {{"collision_rate", s.n ? s.theory_collision_sum / s.n : 0.0},
-                           {"dc_rate", s.n ? s.theory_dc_sum / s.n : 0.0}};
-  return j;
 }
 
 json JunctionJson(const PolicyRun& r, const JunctionRun& jr) {
   json j;
-  j["id"] = jr.id;
+  j["junction"] = jr.id;
   j["type"] = jr.type;
   j["original_type"] = jr.original_type;
   j["rule"] = jr.rule;
-  const long all = jr.crossings_av + jr.crossings_hv;
-  j["crossings"] = {{"av", jr.crossings_av}, {"hv", jr.crossings_hv}, {"all", all}};
-  j["throughput_per_hour"] = PerHour(static_cast<double>(all), r.measured_seconds);
-  j["held"] = jr.held;
-  j["longest_gap_without_crossing"] = jr.longest_gap_without_crossing;
-  // No vehicle held (sumo_native, or nobody met): no mean wait (null), not 0.
-  j["wait_at_stop_line"] = {{"mean", jr.held ? json(jr.wait_sum / jr.held) : json()},
-                            {"max", jr.wait_max}};
+  PutMetrics(JunctionFacts(r, jr), kJunctionLevel, &j);
   json approaches = json::array();
   for (const ApproachStats& a : jr.approaches)
     approaches.push_back({{"lane", a.lane},
                           {"queue_max", a.queue_max},
                           {"queue_mean", a.samples ? a.queue_sum / a.samples : 0.0}});
   j["approaches"] = approaches;
-  j["meetings_not_game"] = jr.meetings_not_game;
-  j["meetings_unpredictable"] = jr.meetings_unpredictable;
-  j["meetings_abandoned"] = jr.meetings_abandoned;
-  const json rates = RatesJson(ComputeAt(r, jr.id));
-  for (auto it = rates.begin(); it != rates.end(); ++it) j[it.key()] = it.value();
   return j;
 }
 
-json NetworkJson(const PolicyRun& r) {
-  const NetworkRun& n = r.network;
-  json j;
-  j["departed"] = n.departed;
-  j["arrived"] = n.arrived;
-  j["served_flow_per_hour"] = PerHour(static_cast<double>(n.arrived), r.measured_seconds);
-  j["offered"] = n.Offered();
-  j["offered_flow_per_hour"] = PerHour(static_cast<double>(n.Offered()), r.measured_seconds);
-  j["waiting_to_depart"] = {{"max", n.pending_max}, {"end", n.pending_end}};
-  j["vehicles_max"] = n.vehicles_max;
-  j["trips"] = n.trips;
-  j["trips_unfinished"] = n.trips_unfinished;
-  j["trip_duration_mean"] = n.trips ? n.duration_sum / n.trips : 0.0;
-  j["time_loss_mean"] = n.trips ? n.time_loss_sum / n.trips : 0.0;
-  j["time_loss_max"] = n.time_loss_max;
-  j["waiting_time_mean"] = n.trips ? n.waiting_time_sum / n.trips : 0.0;
-  return j;
-}
-
-json Value(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-
-// Encounters from `from` on (the last hour's window).
-struct Window {
-  double from = 0;
-  long n = 0, dc = 0, collisions = 0;
-  double theory_dc = 0, oracle_dc = 0, theory_collisions = 0;
-};
-Window LastHour(const PolicyRun& r) {
-  Window w;
-  const double start = r.simulated_seconds - r.measured_seconds;
-  w.from = std::max(start, r.simulated_seconds - 3600.0);
-  for (const EncounterRecord& e : r.encounters) {
-    if (e.time < w.from) continue;
-    ++w.n;
-    w.dc += e.hv_dc;
-    w.collisions += e.collision;
-    w.theory_dc += e.theory_dc;
-    w.theory_collisions += e.theory_collision;
-    w.oracle_dc += e.beyond.oracle_dc;
-  }
-  return w;
-}
-
-// The sections of a run beyond the paper (README "Outputs").
-void BeyondJson(const PolicyRun& r, json* out) {
+// The sections of a run beyond the paper (metrics.h RunSections).
+void BeyondSectionsJson(const PolicyRun& r, json* out) {
   json& j = *out;
   const BeyondRun& b = r.beyond;
-  const Stats s = Compute(r);
-  double oracle_dc = 0, oracle_c = 0, lost = 0, coll = 0, regret = 0;
-  long failures = 0;
-  for (const EncounterRecord& e : r.encounters) {
-    oracle_dc += e.beyond.oracle_dc;
-    oracle_c += e.beyond.oracle_collision;
-    lost += e.beyond.oracle_dc - e.theory_dc;
-    coll += e.theory_collision - e.beyond.oracle_collision;
-    regret += e.beyond.regret;
-    failures += e.commanded > 0 && !e.hv_dc;
-  }
-  const double n = static_cast<double>(s.n);
-  j["trust"] = {{"hvs", b.hvs},
-                {"initial_mean", Value(b.initial_mean_trust)},
-                {"final_mean", Value(b.final_mean_trust)}};
-  j["oracle"] = {{"dc_rate", s.n ? oracle_dc / n : 0.0},
-                 {"collision_rate", s.n ? oracle_c / n : 0.0},
-                 {"expected", {{"dc_rate", b.oracle.dc_rate},
-                               {"collision_rate", b.oracle.collision_rate}}}};
-  j["regret"] = {{"total", regret},
-                 {"dc_lost", lost},
-                 {"collisions", coll},
-                 {"per_encounter", s.n ? regret / n : 0.0}};
-  const Window w = LastHour(r);
-  const Interval wd = Wilson(w.dc, w.n), wc = Wilson(w.collisions, w.n);
-  j["last_hour"] = {{"from", w.from},
-                    {"encounters", w.n},
-                    {"dc", w.dc},
-                    {"dc_rate", Rate(w.dc, w.n)},
-                    {"dc_rate_ci95", {wd.low, wd.high}},
-                    {"collisions", w.collisions},
-                    {"collision_rate", Rate(w.collisions, w.n)},
-                    {"collision_rate_ci95", {wc.low, wc.high}},
-                    {"theory_dc_rate", w.n ? w.theory_dc / w.n : 0.0},
-                    {"theory_collision_rate", w.n ? w.theory_collisions / w.n : 0.0},
-                    {"oracle_dc_rate", w.n ? w.oracle_dc / w.n : 0.0}};
-  j["failures"] = {{"nudged_then_dr", failures}};
   if (b.long_run) {
     json eq = json::array();
     for (const TrustEquilibriumRecord& e : b.equilibria)
@@ -217,28 +108,9 @@ void BeyondJson(const PolicyRun& r, json* out) {
       if (e.stable) attractors.push_back(e.theta);
     j["trust_dynamics"] = {{"design_rule", b.design_rule},
                            {"equilibria", eq},
-                           {"attractors", attractors},
-                           {"expected_long_run_mean", Value(b.expected_long_run_mean)},
-                           {"long_run_theory", {{"dc_rate", Value(b.long_run_dc)},
-                                                {"collision_rate", Value(b.long_run_collision)}}},
-                           {"final_mean_field", Value(b.final_mean_field)}};
+                           {"attractors", attractors}};
   } else {
     j["trust_dynamics"] = nullptr;
-  }
-  if (b.learning) {
-    double expected = 0;
-    for (const EncounterRecord& e : r.encounters)
-      if (e.commanded > 0 && std::isfinite(e.beyond.failure_probability))
-        expected += e.beyond.failure_probability;
-    j["learning"] = {{"hvs_met", b.hvs_met},
-                     {"observations", b.observations},
-                     {"contradictions", b.contradictions},
-                     {"probes", b.probes},
-                     {"failures", failures},
-                     {"expected_failures", expected},
-                     {"final_mean_abs_error", Value(b.final_mean_abs_error)}};
-  } else {
-    j["learning"] = nullptr;
   }
   if (b.noise) {
     j["noise"] = {{"kind", b.noise_kind},
@@ -261,38 +133,18 @@ void BeyondJson(const PolicyRun& r, json* out) {
 
 std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
   std::ostringstream out;
-  out << "policy,junction,type,original_type,rule,crossings_av,crossings_hv,"
-         "throughput_per_hour,held,wait_mean,wait_max,queue_max,queue_mean,encounters,dc,"
-         "dc_rate,collisions,collision_rate,theory_dc_rate,theory_collision_rate,"
-         "meetings_not_game,meetings_unpredictable,meetings_abandoned,"
-         "longest_gap_without_crossing\n";
+  out << "policy,junction,type,original_type,rule";
+  for (const std::string& c : MetricColumns(kJunctionLevel, false)) out << ',' << c;
+  out << '\n';
   for (const PolicyRun& r : runs) {
     for (const JunctionRun& jr : r.junctions) {
-      const Stats s = ComputeAt(r, jr.id);
-      double qmax = 0, qsum = 0;
-      long samples = 0;
-      for (const ApproachStats& a : jr.approaches) {
-        qmax = std::max(qmax, a.queue_max);
-        qsum += a.queue_sum;
-        samples += a.samples;
-      }
-      // Mean queue per approach lane.
-      const double qmean = samples ? qsum / samples : 0.0;
-      out << CsvCell(r.policy) << ',' << CsvCell(jr.id) << ',' << jr.type << ','
-          << jr.original_type << ',' << jr.rule << ',' << jr.crossings_av << ','
-          << jr.crossings_hv << ','
-          << FormatDouble(PerHour(static_cast<double>(jr.crossings_av + jr.crossings_hv),
-                                  r.measured_seconds))
-          << ',' << jr.held << ',' << (jr.held ? FormatDouble(jr.wait_sum / jr.held) : "") << ','
-          << FormatDouble(jr.wait_max) << ',' << FormatDouble(qmax) << ','
-          << FormatDouble(qmean) << ',' << s.n << ',' << s.dc << ','
-          << FormatDouble(Rate(s.dc, s.n)) << ',' << s.collisions << ','
-          << FormatDouble(Rate(s.collisions, s.n)) << ','
-          << FormatDouble(s.n ? s.theory_dc_sum / s.n : 0.0) << ','
-          << FormatDouble(s.n ? s.theory_collision_sum / s.n : 0.0) << ','
-          << jr.meetings_not_game << ',' << jr.meetings_unpredictable << ','
-          << jr.meetings_abandoned << ',' << FormatDouble(jr.longest_gap_without_crossing)
-          << '\n';
+      // The same values as summary.json's junctions[] (one writer for both).
+      const json j = JunctionJson(r, jr);
+      out << CsvCell(r.policy) << ',' << CsvCell(jr.id) << ',' << CsvCell(jr.type) << ','
+          << CsvCell(jr.original_type) << ',' << CsvCell(jr.rule);
+      for (const std::string& c : MetricColumns(kJunctionLevel, false))
+        out << ',' << JsonCell(j.contains(c) ? j[c] : json());
+      out << '\n';
     }
   }
   return out.str();
@@ -338,72 +190,24 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
   json& pol = root["policies"];
   pol = json::object();
   for (const PolicyRun& r : runs) {
-    const Stats s = Compute(r);
-    const Interval ci_c = Wilson(s.collisions, s.n);
-    const Interval ci_d = Wilson(s.dc, s.n);
-    const double hours = r.measured_seconds / 3600.0;
     json j;
-    j["encounters"] = s.n;
-    j["collisions"] = s.collisions;
-    j["collision_rate"] = Rate(s.collisions, s.n);
-    j["collision_rate_ci95"] = {ci_c.low, ci_c.high};
-    j["dc"] = s.dc;
-    j["dc_rate"] = Rate(s.dc, s.n);
-    j["dc_rate_ci95"] = {ci_d.low, ci_d.high};
-    j["theory"] = {{"collision_rate", r.theory.collision_rate},
-                   {"dc_rate", r.theory.dc_rate},
-                   {"nudge_rate", r.theory.nudge_rate},
-                   {"av_first_rate", r.theory.av_first_rate}};
-    // Mean of the per-encounter predictions for the HVs actually met (equals
-    // `theory` for a fixed trust; the fair comparison for a drawn population).
-    j["theory_given_hvs"] = {{"collision_rate", s.n ? s.theory_collision_sum / s.n : 0.0},
-                             {"dc_rate", s.n ? s.theory_dc_sum / s.n : 0.0}};
+    PutMetrics(PolicyFacts(r), kPolicyLevel, &j);
+    // The sections (metrics.h RunSections), in their order.
     j["hv_trust"] = r.hv_trust;
     j["scheme"] = {{"av_may_go", r.scheme.av_may_go},
                    {"nudge", r.scheme.nudge},
                    {"p_nudge_given_go", r.scheme.a},
                    {"p_nudge_given_stop", r.scheme.b}};
-    const long all = r.crossings_av + r.crossings_hv;
-    j["throughput_per_hour"] = {{"av", hours > 0 ? r.crossings_av / hours : 0.0},
-                                {"hv", hours > 0 ? r.crossings_hv / hours : 0.0},
-                                {"all", hours > 0 ? all / hours : 0.0}};
-    j["crossings"] = {{"av", r.crossings_av}, {"hv", r.crossings_hv}, {"all", all}};
-    j["wait_at_stop_line"] = {{"mean", r.held > 0 ? json(r.wait_sum / r.held) : json()},
-                              {"max", r.wait_max}};
-    j["nudges"] = {{"count", s.nudges},
-                   {"mean_commanded", s.nudges ? s.commanded_sum / s.nudges : 0.0},
-                   {"mean_observed", s.nudges ? s.observed_sum / s.nudges : 0.0},
-                   {"max_abs_error", s.max_abs_error},
-                   {"min_observed_minus_commanded", s.min_excess},
-                   {"tolerance", kNudgeTolerance}};
-    j["other_collisions"] = r.other_collisions;
-    j["other_collisions_game_move"] = r.other_collisions_game_move;
-    if (r.scenario_kind == "network")
-      j["collisions_after_handback"] = std::count_if(
-          r.encounters.begin(), r.encounters.end(),
-          [](const EncounterRecord& e) { return e.collision_after_handback; });
-    j["unblocked"] = r.unblocked;
-    j["teleports"] = r.teleports;
-    j["sumo_warnings"] = {{"count", r.sumo_warnings},
-                          {"collisions", r.sumo_collision_warnings},
-                          {"first", r.sumo_warnings_first}};
-    j["longest_gap_without_crossing"] = r.longest_gap_without_crossing;
-    j["simulated_seconds"] = r.simulated_seconds;
-    j["measured_seconds"] = r.measured_seconds;
-    j["nudges_unrealised"] = r.nudges_unrealised;
-    j["encounters_formed"] = r.encounters_formed;
-    j["encounters_unfinished"] = r.encounters_unfinished;
+    j["sumo_warnings_first"] = r.sumo_warnings_first;
     json stalls = json::array();
     for (const StallRecord& st : r.stalls)
       stalls.push_back({{"junction", st.junction}, {"since", st.since}, {"detected", st.detected}});
     j["stalls"] = stalls;
-    j["stalled"] = !r.stalls.empty();
     j["stall_error"] = r.stall_error.empty() ? json(nullptr) : json(r.stall_error);
     json junctions = json::array();
     for (const JunctionRun& jr : r.junctions) junctions.push_back(JunctionJson(r, jr));
     j["junctions"] = junctions;
-    if (r.scenario_kind == "network") j["network"] = NetworkJson(r);
-    if (r.beyond.on && r.policy != "sumo_native") BeyondJson(r, &j);
+    if (InScope(MetricScope::kBeyond, r)) BeyondSectionsJson(r, &j);
     pol[r.policy] = j;
   }
   return root.dump(2) + "\n";
@@ -561,54 +365,121 @@ std::string EncountersCsv(const std::vector<PolicyRun>& runs) {
   return out;
 }
 
-std::vector<std::string> TimeseriesCsvColumns() {
-  return {"policy",    "time",       "hvs",       "mean_trust",       "mean_field_trust",
-          "encounters", "dc",        "collisions", "nudges",          "failures",
-          "theory_dc", "theory_collisions", "oracle_dc", "oracle_collisions", "regret",
-          "expected_failures"};
+namespace {
+
+// The columns of timeseries.csv and hv_trust.csv: name, meaning and how a
+// sample prints (README "Outputs" is generated from these: `taebp metrics`).
+template <typename Sample>
+struct SampleColumn {
+  const char* name;
+  const char* description;
+  std::string (*cell)(const PolicyRun& run, const Sample& s);
+};
+std::string Int(long v) { return std::to_string(v); }
+
+const std::vector<SampleColumn<TimeSample>>& TimeseriesColumns() {
+  using C = SampleColumn<TimeSample>;
+  static const std::vector<C> cols = {
+      {"policy", "the policy", [](const PolicyRun& r, const TimeSample&) { return CsvCell(r.policy); }},
+      {"time", "simulated time (s)", [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.time); }},
+      {"hvs", "HVs in the network", [](const PolicyRun&, const TimeSample& t) { return Int(t.hvs); }},
+      {"mean_trust", "their mean current trust",
+       [](const PolicyRun&, const TimeSample& t) { return Opt(t.mean_trust); }},
+      {"mean_field_trust", "the mean-field prediction for the same HVs (dynamic trust)",
+       [](const PolicyRun&, const TimeSample& t) { return Opt(t.mean_field_trust); }},
+      {"encounters", "encounters so far", [](const PolicyRun&, const TimeSample& t) { return Int(t.encounters); }},
+      {"dc", "DC choices so far", [](const PolicyRun&, const TimeSample& t) { return Int(t.dc); }},
+      {"collisions", "collisions so far", [](const PolicyRun&, const TimeSample& t) { return Int(t.collisions); }},
+      {"nudges", "nudges so far", [](const PolicyRun&, const TimeSample& t) { return Int(t.nudges); }},
+      {"failures", "nudged-then-DR encounters so far",
+       [](const PolicyRun&, const TimeSample& t) { return Int(t.failures); }},
+      {"theory_dc", "sum of the encounters' predicted DC rates",
+       [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.theory_dc); }},
+      {"theory_collisions", "sum of their predicted collision rates",
+       [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.theory_collisions); }},
+      {"oracle_dc", "sum of the oracle's predicted DC rates",
+       [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.oracle_dc); }},
+      {"oracle_collisions", "sum of the oracle's predicted collision rates",
+       [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.oracle_collisions); }},
+      {"regret", "regret so far", [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.regret); }},
+      {"expected_failures", "the fleet's predicted failures so far",
+       [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.expected_failures); }},
+  };
+  return cols;
 }
 
-std::string TimeseriesCsv(const std::vector<PolicyRun>& runs) {
+const std::vector<SampleColumn<HvSample>>& HvTrustColumns() {
+  using C = SampleColumn<HvSample>;
+  static const std::vector<C> cols = {
+      {"policy", "the policy", [](const PolicyRun& r, const HvSample&) { return CsvCell(r.policy); }},
+      {"time", "simulated time (s)", [](const PolicyRun&, const HvSample& h) { return FormatDouble(h.time); }},
+      {"hv", "the HV's SUMO id", [](const PolicyRun&, const HvSample& h) { return CsvCell(h.hv); }},
+      {"trust", "its current trust", [](const PolicyRun&, const HvSample& h) { return FormatDouble(h.trust); }},
+      {"encounters", "its encounters so far", [](const PolicyRun&, const HvSample& h) { return Int(h.encounters); }},
+      {"belief_lower", "the fleet's lower bound on its trust (learned trust)",
+       [](const PolicyRun&, const HvSample& h) { return Opt(h.belief_lower); }},
+      {"belief_upper", "the fleet's upper bound",
+       [](const PolicyRun&, const HvSample& h) { return Opt(h.belief_upper); }},
+      {"belief_mean", "the fleet's posterior mean",
+       [](const PolicyRun&, const HvSample& h) { return Opt(h.belief_mean); }},
+      {"design_trust", "the trust its next design would assume",
+       [](const PolicyRun&, const HvSample& h) { return Opt(h.design_trust); }},
+      {"observations", "its responses the fleet learned from",
+       [](const PolicyRun&, const HvSample& h) { return Int(h.observations); }},
+      {"contradictions", "of those, contradicting the belief",
+       [](const PolicyRun&, const HvSample& h) { return Int(h.contradictions); }},
+  };
+  return cols;
+}
+
+template <typename Sample>
+std::vector<std::string> Names(const std::vector<SampleColumn<Sample>>& cols) {
+  std::vector<std::string> names;
+  for (const auto& c : cols) names.emplace_back(c.name);
+  return names;
+}
+
+template <typename Sample, typename Samples>
+std::string SampleCsv(const std::vector<PolicyRun>& runs,
+                      const std::vector<SampleColumn<Sample>>& cols, Samples samples) {
   std::string out;
-  const auto cols = TimeseriesCsvColumns();
-  for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + cols[i];
+  for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + std::string(cols[i].name);
   out += '\n';
   for (const PolicyRun& r : runs) {
-    for (const TimeSample& t : r.beyond.series) {
-      out += CsvCell(r.policy) + ',' + FormatDouble(t.time) + ',' + std::to_string(t.hvs) + ',' +
-             Opt(t.mean_trust) + ',' + Opt(t.mean_field_trust) + ',' +
-             std::to_string(t.encounters) + ',' + std::to_string(t.dc) + ',' +
-             std::to_string(t.collisions) + ',' + std::to_string(t.nudges) + ',' +
-             std::to_string(t.failures) + ',' + FormatDouble(t.theory_dc) + ',' +
-             FormatDouble(t.theory_collisions) + ',' + FormatDouble(t.oracle_dc) + ',' +
-             FormatDouble(t.oracle_collisions) + ',' + FormatDouble(t.regret) + ',' +
-             FormatDouble(t.expected_failures) + '\n';
+    for (const Sample& s : samples(r)) {
+      for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + cols[i].cell(r, s);
+      out += '\n';
     }
   }
   return out;
 }
 
-std::vector<std::string> HvTrustCsvColumns() {
-  return {"policy",       "time",         "hv",          "trust",        "encounters",
-          "belief_lower", "belief_upper", "belief_mean", "design_trust", "observations",
-          "contradictions"};
+template <typename Sample>
+std::string ColumnsMarkdown(const char* file, const std::vector<SampleColumn<Sample>>& cols) {
+  std::string out = std::string("`") + file + "`: ";
+  for (std::size_t i = 0; i < cols.size(); ++i)
+    out += (i ? "; " : "") + std::string("`") + cols[i].name + "` " + cols[i].description;
+  return out + ".\n";
+}
+
+}  // namespace
+
+std::vector<std::string> TimeseriesCsvColumns() { return Names(TimeseriesColumns()); }
+std::vector<std::string> HvTrustCsvColumns() { return Names(HvTrustColumns()); }
+
+std::string TimeseriesCsv(const std::vector<PolicyRun>& runs) {
+  return SampleCsv(runs, TimeseriesColumns(),
+                   [](const PolicyRun& r) -> const std::vector<TimeSample>& { return r.beyond.series; });
 }
 
 std::string HvTrustCsv(const std::vector<PolicyRun>& runs) {
-  std::string out;
-  const auto cols = HvTrustCsvColumns();
-  for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + cols[i];
-  out += '\n';
-  for (const PolicyRun& r : runs) {
-    for (const HvSample& h : r.beyond.hv_series) {
-      out += CsvCell(r.policy) + ',' + FormatDouble(h.time) + ',' + CsvCell(h.hv) + ',' +
-             FormatDouble(h.trust) + ',' + std::to_string(h.encounters) + ',' +
-             Opt(h.belief_lower) + ',' + Opt(h.belief_upper) + ',' + Opt(h.belief_mean) + ',' +
-             Opt(h.design_trust) + ',' + std::to_string(h.observations) + ',' +
-             std::to_string(h.contradictions) + '\n';
-    }
-  }
-  return out;
+  return SampleCsv(runs, HvTrustColumns(),
+                   [](const PolicyRun& r) -> const std::vector<HvSample>& { return r.beyond.hv_series; });
+}
+
+std::string SampleColumnsMarkdown() {
+  return ColumnsMarkdown("timeseries.csv", TimeseriesColumns()) + "\n" +
+         ColumnsMarkdown("hv_trust.csv", HvTrustColumns());
 }
 
 void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
@@ -633,8 +504,8 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
                   theory, outside ? " !" : "");
     return std::string(buf);
   };
-  std::vector<Stats> stats;
-  for (const PolicyRun& r : runs) stats.push_back(Compute(r));
+  std::vector<EncounterStats> stats;
+  for (const PolicyRun& r : runs) stats.push_back(ComputeEncounterStats(r));
   out << std::setw(w0) << "Collision Rate";
   for (std::size_t i = 0; i < runs.size(); ++i)
     out << std::setw(w)
@@ -712,7 +583,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
     };
     row("Last hour DC rate", [](const PolicyRun& r) {
       if (r.policy == "sumo_native") return std::string("-");
-      const Window win = LastHour(r);
+      const LastHourWindow win = LastHour(r);
       const Interval ci = Wilson(win.dc, win.n);
       char buf[96];
       std::snprintf(buf, sizeof buf, "%.3f [%.3f,%.3f] or %.3f", Rate(win.dc, win.n), ci.low,

@@ -1,5 +1,6 @@
 #include "taebp/sweep/plan.h"
 
+#include "taebp/report/metrics.h"
 #include "taebp/report/report.h"
 
 #include <algorithm>
@@ -26,15 +27,6 @@ std::string JoinKeys(const std::vector<std::string>& keys) {
   std::string out;
   for (const auto& k : keys) out += (out.empty() ? "" : ", ") + k;
   return out;
-}
-
-// Rates that are undefined for a run without AV-HV encounters.
-const std::set<std::string>& RateColumns() {
-  static const std::set<std::string> cols = {
-      "collision_rate", "collision_rate_lo", "collision_rate_hi",
-      "dc_rate",        "dc_rate_lo",        "dc_rate_hi",
-      "theory_given_hvs_collision_rate", "theory_given_hvs_dc_rate"};
-  return cols;
 }
 
 // A grid value as JSON with its YAML type (results.jsonl, sweep.json):
@@ -80,12 +72,18 @@ void ForEachRow(const Plan& plan, const Journal& journal, F&& emit) {
       const Json* m = nullptr;
       if (ok && e.contains("policies") && e["policies"].contains(policy))
         m = &e["policies"][policy];
-      const bool no_encounters = m && m->value("encounters", 0L) == 0;
-      for (const std::string& col : MetricColumns()) {
-        if (!m || !m->contains(col) || (no_encounters && RateColumns().count(col)))
-          metrics[col] = nullptr;
-        else
-          metrics[col] = (*m)[col];
+      for (const Metric& metric : RunMetrics()) {
+        if (!(metric.levels & kPolicyLevel)) continue;
+        // Undefined where what it is per (encounters, held, ...) is 0: empty.
+        const bool undefined = m && metric.per && metric.pool != Pool::kPrediction &&
+                               m->contains(metric.per) && (*m)[metric.per].is_number() &&
+                               (*m)[metric.per].get<double>() == 0;
+        for (const std::string& col : MetricColumns(metric, false)) {
+          if (!m || !m->contains(col) || undefined)
+            metrics[col] = nullptr;
+          else
+            metrics[col] = (*m)[col];
+        }
       }
       const std::string status = ok && !m ? "failed" : e.value("status", "failed");
       const std::string error = ok && !m ? "policy " + policy + " missing from summary.json"
@@ -119,7 +117,9 @@ std::string EntryProblem(const Json& e) {
       if (!v.is_null() && !v.is_number()) return name + " is not a number";
       if (v.is_number_float() && !std::isfinite(v.get<double>())) return name + " is not finite";
     }
-    for (const char* count : {"encounters", "collisions", "dc"}) {  // summed by AggregateCsv
+    for (const Metric& metric : RunMetrics()) {  // counts: summed by AggregateCsv
+      if (metric.type != MetricType::kCount) continue;
+      const char* count = metric.name;
       if (!it.value().contains(count) || it.value()[count].is_null()) continue;
       const Json& v = it.value()[count];
       const bool ok = v.is_number_unsigned()
@@ -337,22 +337,7 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
 }
 
 const std::vector<std::string>& MetricColumns() {
-  static const std::vector<std::string> cols = {
-      "encounters", "collisions", "collision_rate", "collision_rate_lo", "collision_rate_hi",
-      "dc", "dc_rate", "dc_rate_lo", "dc_rate_hi",
-      "theory_collision_rate", "theory_dc_rate",
-      "theory_given_hvs_collision_rate", "theory_given_hvs_dc_rate",
-      "throughput_av", "throughput_hv", "throughput_all",
-      "wait_mean", "wait_max", "nudges", "other_collisions", "teleports",
-      "longest_gap_without_crossing", "stalled",
-      // kind: network (empty for the figure-8)
-      "served_flow", "offered_flow", "time_loss_mean", "waiting_time_mean", "waiting_to_depart_end",
-      "nudges_unrealised",
-      // runs beyond the paper (empty otherwise): trust, regret, the last hour
-      "initial_mean_trust", "final_mean_trust", "expected_long_run_trust", "final_mean_field_trust",
-      "oracle_dc_rate", "regret", "regret_per_encounter", "failures", "expected_failures",
-      "last_hour_encounters", "last_hour_dc", "last_hour_collisions", "last_hour_dc_rate",
-      "last_hour_collision_rate", "last_hour_oracle_dc_rate"};
+  static const std::vector<std::string> cols = taebp::MetricColumns(kPolicyLevel, false);
   return cols;
 }
 
@@ -370,82 +355,23 @@ Json MetricsFromSummary(const Json& s, const std::vector<std::string>& policies)
     if (!s.contains("policies") || !s["policies"].contains(p))
       throw std::runtime_error("summary.json has no results for policy " + p);
     const Json& j = s["policies"][p];
-    auto get = [&](std::initializer_list<const char*> path) -> Json {
-      const Json* cur = &j;
-      std::string name;
-      for (const char* part : path) {
-        name += (name.empty() ? "" : ".") + std::string(part);
-        if (!cur->is_object() || !cur->contains(part))
-          throw std::runtime_error("summary.json: policies." + p + "." + name + " is missing");
-        cur = &(*cur)[part];
+    if (!j.is_object()) throw std::runtime_error("summary.json: policies." + p + " is not an object");
+    Json m = Json::object();
+    for (const Metric& metric : RunMetrics()) {
+      if (!(metric.levels & kPolicyLevel)) continue;
+      for (const std::string& col : MetricColumns(metric, false)) {
+        if (!j.contains(col)) {
+          // Every run has the metrics of its scope (metrics.h); others are empty.
+          if (metric.scope == MetricScope::kAll)
+            throw std::runtime_error("summary.json: policies." + p + "." + col + " is missing");
+          m[col] = nullptr;
+          continue;
+        }
+        const Json& v = j[col];
+        // Journal entries hold numbers only: a flag is 1 or 0.
+        m[col] = v.is_boolean() ? Json(v.get<bool>() ? 1 : 0) : v;
       }
-      return *cur;
-    };
-    auto at = [&](const char* key, std::size_t i) -> Json {
-      const Json a = get({key});
-      if (!a.is_array() || a.size() <= i)
-        throw std::runtime_error("summary.json: policies." + p + "." + key + " is not an interval");
-      return a[i];
-    };
-    Json m;
-    m["encounters"] = get({"encounters"});
-    m["collisions"] = get({"collisions"});
-    m["collision_rate"] = get({"collision_rate"});
-    m["collision_rate_lo"] = at("collision_rate_ci95", 0);
-    m["collision_rate_hi"] = at("collision_rate_ci95", 1);
-    m["dc"] = get({"dc"});
-    m["dc_rate"] = get({"dc_rate"});
-    m["dc_rate_lo"] = at("dc_rate_ci95", 0);
-    m["dc_rate_hi"] = at("dc_rate_ci95", 1);
-    m["theory_collision_rate"] = get({"theory", "collision_rate"});
-    m["theory_dc_rate"] = get({"theory", "dc_rate"});
-    m["theory_given_hvs_collision_rate"] = get({"theory_given_hvs", "collision_rate"});
-    m["theory_given_hvs_dc_rate"] = get({"theory_given_hvs", "dc_rate"});
-    m["throughput_av"] = get({"throughput_per_hour", "av"});
-    m["throughput_hv"] = get({"throughput_per_hour", "hv"});
-    m["throughput_all"] = get({"throughput_per_hour", "all"});
-    m["wait_mean"] = get({"wait_at_stop_line", "mean"});
-    m["wait_max"] = get({"wait_at_stop_line", "max"});
-    m["nudges"] = get({"nudges", "count"});
-    m["other_collisions"] = get({"other_collisions"});
-    m["teleports"] = get({"teleports"});
-    m["longest_gap_without_crossing"] = get({"longest_gap_without_crossing"});
-    // 1 when the run stalled (its flow and delay are a gridlock's), as a number
-    // (journal entries hold numbers only); absent in older files.
-    m["stalled"] = j.contains("stalled") && j["stalled"].is_boolean()
-                       ? Json(j["stalled"].get<bool>() ? 1 : 0)
-                       : Json(nullptr);
-    // Optional: absent for the figure-8 (no network section) or older files.
-    auto opt = [&](std::initializer_list<const char*> path) -> Json {
-      const Json* cur = &j;
-      for (const char* part : path) {
-        if (!cur->is_object() || !cur->contains(part)) return nullptr;
-        cur = &(*cur)[part];
-      }
-      return *cur;
-    };
-    m["served_flow"] = opt({"network", "served_flow_per_hour"});
-    m["offered_flow"] = opt({"network", "offered_flow_per_hour"});
-    m["time_loss_mean"] = opt({"network", "time_loss_mean"});
-    m["waiting_time_mean"] = opt({"network", "waiting_time_mean"});
-    m["waiting_to_depart_end"] = opt({"network", "waiting_to_depart", "end"});
-    m["nudges_unrealised"] = opt({"nudges_unrealised"});
-    // Beyond the paper (dynamic / learned trust, noise): absent for the paper's runs.
-    m["initial_mean_trust"] = opt({"trust", "initial_mean"});
-    m["final_mean_trust"] = opt({"trust", "final_mean"});
-    m["expected_long_run_trust"] = opt({"trust_dynamics", "expected_long_run_mean"});
-    m["final_mean_field_trust"] = opt({"trust_dynamics", "final_mean_field"});
-    m["oracle_dc_rate"] = opt({"oracle", "dc_rate"});
-    m["regret"] = opt({"regret", "total"});
-    m["regret_per_encounter"] = opt({"regret", "per_encounter"});
-    m["failures"] = opt({"failures", "nudged_then_dr"});
-    m["expected_failures"] = opt({"learning", "expected_failures"});
-    m["last_hour_encounters"] = opt({"last_hour", "encounters"});
-    m["last_hour_dc"] = opt({"last_hour", "dc"});
-    m["last_hour_collisions"] = opt({"last_hour", "collisions"});
-    m["last_hour_dc_rate"] = opt({"last_hour", "dc_rate"});
-    m["last_hour_collision_rate"] = opt({"last_hour", "collision_rate"});
-    m["last_hour_oracle_dc_rate"] = opt({"last_hour", "oracle_dc_rate"});
+    }
     out[p] = m;
   }
   return out;
@@ -585,21 +511,7 @@ std::string ResultsJsonl(const Plan& plan, const Journal& journal) {
 std::string AggregateCsv(const Plan& plan, const Journal& journal) {
   struct Acc {
     long ok = 0, failed = 0;
-    long enc = 0, collisions = 0, dc = 0;
-    // Weighted means as ref + sum n (x - ref) / N: exact when every run has
-    // the same value (a fixed trust's prediction).
-    bool has_ref = false;
-    double ref_c = 0, ref_d = 0, ref_gc = 0, ref_gd = 0;
-    double th_c_w = 0, th_d_w = 0, th_c = 0, th_d = 0, thg_c_w = 0, thg_d_w = 0;
-    std::vector<double> tp_av, tp_hv, tp_all, wait;
-    std::vector<double> served, offered, loss, waiting, pending;  // kind: network
-    long stalled = 0;  // runs that stalled
-    // Beyond the paper.
-    std::vector<double> final_trust, long_run, regret_per_encounter;
-    double oracle_dc_w = 0;  // sum of encounters x oracle DC rate
-    bool beyond = false;
-    long lh_n = 0, lh_dc = 0, lh_collisions = 0;
-    double lh_oracle_w = 0;
+    std::vector<Json> runs;  // the metrics of each run that finished
   };
   // (point, policy) in point order, then the point's policy order.
   std::map<int, std::map<std::string, Acc>> acc;
@@ -612,83 +524,87 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       return;
     }
     ++a.ok;
-    if (m["stalled"].is_number() && m["stalled"].get<double>() > 0) ++a.stalled;
-    const long n = m["encounters"].is_number() ? m["encounters"].get<long>() : 0;
-    a.enc += n;
-    a.collisions += m["collisions"].is_number() ? m["collisions"].get<long>() : 0;
-    a.dc += m["dc"].is_number() ? m["dc"].get<long>() : 0;
-    const double tc = Number(m["theory_collision_rate"]);
-    const double td = Number(m["theory_dc_rate"]);
-    a.th_c += tc;
-    a.th_d += td;
-    if (n > 0) {
-      const double gc = Number(m["theory_given_hvs_collision_rate"]);
-      const double gd = Number(m["theory_given_hvs_dc_rate"]);
-      if (!a.has_ref) {
-        a.has_ref = true;
-        a.ref_c = tc, a.ref_d = td, a.ref_gc = gc, a.ref_gd = gd;
-      }
-      const double w = static_cast<double>(n);
-      a.th_c_w += w * (tc - a.ref_c);
-      a.th_d_w += w * (td - a.ref_d);
-      a.thg_c_w += w * (gc - a.ref_gc);
-      a.thg_d_w += w * (gd - a.ref_gd);
-    }
-    a.tp_av.push_back(Number(m["throughput_av"]));
-    a.tp_hv.push_back(Number(m["throughput_hv"]));
-    a.tp_all.push_back(Number(m["throughput_all"]));
-    if (m["wait_mean"].is_number()) a.wait.push_back(Number(m["wait_mean"]));  // null: none held
-    if (m["served_flow"].is_number()) {
-      a.served.push_back(Number(m["served_flow"]));
-      if (m["offered_flow"].is_number()) a.offered.push_back(Number(m["offered_flow"]));
-      a.loss.push_back(Number(m["time_loss_mean"]));
-      a.waiting.push_back(Number(m["waiting_time_mean"]));
-      a.pending.push_back(Number(m["waiting_to_depart_end"]));
-    }
-    if (m["final_mean_trust"].is_number() || m["regret"].is_number()) {
-      a.beyond = true;
-      if (m["final_mean_trust"].is_number()) a.final_trust.push_back(Number(m["final_mean_trust"]));
-      if (m["expected_long_run_trust"].is_number())
-        a.long_run.push_back(Number(m["expected_long_run_trust"]));
-      if (m["regret_per_encounter"].is_number() && n > 0)
-        a.regret_per_encounter.push_back(Number(m["regret_per_encounter"]));
-      if (m["oracle_dc_rate"].is_number()) a.oracle_dc_w += n * Number(m["oracle_dc_rate"]);
-      const long ln = m["last_hour_encounters"].is_number() ? m["last_hour_encounters"].get<long>() : 0;
-      a.lh_n += ln;
-      a.lh_dc += m["last_hour_dc"].is_number() ? m["last_hour_dc"].get<long>() : 0;
-      a.lh_collisions += m["last_hour_collisions"].is_number() ? m["last_hour_collisions"].get<long>() : 0;
-      if (m["last_hour_oracle_dc_rate"].is_number())
-        a.lh_oracle_w += ln * Number(m["last_hour_oracle_dc_rate"]);
-    }
+    a.runs.push_back(m);
   });
-  auto mean = [](const std::vector<double>& v) {
-    if (v.empty()) return std::nan("");
-    double s = 0;
-    for (double x : v) s += x;
-    return s / static_cast<double>(v.size());
-  };
-  auto sd = [&](const std::vector<double>& v) {
-    if (v.size() < 2) return std::nan("");
-    const double m = mean(v);
-    double s = 0;
-    for (double x : v) s += (x - m) * (x - m);
-    return std::sqrt(s / static_cast<double>(v.size() - 1));
-  };
   auto num = [](double v) { return std::isfinite(v) ? FormatDouble(v) : std::string(); };
+  // One metric pooled over runs (metrics.h Pool): its aggregate cells.
+  auto pooled = [&](const Metric& metric, const std::vector<Json>& runs) {
+    std::vector<std::string> cells;
+    const std::string name = metric.name;
+    auto value = [](const Json& m, const std::string& key) {
+      return m.contains(key) ? Number(m[key]) : std::nan("");
+    };
+    std::vector<double> xs;  // the runs' defined values
+    for (const Json& m : runs)
+      if (const double x = value(m, name); std::isfinite(x)) xs.push_back(x);
+    switch (metric.pool) {
+      case Pool::kSum: {
+        if (xs.empty()) return std::vector<std::string>{""};
+        if (metric.type == MetricType::kReal) {
+          double sum = 0;
+          for (double x : xs) sum += x;
+          return std::vector<std::string>{num(sum)};
+        }
+        long long sum = 0;
+        for (double x : xs) sum += std::llround(x);
+        return std::vector<std::string>{std::to_string(sum)};
+      }
+      case Pool::kRate: {
+        long k = 0, n = 0;
+        for (const Json& m : runs) {
+          const double c = value(m, metric.count), t = value(m, metric.per);
+          if (std::isfinite(c) && std::isfinite(t)) k += std::lround(c), n += std::lround(t);
+        }
+        if (n <= 0) return std::vector<std::string>{"", "", ""};
+        const Interval ci = Wilson(k, n);
+        return std::vector<std::string>{num(static_cast<double>(k) / static_cast<double>(n)),
+                                        num(ci.low), num(ci.high)};
+      }
+      case Pool::kWeighted:
+      case Pool::kPrediction: {
+        // ref + sum w (x - ref) / sum w: exact when every run has the same
+        // value (a fixed trust's prediction).
+        bool has_ref = false;
+        double ref = 0, wsum = 0, dev = 0;
+        for (const Json& m : runs) {
+          const double w = value(m, metric.per), x = value(m, name);
+          if (!std::isfinite(w) || w <= 0 || !std::isfinite(x)) continue;
+          if (!has_ref) has_ref = true, ref = x;
+          wsum += w;
+          dev += w * (x - ref);
+        }
+        if (wsum > 0) return std::vector<std::string>{num(ref + dev / wsum)};
+        if (metric.pool == Pool::kWeighted || xs.empty()) return std::vector<std::string>{""};
+        double sum = 0;  // no encounter anywhere: the prediction's plain mean
+        for (double x : xs) sum += x;
+        return std::vector<std::string>{num(sum / static_cast<double>(xs.size()))};
+      }
+      case Pool::kMean: {
+        if (xs.empty()) return std::vector<std::string>{"", ""};
+        double sum = 0;
+        for (double x : xs) sum += x;
+        const double mean = sum / static_cast<double>(xs.size());
+        if (xs.size() < 2) return std::vector<std::string>{num(mean), ""};
+        double ss = 0;
+        for (double x : xs) ss += (x - mean) * (x - mean);
+        return std::vector<std::string>{
+            num(mean), num(std::sqrt(ss / static_cast<double>(xs.size() - 1)))};
+      }
+      case Pool::kMax: {
+        if (xs.empty()) return std::vector<std::string>{""};
+        return std::vector<std::string>{num(*std::max_element(xs.begin(), xs.end()))};
+      }
+      case Pool::kNone: break;
+    }
+    return std::vector<std::string>{};
+  };
 
   std::ostringstream out;
   out << "point";
   for (const auto& c : plan.columns) out << ',' << CsvCell(c);
-  out << ",policy,runs_ok,runs_failed,encounters,collision_rate,collision_rate_lo,"
-         "collision_rate_hi,dc_rate,dc_rate_lo,dc_rate_hi,theory_collision_rate,theory_dc_rate,"
-         "theory_given_hvs_collision_rate,theory_given_hvs_dc_rate,throughput_av,throughput_hv,"
-         "throughput_all,wait_mean,throughput_all_sd,wait_mean_sd,served_flow,served_flow_sd,"
-         "time_loss_mean,time_loss_mean_sd,waiting_time_mean,waiting_to_depart_end,"
-         "final_mean_trust,final_mean_trust_sd,expected_long_run_trust,oracle_dc_rate,"
-         "regret_per_encounter,regret_per_encounter_sd,last_hour_encounters,last_hour_dc_rate,"
-         "last_hour_dc_rate_lo,last_hour_dc_rate_hi,last_hour_collision_rate,"
-         "last_hour_collision_rate_lo,last_hour_collision_rate_hi,last_hour_oracle_dc_rate,"
-         "offered_flow,stalled_runs\n";
+  out << ",policy,runs_ok,runs_failed";
+  for (const std::string& c : taebp::MetricColumns(kPolicyLevel, true)) out << ',' << c;
+  out << '\n';
   for (const auto& [point_index, by_policy] : acc) {
     const Point& p = plan.points[static_cast<std::size_t>(point_index)];
     for (const std::string& policy : p.policies) {
@@ -698,49 +614,12 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       out << point_index;
       for (const auto& v : p.values) out << ',' << CsvCell(v);
       out << ',' << CsvCell(policy) << ',' << a.ok << ',' << a.failed;
-      if (a.ok == 0) {
-        out << std::string(23 + 14 + 2, ',') << '\n';  // one empty cell per metric column
-        continue;
+      for (const Metric& metric : RunMetrics()) {
+        if (!(metric.levels & kPolicyLevel)) continue;
+        const std::vector<std::string> cells = pooled(metric, a.runs);
+        for (const std::string& c : cells) out << ',' << c;
       }
-      out << ',' << a.enc;
-      const double n = static_cast<double>(a.enc);
-      if (a.enc > 0) {
-        const Interval ci_c = Wilson(a.collisions, a.enc);
-        const Interval ci_d = Wilson(a.dc, a.enc);
-        out << ',' << num(a.collisions / n) << ',' << num(ci_c.low) << ',' << num(ci_c.high)
-            << ',' << num(a.dc / n) << ',' << num(ci_d.low) << ',' << num(ci_d.high) << ','
-            << num(a.ref_c + a.th_c_w / n) << ',' << num(a.ref_d + a.th_d_w / n) << ','
-            << num(a.ref_gc + a.thg_c_w / n) << ',' << num(a.ref_gd + a.thg_d_w / n);
-      } else {
-        // No encounter in any run: the rates are undefined; the model's
-        // prediction is still its plain mean over the runs.
-        const double k = static_cast<double>(a.ok);
-        out << ",,,,,,," << num(a.th_c / k) << ',' << num(a.th_d / k) << ",,";
-      }
-      out << ',' << num(mean(a.tp_av)) << ',' << num(mean(a.tp_hv)) << ','
-          << num(mean(a.tp_all)) << ',' << num(mean(a.wait)) << ',' << num(sd(a.tp_all)) << ','
-          << num(sd(a.wait)) << ',' << num(mean(a.served)) << ',' << num(sd(a.served)) << ','
-          << num(mean(a.loss)) << ',' << num(sd(a.loss)) << ',' << num(mean(a.waiting)) << ','
-          << num(mean(a.pending));
-      if (!a.beyond) {
-        out << std::string(14, ',') << ',' << num(mean(a.offered)) << ',' << a.stalled << '\n';
-        continue;
-      }
-      out << ',' << num(mean(a.final_trust)) << ',' << num(sd(a.final_trust)) << ','
-          << num(mean(a.long_run)) << ',' << num(a.enc > 0 ? a.oracle_dc_w / n : std::nan(""))
-          << ',' << num(mean(a.regret_per_encounter)) << ',' << num(sd(a.regret_per_encounter))
-          << ',' << a.lh_n;
-      if (a.lh_n > 0) {
-        const double ln = static_cast<double>(a.lh_n);
-        const Interval ci_d = Wilson(a.lh_dc, a.lh_n);
-        const Interval ci_c = Wilson(a.lh_collisions, a.lh_n);
-        out << ',' << num(a.lh_dc / ln) << ',' << num(ci_d.low) << ',' << num(ci_d.high) << ','
-            << num(a.lh_collisions / ln) << ',' << num(ci_c.low) << ',' << num(ci_c.high) << ','
-            << num(a.lh_oracle_w / ln);
-      } else {
-        out << ",,,,,,,";
-      }
-      out << ',' << num(mean(a.offered)) << ',' << a.stalled << '\n';
+      out << '\n';
     }
   }
   return out.str();

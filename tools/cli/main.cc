@@ -4,6 +4,7 @@
 #include "taebp/controller/network_controller.h"
 #include "taebp/report/interrupt.h"
 #include "taebp/report/output_dir.h"
+#include "taebp/report/metrics.h"
 #include "taebp/report/report.h"
 #include "taebp/runner/runner.h"
 #include "taebp/runner/theory.h"
@@ -279,6 +280,15 @@ std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv) {
   return std::nullopt;
 }
 
+// `taebp metrics`: the metric table of report/metrics.h, as the README's
+// generated table, CHANGELOG.md's renames or JSON (python's taebp.metrics()).
+int PrintMetrics(const std::string& what) {
+  if (what == "markdown") std::cout << taebp::MetricsMarkdown() << "\n" << taebp::SampleColumnsMarkdown();
+  else if (what == "renames") std::cout << taebp::RenamesMarkdown();
+  else std::cout << taebp::MetricsJson() << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -345,6 +355,14 @@ int main(int argc, char** argv) {
         return ReportErrors([&] { return RunExperimentCommand(c, o, out, true); });
       });
   taebp::gui::Snapshot snapshot(app);
+  std::string metrics_what = "markdown";
+  CLI::App* metrics = app.add_subcommand(
+      "metrics", "The result metrics: names, units, meaning and how sweeps pool them");
+  metrics->add_option("--print", metrics_what,
+                      "markdown: the README's table; renames: CHANGELOG.md's list; json: the "
+                      "table as data")
+      ->check(CLI::IsMember({"markdown", "renames", "json"}))
+      ->capture_default_str();
 
   if (const std::optional<int> code = ParseCommandLine(app, argc, argv)) return *code;
   return ReportErrors([&] {
@@ -364,6 +382,7 @@ int main(int argc, char** argv) {
       }
       return RunExperimentCommand(config_path, overrides, out_dir, quiet, options);
     }
+    if (*metrics) return PrintMetrics(metrics_what);
     if (snapshot.Parsed()) return snapshot.Run(argc, argv);
     if (sweep_commands.Parsed()) return sweep_commands.Run();
     return 0;
