@@ -264,6 +264,28 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     c.Fail("scenario.encounter_pairs = 'all' applies to scenario.kind = 'network' only (the "
            "figure-8's crossing is always the game)");
 
+  if (s.major_road) {
+    const MajorRoadConfig& mr = *s.major_road;
+    if (!s.IsNetwork())
+      c.Fail("scenario.major_road applies to scenario.kind = 'network' only (the figure-8's "
+             "crossing has no major road)");
+    c.NonNegative("scenario.major_road.yield_cost", mr.yield_cost);
+    if (c.ok() && !(mr.yield_cost < model.collision_penalty))
+      c.Fail("scenario.major_road.yield_cost = " + Num(mr.yield_cost) +
+             " must be below model.collision_penalty = " + Num(model.collision_penalty) +
+             " (else keeping its way is dominant for the HV: no signal can make it yield)");
+    if (c.ok()) c.Model("scenario.major_road: ", ToModel(model, mr));
+    c.Positive("scenario.major_road.comfortable_decel", mr.comfortable_decel);
+    if (c.ok() && mr.comfortable_decel > s.decel)
+      c.Fail("scenario.major_road.comfortable_decel = " + Num(mr.comfortable_decel) +
+             " m/s^2 is above scenario.decel = " + Num(s.decel) +
+             " (a yielding HV brakes comfortably, within its type's deceleration)");
+    c.NonNegative("scenario.major_road.reaction_time", mr.reaction_time);
+    if (model.trust_dynamics || model.learning)
+      c.Fail("scenario.major_road is not modelled with model.trust_dynamics or model.learning "
+             "(an HV's trust state would be shared by two games)");
+  }
+
   const ModelConfig& m = model;
   // The model's sections are checked by the model itself (config/model.h).
   c.Model("model.", ToModel(m));

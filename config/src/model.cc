@@ -10,6 +10,14 @@ namespace per = persuasion;
 
 per::AvHvParams ToModel(const ModelConfig& m) { return per::AvHvParams{m.prior_go, m.collision_penalty}; }
 
+per::MajorRoadParams ToModel(const ModelConfig& m, const MajorRoadConfig& major) {
+  per::MajorRoadParams p;
+  p.prior_go = m.prior_go;
+  p.collision_penalty = m.collision_penalty;
+  p.yield_cost = major.yield_cost;
+  return p;
+}
+
 per::PerceptionNoise ToModel(const NoiseConfig& n) {
   per::PerceptionNoise out;
   switch (n.kind) {

@@ -12,8 +12,166 @@ EncounterGame::EncounterGame(RunState& s)
 AvDraw EncounterGame::Draw(int av, int hv) {
   ++s_.vehicles[av].open_encounters;
   ++s_.vehicles[hv].open_encounters;
-  return DrawAv(s_.population->Commit(s_.vehicles[av].id, s_.vehicles[hv].id), params_.prior_go,
-                rng_);
+  return DrawAv(PopulationOf(av, hv).Commit(s_.vehicles[av].id, s_.vehicles[hv].id),
+                params_.prior_go, rng_);
+}
+
+namespace {
+
+// How long the AV's creep of `distance` m takes in SUMO (VehicleCommands'
+// StartNudge and UpdateNudges, step by step): the signal's duration.
+double NudgeSeconds(const RunState& s, double distance) {
+  if (distance <= 0) return 0;
+  const double target = distance + kNudgeOvershoot;
+  double v = CreepSpeed(target, 0.0, 0.0, s.dt, s.sc.accel, s.sc.decel, s.sc.creep_speed);
+  double covered = 0;
+  long steps = 0;
+  for (; steps < 100000; ) {
+    covered += v * s.dt;
+    ++steps;
+    const double next = CreepSpeed(target, covered, v, s.dt, s.sc.accel, s.sc.decel, s.sc.creep_speed);
+    if (next <= 0.0 && v <= 0.0) break;
+    v = next;
+  }
+  return steps * s.dt;
+}
+
+junction::Mover Sized(junction::Mover m, const Vehicle& v) {
+  m.length = v.length;
+  m.width = v.width;
+  m.accel = v.accel;
+  m.max_speed = v.max_speed;
+  return m;
+}
+
+// An HV keeping its speed `v` from arc `front` on (DR).
+junction::Mover Cruising(junction::Mover m, double front, double v) {
+  m.front = front;
+  m.speed = v;
+  m.accel = 0;
+  m.max_speed = v;
+  m.limits.clear();
+  return m;
+}
+
+}  // namespace
+
+// The major-road approach (persuasion/MAJOR_ROAD.md, "When is an approach the
+// game"), measured on SUMO's state this step and the junction's geometry:
+// - the HV's distance d to the conflict zone and the zone's length l on its
+//   path (ZoneOnPath: its front positions at which its body can touch the
+//   AV's on the AV's way through the junction), at the HV's decision: the
+//   signal lasts `signal` s (the scheme's nudge), during which it keeps its
+//   speed v (kCruise), so d = zone start - (its front now + v signal);
+// - t_in and t_out: when the AV, going from its Go signal (s* ahead of where
+//   it stands when the scheme nudges on Go) from rest with its type's
+//   acceleration, reaches the zone on its own path and leaves it;
+// - a and t_r: scenario.major_road's comfortable deceleration and reaction time.
+// ClassifyMajorRoadApproach says which it is. The encounter forms once d is in
+// the window's lower half (not at its upper edge, where "both proceed
+// collides" is marginal) and "both proceed" (the AV going, the HV at v)
+// collides on the geometry (PredictBothProceed) while the DR HV passes the
+// AV standing at its Go signal (PassedWay).
+junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt& at, int av_movement) {
+  using Kind = junction::MajorVerdict::Kind;
+  const int hv = at.vehicle;
+  const Vehicle& a = s_.vehicles[av];
+  const Vehicle& h = s_.vehicles[hv];
+  const JunctionInfo& info = s_.topo.junctions()[a.junction];
+  const auto key = std::make_pair(av, hv);
+  auto it = major_geometry_.find(key);
+  if (it == major_geometry_.end() || it->second.av_movement != av_movement ||
+      it->second.hv_movement != at.movement) {
+    if (major_geometry_.size() > 256) major_geometry_.clear();
+    MajorGeometry g;
+    g.av_movement = av_movement;
+    g.hv_movement = at.movement;
+    const double signal = s_.major_population->GoSignal(h.id);
+    g.signal = NudgeSeconds(s_, signal);
+    g.av = Sized(info.movements[av_movement].mover, a);
+    g.av.front = g.av.entry - a.line_gap + signal;
+    g.hv = Sized(info.movements[at.movement].mover, h);
+    g.hv.front = 0;
+    g.hv_zone = junction::ZoneOnPath(g.hv, g.av);
+    g.av_zone = junction::ZoneOnPath(g.av, g.hv);
+    it = major_geometry_.insert_or_assign(key, g).first;
+  }
+  const MajorGeometry& g = it->second;
+  if (!g.hv_zone.conflict || !g.av_zone.conflict) return {Kind::kNever, 0};
+  const double v = at.speed;
+  const double front_now = g.hv.entry - at.gap;
+  const double front_decision = front_now + v * g.signal;
+  persuasion::MajorRoadApproach ap;
+  ap.hv_distance = g.hv_zone.first - front_decision;
+  if (ap.hv_distance < 0) return {Kind::kNever, 0};
+  ap.hv_speed = v;
+  ap.comfortable_deceleration = s_.sc.major_road->comfortable_decel;
+  ap.reaction_time = s_.sc.major_road->reaction_time;
+  ap.hv_occupancy_length = g.hv_zone.last - g.hv_zone.first;
+  ap.av_enter_time = junction::TimeToReach(g.av, g.av_zone.first, s_.dt);
+  ap.av_clear_time = junction::TimeToReach(g.av, g.av_zone.last + 0.25, s_.dt);
+  if (!ap.IsValid(nullptr)) return {Kind::kNever, 0};
+  const persuasion::ApproachWindow w = persuasion::ClassifyMajorRoadApproach(ap);
+  switch (w.kind) {
+    case persuasion::ApproachKind::kAvClearsFirst: return {Kind::kNotYet, 0};
+    case persuasion::ApproachKind::kCannotYield:
+    case persuasion::ApproachKind::kHvPassesFirst: return {Kind::kNever, 0};
+    case persuasion::ApproachKind::kGame: break;
+  }
+  const double lower = std::max(w.yield_distance, w.conflict_min_distance);
+  if (ap.hv_distance > lower + 0.5 * (w.conflict_max_distance - lower)) return {Kind::kNotYet, 0};
+  // Nothing ahead of the HV on its way that would make it brake: its
+  // movement's internal lanes empty, its exit clear for a while.
+  const MovementInfo& hm = info.movements[at.movement];
+  for (const std::string& in : hm.internal)
+    if (s_.sumo.LaneVehicleNumber(in) > 0) return {Kind::kNotYet, 0};
+  if (s_.sumo.LaneVehicleNumber(hm.to_lane) > 0) {
+    const std::vector<std::string> ids = s_.sumo.LaneVehicleIDs(hm.to_lane);
+    if (!ids.empty() &&
+        s_.sumo.LanePosition(ids.front()) - s_.sumo.Length(ids.front()) < 30.0)
+      return {Kind::kNotYet, 0};
+  }
+  // The premise at the decision, on the geometry.
+  const junction::Mover hv_dec = Cruising(g.hv, front_decision, v);
+  Premise premise = Premise::kNoCollision;
+  switch (junction::PredictBothProceed(g.av, hv_dec, s_.dt)) {
+    case junction::BothProceed::kCollide: premise = Premise::kHolds; break;
+    case junction::BothProceed::kClear: premise = Premise::kNoCollision; break;
+    case junction::BothProceed::kUncertain: premise = Premise::kUncertainMerge; break;
+  }
+  if (premise == Premise::kHolds && !junction::PassedWay(hv_dec, g.av, -1.0, 0.0))
+    premise = Premise::kNudgeInHvWay;
+  if (premise != Premise::kHolds) {
+    if (s_.measuring()) {
+      JunctionRun& run = s_.junctions[a.junction].run;
+      ++(premise == Premise::kNoCollision ? run.meetings_not_game : run.meetings_unpredictable);
+    }
+    return {Kind::kNever, 0};
+  }
+  verdicts_[key] = premise;
+  major_.insert(key);
+  return {Kind::kGame, g.signal};
+}
+
+Premise EncounterGame::MajorPremiseNow(int av, int hv) const {
+  const auto it = major_geometry_.find({av, hv});
+  if (it == major_geometry_.end()) return Premise::kHolds;
+  const MajorGeometry& g = it->second;
+  const Vehicle& a = s_.vehicles[av];
+  const Vehicle& h = s_.vehicles[hv];
+  const JunctionInfo& info = s_.topo.junctions()[a.junction];
+  junction::Mover ma = g.av;
+  ma.front = info.movements[g.av_movement].ArcOf(s_.sumo.LaneID(a.id), s_.sumo.LanePosition(a.id));
+  const double hf =
+      info.movements[g.hv_movement].ArcOf(s_.sumo.LaneID(h.id), s_.sumo.LanePosition(h.id));
+  if (ma.front < 0 || hf < 0) return Premise::kNoCollision;
+  const junction::Mover mh = Cruising(g.hv, hf, h.major_speed);
+  switch (junction::PredictBothProceed(ma, mh, s_.dt)) {
+    case junction::BothProceed::kCollide: return Premise::kHolds;
+    case junction::BothProceed::kClear: return Premise::kNoCollision;
+    case junction::BothProceed::kUncertain: return Premise::kUncertainMerge;
+  }
+  return Premise::kNoCollision;
 }
 
 // The paper's game needs "AV goes, HV drives recklessly" to be a collision
@@ -62,7 +220,10 @@ bool EncounterGame::Game(int av, int hv, int av_movement, int hv_movement) {
 }
 
 HvReading EncounterGame::Read(int av, int hv, double observed) {
-  const HvReading r = s_.population->Read(s_.vehicles[av].id, s_.vehicles[hv].id, observed);
+  // A major-road pair: the premise as SUMO has the two at the decision (the
+  // record's both_proceed_collides; what SUMO's collision check is held to).
+  if (major_.count({av, hv})) verdicts_[{av, hv}] = MajorPremiseNow(av, hv);
+  const HvReading r = PopulationOf(av, hv).Read(s_.vehicles[av].id, s_.vehicles[hv].id, observed);
   if (commands_) commands_->SetPaint(hv, r.drives_if_clear ? Paint::kDc : Paint::kDr);
   return r;
 }
@@ -75,8 +236,11 @@ void EncounterGame::Record(const JunctionState& j, const junction::EncounterOutc
     verdicts_.erase(it);
   }
   // The HV's trust (before), the theory, and the updates of trust and beliefs.
-  s_.population->Finish(s_.vehicles[e.av].id, s_.vehicles[e.hv].id, e.draw, e.reading,
-                        e.collision, e.time >= s_.sc.warmup, &r);
+  PopulationOf(e.av, e.hv).Finish(s_.vehicles[e.av].id, s_.vehicles[e.hv].id, e.draw, e.reading,
+                                  e.collision, e.time >= s_.sc.warmup, &r);
+  r.major_road = e.major_road;
+  major_.erase({e.av, e.hv});
+  major_geometry_.erase({e.av, e.hv});
   if (e.time >= s_.sc.warmup) {
     const JunctionInfo& info = s_.topo.junctions()[s_.Index(j)];
     r.time = e.time;

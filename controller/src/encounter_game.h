@@ -12,6 +12,7 @@
 
 #include <map>
 #include <random>
+#include <set>
 #include <utility>
 
 namespace taebp::control {
@@ -25,6 +26,7 @@ class EncounterGame : public junction::EncounterModel {
 
   AvDraw Draw(int av, int hv) override;
   bool Game(int av, int hv, int av_movement, int hv_movement) override;
+  junction::MajorVerdict MajorRoad(int av, const junction::MajorAt& hv, int av_movement) override;
   HvReading Read(int av, int hv, double observed) override;
 
   // A finished encounter of junction j: its record (after the warm-up), the
@@ -37,6 +39,23 @@ class EncounterGame : public junction::EncounterModel {
   persuasion::AvHvParams params_;
   std::mt19937_64 rng_;
   std::map<std::pair<int, int>, Premise> verdicts_;  // (AV, HV) met: does the game's premise hold
+  // Major-road encounters running, (AV, HV): their game is the major population's.
+  std::set<std::pair<int, int>> major_;
+  HvPopulation& PopulationOf(int av, int hv) const {
+    return major_.count({av, hv}) ? *s_.major_population : *s_.population;
+  }
+  // The (AV, HV) movers of a major-road approach and their conflict zones,
+  // per pair (the geometry does not change while the AV waits).
+  struct MajorGeometry {
+    int av_movement = -1, hv_movement = -1;
+    double signal = 0;
+    junction::Mover av, hv;  // av: where it goes from (its Go signal); hv: from its path's start
+    junction::ConflictZone hv_zone, av_zone;
+  };
+  std::map<std::pair<int, int>, MajorGeometry> major_geometry_;
+  // The premise of a major-road pair at the HV's decision, on where SUMO has
+  // the two then (the AV going from where it stands, the HV at its speed).
+  Premise MajorPremiseNow(int av, int hv) const;
 };
 
 }  // namespace taebp::control

@@ -19,6 +19,8 @@
 #include "stop_lines.h"
 #include "vehicle_commands.h"
 
+#include "taebp/config/model.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -43,6 +45,12 @@ RunState::RunState(const ExperimentConfig& config, std::optional<persuasion::Pol
   if (policy) {
     // Each HV's trust, the AV's design for it, its reading (hv_population.h).
     population = std::make_unique<HvPopulation>(config, *policy);
+    if (sc.major_road) {
+      // The same HVs in the major-road game: the paper's game at r_eff.
+      ExperimentConfig major = config;
+      major.model.collision_penalty = persuasion::MajorRoadEffectivePenalty(ToModel(config.model, *sc.major_road));
+      major_population = std::make_unique<HvPopulation>(major, *policy);
+    }
     out.scheme = population->PopulationScheme();
     out.theory = population->Theory();
   }
@@ -51,8 +59,14 @@ RunState::RunState(const ExperimentConfig& config, std::optional<persuasion::Pol
     approaches[a].stats.lane = topo.approaches()[a].lane;
   for (const JunctionInfo& info : topo.junctions()) {
     JunctionState j;
-    j.logic = std::make_unique<junction::Interception>(info.spec,
-                                                       junction::Timing{sc.confirm_delay});
+    junction::Timing timing;
+    timing.confirm_delay = sc.confirm_delay;
+    if (sc.major_road && policy) {
+      timing.major_road = true;
+      timing.yield_decel = sc.major_road->comfortable_decel;
+      timing.reaction_time = sc.major_road->reaction_time;
+    }
+    j.logic = std::make_unique<junction::Interception>(info.spec, timing);
     j.run.id = info.info.id;
     j.run.type = info.info.type;
     j.run.original_type = info.info.original_type;
@@ -88,6 +102,7 @@ struct NetworkController::Impl {
     if (!av) {
       v.trust = control::HvTrust(s.cfg, id);
       if (s.policy) s.population->Add(id, v.trust);
+      if (s.major_population) s.major_population->Add(id, v.trust);
       if (s.out.hv_trust.size() < kTrustListMax) s.out.hv_trust.push_back(v.trust);
     }
     v.length = s.sumo.Length(id);
@@ -118,6 +133,7 @@ struct NetworkController::Impl {
     control::CountProgress(s, h, static_cast<int>(v.route.size()) - 1);
     v.alive = false;
     if (s.population && v.kind == VehicleKind::kHV) s.population->Remove(id);
+    if (s.major_population && v.kind == VehicleKind::kHV) s.major_population->Remove(id);
     if (v.state == control::State::kCrossing) commands.Clear(h);  // left inside a junction
     control::SetNear(s, h, {});
     if (s.measuring()) ++s.out.network.arrived;
@@ -128,9 +144,11 @@ struct NetworkController::Impl {
   // interception's commands, then the encounters that finished.
   void Decide(control::JunctionState& j) {
     control::Observe(s, j);
+    if (s.major_population) control::ObserveMajor(s, j);
     control::StopLineEnvironment env(s, j);
     const long abandoned = j.logic->AbandonedMeetings();
-    const std::vector<junction::Command> todo = j.logic->Step(s.now, j.at_line, env, game);
+    const std::vector<junction::Command> todo =
+        j.logic->Step(s.now, j.at_line, env, game, j.major);
     if (s.measuring()) j.run.meetings_abandoned += j.logic->AbandonedMeetings() - abandoned;
     for (const junction::Command& c : todo) commands.Execute(j, c);
     for (const junction::EncounterOutcome& e : j.logic->TakeFinished()) game.Record(j, e);
@@ -215,6 +233,7 @@ void NetworkController::Step() {
     if (!s.crossing.empty()) c.commands.UpdateCrossing();
     if (!s.nudging.empty()) c.commands.UpdateNudges();
     if (!s.unblocked.empty()) c.commands.UpdateUnblocked();
+    if (!s.yielding.empty()) c.commands.UpdateYields();
     for (control::JunctionState& j : s.junctions)
       if (control::Watched(s, j)) c.Decide(j);
   }

@@ -49,6 +49,7 @@ struct JunctionState {
   JunctionRun run;
   int near_av = 0, near_hv = 0;  // vehicles that may reach its stop lines before the next sample
   std::vector<junction::AtLine> at_line;  // this step
+  std::vector<junction::MajorAt> major;    // this step: HVs approaching on the major road
   double last_progress = 0;     // a vehicle last passed it (route progress)
   bool waiting = false;         // vehicles halted on its incoming lanes (last sample)
   bool watched = false;         // looked at this step
@@ -88,7 +89,11 @@ struct RunState {
   std::vector<ApproachState> approaches;   // as topo.approaches()
   std::vector<int> crossing, nudging;      // vehicles released and not out / creeping
   std::vector<int> unblocked;              // let past a nudged AV, still in the junction
+  std::vector<int> yielding;               // major-road HVs braking for an AV (DC)
   std::unique_ptr<HvPopulation> population;  // policy runs only
+  // The major-road encounter's game (scenario.major_road): the paper's game at
+  // r_eff = 2 (r - c) / (2 + c) (persuasion/major_road.h), the same HVs.
+  std::unique_ptr<HvPopulation> major_population;
   PolicyRun out;
 };
 

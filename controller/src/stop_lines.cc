@@ -112,6 +112,38 @@ void Observe(RunState& s, JunctionState& j) {
   }
 }
 
+void ObserveMajor(RunState& s, JunctionState& j) {
+  j.major.clear();
+  if (!s.sc.major_road) return;
+  const bool av_waits = std::any_of(j.at_line.begin(), j.at_line.end(), [](const junction::AtLine& a) {
+    return a.kind == VehicleKind::kAV && a.waiting;
+  });
+  if (!av_waits) return;
+  const int jx = s.Index(j);
+  for (const std::string& lane : s.topo.junctions()[jx].major_lanes) {
+    if (s.sumo.LaneVehicleNumber(lane) == 0) continue;
+    const std::vector<std::string> ids = s.sumo.LaneVehicleIDs(lane);
+    if (ids.empty()) continue;
+    const int h = s.vehicles.Find(ids.back());
+    if (h < 0) continue;
+    const Vehicle& v = s.vehicles[h];
+    if (v.kind != VehicleKind::kHV || v.state != State::kFree) continue;
+    const net::Lane* l = s.net.FindLane(lane);
+    if (!l) continue;
+    // Its next edge after this lane's.
+    int movement = -1;
+    for (std::size_t k = std::max(0, v.route_pos); k + 1 < v.route.size(); ++k) {
+      if (s.topo.EdgeName(v.route[k]) != l->edge) continue;
+      movement = s.topo.MajorMovementFor(jx, lane, s.topo.EdgeName(v.route[k + 1]));
+      break;
+    }
+    if (movement < 0) continue;
+    const double speed = s.sumo.Speed(v.id);
+    if (speed < kSlow) continue;  // a halted major vehicle yields under SUMO's rules
+    j.major.push_back({h, movement, l->length - s.sumo.LanePosition(v.id), speed});
+  }
+}
+
 StopLineEnvironment::StopLineEnvironment(RunState& s, const JunctionState& j)
     : s_(s), info_(s.topo.junctions()[s.Index(j)]) {}
 
@@ -205,6 +237,45 @@ bool StopLineEnvironment::MajorClear(int movement) {
       const double reach =
           (-speed + std::sqrt(speed * speed + 2.0 * s_.sc.accel * dist)) / s_.sc.accel;
       if (reach < s_.sc.critical_gap) return false;
+    }
+  }
+  return true;
+}
+
+// The major-road encounter: MajorClear, but the HV of the encounter and the
+// vehicles behind it on its lane (and the lanes feeding it) are its own
+// traffic, and the gap must last `extra` s longer (the signal).
+bool StopLineEnvironment::MajorClearBut(int movement, int hv, double extra) {
+  const Vehicle& h = s_.vehicles[hv];
+  std::vector<std::string> own;
+  const std::string at = s_.sumo.LaneID(h.id);
+  for (const MovementInfo& m : info_.movements)
+    if (!m.controlled && m.from_lane == at)
+      for (const auto& [lane, offset] : m.feeders) own.push_back(lane);
+  auto mine = [&](const std::string& lane) {
+    return std::find(own.begin(), own.end(), lane) != own.end();
+  };
+  auto moving = [&](const std::string& id) { return s_.sumo.Speed(id) >= kHaltSpeed; };
+  for (int k : info_.movements[movement].major_foes) {
+    const MovementInfo& mk = info_.movements[k];
+    for (const std::string& in : mk.internal) {
+      if (s_.sumo.LaneVehicleNumber(in) == 0) continue;
+      for (const std::string& id : s_.sumo.LaneVehicleIDs(in))
+        if (id != h.id && moving(id)) return false;
+    }
+    for (const auto& [lane, offset] : mk.feeders) {
+      if (mine(lane)) continue;
+      const std::vector<std::string> ids = s_.sumo.LaneVehicleIDs(lane);
+      if (ids.empty()) continue;
+      const std::string& front = ids.back();
+      const double speed = s_.sumo.Speed(front);
+      if (speed < kHaltSpeed) continue;
+      const net::Lane* l = s_.net.FindLane(lane);
+      const double dist = offset + (l ? l->length : 0) - s_.sumo.LanePosition(front);
+      if (dist < kMajorNear) return false;
+      const double reach =
+          (-speed + std::sqrt(speed * speed + 2.0 * s_.sc.accel * dist)) / s_.sc.accel;
+      if (reach < s_.sc.critical_gap + extra) return false;
     }
   }
   return true;

@@ -29,6 +29,10 @@ bool Watched(RunState& s, JunctionState& j);
 // of their front). So the per-step work is in proportion to what waits at,
 // or comes to, the stop lines.
 void Observe(RunState& s, JunctionState& j);
+// scenario.major_road, two-way stops: fills j.major with the HVs at the front
+// of the major approach lanes, driven by SUMO, moving towards the line (only
+// while an AV waits at a minor line here: nothing is read otherwise).
+void ObserveMajor(RunState& s, JunctionState& j);
 // A vehicle departed onto `edge`: its approaches are looked at again at once.
 void ApproachDeparture(RunState& s, const std::string& edge);
 // A vehicle's speed factor: a larger one than any before makes every lane be
@@ -42,6 +46,7 @@ class StopLineEnvironment : public junction::Environment {
   bool Standing(int vehicle) override;
   bool ExitHasRoom(int movement, int vehicle) override;
   bool MajorClear(int movement) override;
+  bool MajorClearBut(int movement, int hv, double extra) override;
   bool PastLine(int vehicle) override;
   bool Passed(int first, int second) override;
   std::vector<int> Unblockable(int vehicle, int partner) override;

@@ -122,6 +122,10 @@ Topology::Topology(const ScenarioConfig& sc, const Scenario& scenario, const net
     // Feeders of the major movements (two-way stops): the gap check looks
     // this far upstream.
     if (spec.rule == junction::Rule::kTwoWay) {
+      for (const MovementInfo& m : rt.movements)
+        if (!m.controlled && std::find(rt.major_lanes.begin(), rt.major_lanes.end(),
+                                       m.from_lane) == rt.major_lanes.end())
+          rt.major_lanes.push_back(m.from_lane);
       for (MovementInfo& m : rt.movements) {
         if (m.controlled) continue;
         const net::Lane* l = net.FindLane(m.from_lane);
@@ -171,6 +175,16 @@ int Topology::MovementFor(int j, const std::string& lane, const std::string& nex
   for (std::size_t m = 0; m < movements.size(); ++m) {
     const MovementInfo& mv = movements[m];
     if (mv.controlled && mv.from_lane == lane && mv.to_edge == next_edge)
+      return static_cast<int>(m);
+  }
+  return -1;
+}
+
+int Topology::MajorMovementFor(int j, const std::string& lane, const std::string& next_edge) const {
+  const std::vector<MovementInfo>& movements = junctions_[j].movements;
+  for (std::size_t m = 0; m < movements.size(); ++m) {
+    const MovementInfo& mv = movements[m];
+    if (!mv.controlled && mv.from_lane == lane && mv.to_edge == next_edge)
       return static_cast<int>(m);
   }
   return -1;

@@ -70,6 +70,8 @@ struct JunctionInfo {
   std::vector<MovementInfo> movements;
   std::vector<int> approaches;        // Topology::approaches() indices
   std::vector<std::string> incoming;  // every lane into it (the stall check)
+  // Two-way stops: the lanes of its major (not stop-controlled) movements.
+  std::vector<std::string> major_lanes;
 };
 
 class Topology {
@@ -93,6 +95,8 @@ class Topology {
 
   // The movement at junction `j` from `lane` onto `next_edge` (-1: none).
   int MovementFor(int j, const std::string& lane, const std::string& next_edge) const;
+  // The same for a major (not stop-controlled) movement.
+  int MajorMovementFor(int j, const std::string& lane, const std::string& next_edge) const;
 
   // Farther than any vehicle drives between two samples (speed factors up to
   // 2, and a margin): which junctions a vehicle is near.

@@ -19,7 +19,13 @@ void VehicleCommands::Execute(JunctionState& j, const Command& c) {
       Hold(j, c.vehicle);
       break;
     case Command::Kind::kStartNudge:
-      StartNudge(c.vehicle, c.distance);
+      StartNudge(c.vehicle, c.distance, c.duration);
+      break;
+    case Command::Kind::kCruise:
+      Cruise(j, c.vehicle, c.movement, c.speed);
+      break;
+    case Command::Kind::kYield:
+      Yield(c.vehicle, c.speed, c.delay);
       break;
     case Command::Kind::kRelease:
       Release(j, c.vehicle, true);
@@ -88,8 +94,65 @@ void VehicleCommands::CountWait(JunctionState& j, const Vehicle& v) {
   ++j.run.held;
 }
 
+// A major-road HV of an encounter: it keeps `speed` with SUMO's right of way
+// off (it does not brake for the AV nudged into the junction), in its lane,
+// watched until it has left the junction.
+void VehicleCommands::Cruise(JunctionState& j, int h, int movement, double speed) {
+  Vehicle& v = s_.vehicles[h];
+  v.movement = movement;
+  s_.sumo.SetSpeedMode(v.id, kModeReleased);
+  s_.sumo.SetLaneChangeMode(v.id, kLaneChangeHeld);
+  s_.sumo.SetSpeed(v.id, speed);
+  v.major_hv = true;
+  v.commanded_speed = true;
+  v.major_speed = speed;
+  v.state = State::kCrossing;
+  v.reckless = true;
+  v.entered = false;
+  v.junction = s_.Index(j);
+  v.lane = s_.topo.junctions()[s_.Index(j)].movements[v.movement].from_lane;
+  s_.crossing.push_back(h);
+}
+
+// DC: it brakes at `decel` from `delay` s on (UpdateYields), to a stop at most.
+void VehicleCommands::Yield(int h, double decel, double delay) {
+  Vehicle& v = s_.vehicles[h];
+  v.yielding = true;
+  v.yield_from = s_.now + delay;
+  v.yield_decel = decel;
+  s_.yielding.push_back(h);
+  SetPaint(h, Paint::kDc);
+  YieldStep(v);  // with no reaction time it brakes in the step after its decision
+}
+
+void VehicleCommands::YieldStep(Vehicle& v) {
+  if (s_.now < v.yield_from - 1e-9 || v.major_speed <= 0) return;
+  v.major_speed = std::max(0.0, v.major_speed - v.yield_decel * s_.dt);
+  s_.sumo.SetSpeed(v.id, v.major_speed);
+}
+
+void VehicleCommands::StopYield(int h) {
+  Vehicle& v = s_.vehicles[h];
+  if (!v.yielding) return;
+  v.yielding = false;
+  s_.yielding.erase(std::remove(s_.yielding.begin(), s_.yielding.end(), h), s_.yielding.end());
+}
+
+void VehicleCommands::UpdateYields() {
+  for (int h : s_.yielding) YieldStep(s_.vehicles[h]);
+}
+
 void VehicleCommands::Release(JunctionState& j, int h, bool reckless) {
   Vehicle& v = s_.vehicles[h];
+  if (v.major_hv) {  // already watched (kCruise): its own speed again, right of way as said
+    StopYield(h);
+    s_.sumo.SetSpeedMode(v.id, reckless ? kModeReleased : kModeDefault);
+    s_.sumo.SetLaneChangeMode(v.id, kLaneChangeDefault);
+    s_.sumo.SetSpeed(v.id, -1);
+    v.commanded_speed = false;
+    v.reckless = reckless;
+    return;
+  }
   s_.sumo.SetSpeedMode(v.id, reckless ? kModeReleased : kModeDefault);
   s_.sumo.SetLaneChangeMode(v.id, kLaneChangeDefault);
   s_.sumo.SetSpeed(v.id, -1);
@@ -116,8 +179,13 @@ void VehicleCommands::Clear(int h) {
   v.state = State::kFree;
   v.junction = v.movement = v.approach = -1;
   v.line_since = -1;
+  const bool major_hv = v.major_hv, commanded_speed = v.commanded_speed;
+  StopYield(h);
+  v.major_hv = v.commanded_speed = false;
   if (!v.alive) return;
   if (v.reckless) s_.sumo.SetSpeedMode(v.id, kModeDefault);
+  if (major_hv) s_.sumo.SetLaneChangeMode(v.id, kLaneChangeDefault);
+  if (commanded_speed) s_.sumo.SetSpeed(v.id, -1);
   v.reckless = false;
   SetPaint(h, Paint::kType);
 }
@@ -146,9 +214,17 @@ void VehicleCommands::UpdateCrossing() {
   }
 }
 
-void VehicleCommands::StartNudge(int h, double distance) {
+void VehicleCommands::StartNudge(int h, double distance, double duration) {
   Vehicle& v = s_.vehicles[h];
   v.commanded = distance;
+  v.nudge_until = s_.now + duration;
+  if (distance <= 0.0 && duration > 0.0) {  // a still AV: it stands as long as the signal lasts
+    v.target = 0;
+    v.creep_speed = 0;
+    v.state = State::kNudging;
+    s_.nudging.push_back(h);
+    return;
+  }
   if (distance <= 0.0) {
     v.state = State::kNudged;
     FinishNudge(h, s_.sumo.Distance(v.id) - v.hold_odometer);
@@ -169,9 +245,11 @@ void VehicleCommands::UpdateNudges() {
   for (int h : now_nudging) {
     Vehicle& v = s_.vehicles[h];
     const double covered = s_.sumo.Distance(v.id) - v.hold_odometer;
-    const double speed = CreepSpeed(v.target, covered, v.creep_speed, s_.dt, s_.sc.accel,
-                                    s_.sc.decel, s_.sc.creep_speed);
-    if (speed <= 0.0 && v.creep_speed <= 0.0) {
+    const double speed =
+        v.target <= 0.0 ? 0.0
+                        : CreepSpeed(v.target, covered, v.creep_speed, s_.dt, s_.sc.accel,
+                                     s_.sc.decel, s_.sc.creep_speed);
+    if (speed <= 0.0 && v.creep_speed <= 0.0 && s_.now >= v.nudge_until - 1e-9) {
       s_.nudging.erase(std::remove(s_.nudging.begin(), s_.nudging.end(), h), s_.nudging.end());
       v.state = State::kNudged;
       FinishNudge(h, covered);

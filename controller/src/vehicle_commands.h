@@ -31,6 +31,8 @@ class VehicleCommands {
   void UpdateNudges();
   void UpdateCrossing();
   void UpdateUnblocked();
+  // Major-road HVs yielding (DC): their braking, step by step.
+  void UpdateYields();
   // A released vehicle's rear left the junction (or it left the network
   // inside it): SUMO's rules again.
   void Clear(int h);
@@ -42,7 +44,11 @@ class VehicleCommands {
   void Release(JunctionState& j, int h, bool reckless);
   void HandBack(JunctionState& j, int h);
   void Unblock(int h);
-  void StartNudge(int h, double distance);
+  void StartNudge(int h, double distance, double duration);
+  void Cruise(JunctionState& j, int h, int movement, double speed);
+  void Yield(int h, double decel, double delay);
+  void StopYield(int h);
+  void YieldStep(Vehicle& v);
   void FinishNudge(int h, double observed);
   bool ClearedJunction(const Vehicle& v, const std::string& lane);
 

@@ -47,6 +47,14 @@ struct Vehicle {
   bool unblocked = false;  // let past a nudged AV (kModeUnblocked) until out of the junction
   std::vector<int> near;   // controlled junctions whose stop line it may reach before the next sample
   double target = 0, creep_speed = 0, commanded = 0;  // the nudge
+  double nudge_until = 0;  // the signal lasts until then (a still AV stands; major road)
+  // A major-road HV of an encounter: its speed commanded by the controller
+  // (kCruise, kYield) until it is handed back or has left the junction.
+  bool major_hv = false;
+  bool commanded_speed = false;  // setSpeed in force (cleared by setSpeed -1)
+  double major_speed = 0;        // the speed it is held at / braking from
+  bool yielding = false;
+  double yield_from = 0, yield_decel = 0;
   std::string lane;        // while crossing: the lane it was last seen on
   Paint paint = Paint::kType;
   int open_encounters = 0;  // formed, not yet recorded: the slot is not reused before

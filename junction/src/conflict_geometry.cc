@@ -97,7 +97,7 @@ double Limit(const Mover& m, double front) {
 BothProceed PredictBothProceed(const Mover& a, const Mover& b, double dt) {
   const Arcs arcs_a(a.path), arcs_b(b.path);
   const bool merge = Merge(a, b);
-  double xa = a.front, xb = b.front, va = 0, vb = 0;
+  double xa = a.front, xb = b.front, va = a.speed, vb = b.speed;
   for (int step = 0; step < 100000; ++step) {
     va = std::min(va + a.accel * dt, Limit(a, xa));
     vb = std::min(vb + b.accel * dt, Limit(b, xb));
@@ -130,6 +130,73 @@ const char* ToString(BothProceed p) {
     case BothProceed::kUncertain: return "uncertain";
   }
   return "?";
+}
+
+namespace {
+
+struct Bounds {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  void Add(const Box& box) {
+    for (const Point2& p : box.c) {
+      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y);
+      x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+    }
+  }
+  bool Meets(const Bounds& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
+};
+
+// A vehicle's bodies from its front at m.front until its rear has left the
+// junction, every `step` m of its front, with the front's arc of each.
+struct Sweep {
+  std::vector<double> at;
+  std::vector<Box> boxes;
+  std::vector<Bounds> bounds;
+  Bounds all;
+};
+Sweep SweepOf(const Mover& m, double step) {
+  const Arcs arcs(m.path);
+  Sweep out;
+  const double end = std::max(m.front, m.exit + m.length);
+  for (double x = m.front;; x = std::min(x + step, end)) {
+    out.at.push_back(x);
+    out.boxes.push_back(BoxOf(arcs.PointAt(x - m.length), arcs.PointAt(x), m.width));
+    Bounds b;
+    b.Add(out.boxes.back());
+    out.bounds.push_back(b);
+    out.all.Add(out.boxes.back());
+    if (x >= end) break;
+  }
+  return out;
+}
+
+}  // namespace
+
+ConflictZone ZoneOnPath(const Mover& m, const Mover& other, double step) {
+  const Sweep mine = SweepOf(m, step), theirs = SweepOf(other, step);
+  ConflictZone z;
+  for (std::size_t i = 0; i < mine.boxes.size(); ++i) {
+    if (!mine.bounds[i].Meets(theirs.all)) continue;
+    for (std::size_t k = 0; k < theirs.boxes.size(); ++k) {
+      if (!mine.bounds[i].Meets(theirs.bounds[k]) || !Overlap(mine.boxes[i], theirs.boxes[k]))
+        continue;
+      if (!z.conflict) z.first = mine.at[i];
+      z.conflict = true;
+      z.last = mine.at[i];
+      break;
+    }
+  }
+  return z;
+}
+
+double TimeToReach(const Mover& m, double arc, double dt) {
+  double x = m.front, v = m.speed;
+  for (long step = 0; step < 1000000; ++step) {
+    if (x >= arc) return step * dt;
+    v = std::min(v + m.accel * dt, Limit(m, x));
+    if (v <= 0 && m.accel <= 0) break;
+    x += v * dt;
+  }
+  return 1e9;
 }
 
 bool PassedWay(const Mover& first, const Mover& second, double first_reach, double second_reach,

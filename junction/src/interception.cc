@@ -50,7 +50,8 @@ void Interception::Form(double now, const AtLine& av, const AtLine& hv,
 }
 
 std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& at_line,
-                                        Environment& env, EncounterModel& model) {
+                                        Environment& env, EncounterModel& model,
+                                        const std::vector<MajorAt>& major) {
   std::vector<Command> out;
   // The encounter ended: its held third vehicles go back to SUMO.
   if (!encounter_ && !thirds_.empty()) {
@@ -108,6 +109,20 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
       }
     }
   }
+  if (timing_.major_road && spec_.rule == Rule::kTwoWay) {
+    // Pairs judged never the game are forgotten once the AV has left its
+    // line or the HV is no longer approaching.
+    for (auto it = major_never_.begin(); it != major_never_.end();) {
+      const bool av_here = std::any_of(at_line.begin(), at_line.end(), [&](const AtLine& a) {
+        return a.vehicle == it->first;
+      });
+      const bool hv_here = std::any_of(major.begin(), major.end(), [&](const MajorAt& m) {
+        return m.vehicle == it->second;
+      });
+      it = av_here && hv_here ? std::next(it) : major_never_.erase(it);
+    }
+    if (!encounter_ && all_inside) FormMajor(now, at_line, major, env, model, &out);
+  }
   if (!encounter_) return out;
 
   Active& e = *encounter_;
@@ -118,6 +133,10 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
     if (!a.waiting || !ConflictsWithEncounter(a.movement)) continue;
     thirds_.push_back(a.vehicle);
     out.push_back({Command::Kind::kHold, a.vehicle});
+  }
+  if (e.major) {
+    StepMajor(now, env, &out);
+    return out;
   }
   // The arriving partner: held once at its line; gone or too late, the
   // meeting ends.
@@ -230,16 +249,138 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
     // SUMO's again (third vehicles are handed back next step, and SUMO's own
     // logic makes them yield to the two), the two are watched until they
     // have left it (collisions, the record).
-    if (e.av_released && e.hv_released) {
-      if (e.av_cleared && e.hv_cleared) {
-        finished_.push_back(e.out);
-      } else {
-        leaving_.push_back(std::move(e));
-      }
-      encounter_.reset();
-    }
+    if (e.av_released && e.hv_released) Hand();
   }
   return out;
+}
+
+void Interception::Hand() {
+  Active& e = *encounter_;
+  if (e.av_cleared && e.hv_cleared) {
+    finished_.push_back(e.out);
+  } else {
+    leaving_.push_back(std::move(e));
+  }
+  encounter_.reset();
+}
+
+void Interception::FormMajor(double now, const std::vector<AtLine>& at_line,
+                             const std::vector<MajorAt>& major, Environment& env,
+                             EncounterModel& model, std::vector<Command>* out) {
+  // AVs standing at their minor lines, first come first; HVs nearest first.
+  std::vector<const AtLine*> avs;
+  for (const AtLine& a : at_line)
+    if (a.kind == VehicleKind::kAV && a.waiting && a.movement >= 0 &&
+        spec_.movements[a.movement].controlled)
+      avs.push_back(&a);
+  if (avs.empty() || major.empty()) return;
+  std::sort(avs.begin(), avs.end(), [](const AtLine* x, const AtLine* y) {
+    return x->since != y->since ? x->since < y->since : x->vehicle < y->vehicle;
+  });
+  std::vector<const MajorAt*> hvs;
+  for (const MajorAt& m : major)
+    if (m.movement >= 0 && !spec_.movements[m.movement].controlled) hvs.push_back(&m);
+  std::sort(hvs.begin(), hvs.end(), [](const MajorAt* x, const MajorAt* y) {
+    return x->gap != y->gap ? x->gap < y->gap : x->vehicle < y->vehicle;
+  });
+  for (const AtLine* av : avs) {
+    for (const MajorAt* hv : hvs) {
+      if (!spec_.Conflict(av->movement, hv->movement)) continue;
+      if (major_never_.count({av->vehicle, hv->vehicle})) continue;
+      if (!env.ExitHasRoom(av->movement, av->vehicle)) continue;
+      const MajorVerdict v = model.MajorRoad(av->vehicle, *hv, av->movement);
+      if (v.kind == MajorVerdict::Kind::kNever) major_never_.insert({av->vehicle, hv->vehicle});
+      if (v.kind != MajorVerdict::Kind::kGame) continue;
+      // Nobody inside the junction can touch the AV on its way, and no other
+      // major vehicle comes within the critical gap while the signal lasts;
+      // the AV stands (the nudge is measured from here).
+      if (!env.WayClear(av->vehicle, hv->vehicle) ||
+          !env.MajorClearBut(av->movement, hv->vehicle, v.signal) || !env.Standing(av->vehicle))
+        continue;
+      Active e;
+      e.major = true;
+      e.out.major_road = true;
+      e.out.av = av->vehicle;
+      e.out.hv = hv->vehicle;
+      e.out.av_movement = av->movement;
+      e.out.hv_movement = hv->movement;
+      e.out.time = now;
+      e.av_held = e.hv_held = true;
+      e.drawn = true;
+      e.nudge_started = true;
+      encounter_ = std::move(e);
+      out->push_back({Command::Kind::kHold, av->vehicle});
+      Command cruise{Command::Kind::kCruise, hv->vehicle};
+      cruise.speed = hv->speed;
+      cruise.movement = hv->movement;
+      out->push_back(cruise);
+      encounter_->out.draw = model.Draw(av->vehicle, hv->vehicle);
+      Command nudge{Command::Kind::kStartNudge, av->vehicle};
+      nudge.distance = encounter_->out.draw.nudge_distance;
+      nudge.duration = v.signal;
+      out->push_back(nudge);
+      last_activity_ = now;
+      return;
+    }
+  }
+}
+
+// After the HV decided (NudgeDone): the AV that goes at once; the DR HV keeps
+// its speed; the DC HV brakes, then is SUMO's once the AV has passed its way
+// (or drives on past the waiting AV after confirm_delay); the waiting AV is
+// SUMO's once the HV is inside (nudged past its line: once the HV has passed
+// its way and its own way and the major road are clear).
+void Interception::StepMajor(double now, Environment& env, std::vector<Command>* out) {
+  Active& e = *encounter_;
+  if (!e.nudged) return;  // the signal
+  const int av = e.out.av, hv = e.out.hv;
+  const bool av_goes = e.out.draw.goes_first;
+  const bool hv_dc = e.out.reading.drives_if_clear;
+  auto move = [&](Command::Kind kind, int vehicle) {
+    Command c{kind, vehicle};
+    c.in_encounter = true;
+    out->push_back(c);
+    last_activity_ = now;
+  };
+  if (!e.major_moves) {
+    e.major_moves = true;
+    if (av_goes) {
+      e.av_released = true;
+      move(Command::Kind::kRelease, av);
+    }
+    if (hv_dc) {
+      Command y{Command::Kind::kYield, hv};
+      y.speed = timing_.yield_decel;
+      y.delay = timing_.reaction_time;
+      out->push_back(y);
+    } else {
+      e.hv_released = true;  // keeps its speed, right of way off (kCruise)
+    }
+  }
+  if (hv_dc && !e.hv_released) {
+    if (av_goes) {
+      if (e.av_cleared || (e.av_entered && env.Passed(av, hv))) {
+        e.hv_released = e.hv_handed_back = true;
+        move(Command::Kind::kHandBack, hv);
+      }
+    } else if (now >= e.out.decided_at + timing_.confirm_delay - 1e-9 && env.WayClear(hv, av)) {
+      e.hv_released = true;
+      move(Command::Kind::kRelease, hv);
+    }
+  }
+  if (!av_goes && !e.av_released && e.hv_released) {
+    if (!env.PastLine(av)) {
+      if (e.hv_entered) {
+        e.av_released = e.av_handed_back = true;
+        move(Command::Kind::kHandBack, av);
+      }
+    } else if ((e.hv_cleared || (e.hv_entered && env.Passed(hv, av))) && env.WayClear(av, hv) &&
+               env.ExitHasRoom(e.out.av_movement, av) && env.MajorClear(e.out.av_movement)) {
+      e.av_released = true;
+      move(Command::Kind::kRelease, av);
+    }
+  }
+  if (e.av_released && e.hv_released) Hand();
 }
 
 void Interception::Entered(int vehicle, double now) {
@@ -277,6 +418,7 @@ void Interception::NudgeDone(int av, double observed, double now, EncounterModel
   e.nudged = true;
   e.out.reading = model.Read(e.out.av, e.out.hv, observed);
   e.out.decided_at = now;
+  if (e.major) return;  // StepMajor
   e.sequence.emplace(e.out.draw.goes_first, e.out.reading.drives_if_clear, now,
                      timing_.confirm_delay);
 }
@@ -313,7 +455,7 @@ std::string Interception::Describe(const std::function<std::string(int)>& name) 
       const Movement& x = spec_.movements[m];
       return x.from_lane + ">" + x.to_lane;
     };
-    out += std::string(e.drawn ? "encounter" : "meeting (partner arriving)") + " AV " + name(e.out.av) + " (" + mv(e.out.av_movement) + ") / HV " +
+    out += std::string(e.major ? "major-road encounter" : e.drawn ? "encounter" : "meeting (partner arriving)") + " AV " + name(e.out.av) + " (" + mv(e.out.av_movement) + ") / HV " +
            name(e.out.hv) + " (" + mv(e.out.hv_movement) + ")" +
            (!e.nudge_started ? ", waiting for the conflict area to clear"
             : !e.nudged      ? ", nudging"

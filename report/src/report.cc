@@ -300,6 +300,8 @@ const std::vector<EncounterColumn>& NetworkColumns() {
          return std::string(ToString(e.premise)); }},
       {"collision_after_handback", [](const PolicyRun&, const EncounterRecord& e) {
          return std::string(e.collision_after_handback ? "1" : "0"); }},
+      {"encounter_kind", [](const PolicyRun&, const EncounterRecord& e) {
+         return std::string(e.major_road ? "major_road" : "stop_lines"); }},
   };
   return cols;
 }

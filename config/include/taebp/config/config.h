@@ -114,6 +114,30 @@ struct OutputsConfig {
   bool Any() const { return fcd || edgedata || lanedata || queue; }
 };
 
+// scenario.major_road (network scenarios; unset: off): the major-road
+// encounter of persuasion/MAJOR_ROAD.md at two-way stops (priority_stop). An
+// AV waiting at a minor road's stop line and an HV approaching on a
+// conflicting major movement (right of way, not stopping) play the paper's
+// game at the effective penalty r_eff = 2 (r - c) / (2 + c), when
+// ClassifyMajorRoadApproach (persuasion/major_road.h) says the approach is a
+// game: both proceeding collides on the junction's geometry and the HV can
+// still yield braking at `comfortable_decel` after `reaction_time`. The AV
+// nudges, the HV reads SUMO's displacement and yields (DC: brakes so the AV
+// goes first) or keeps its speed (DR). Pairs where both wait at stop lines
+// stay as they are. Written `scenario.major_road: {}` for the defaults.
+struct MajorRoadConfig {
+  double yield_cost = 0.0;         // c in [0, model.collision_penalty): the cost of yielding
+  double comfortable_decel = 3.0;  // m/s^2 a > 0, at most the HV's SUMO decel: how a DC HV brakes
+  double reaction_time = 0.0;      // s t_r >= 0: from the HV's decision until it brakes
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("yield_cost", &yield_cost);
+    a->Visit("comfortable_decel", &comfortable_decel);
+    a->Visit("reaction_time", &reaction_time);
+  }
+};
+
 struct ScenarioConfig {
   // figure8: the paper's track, vehicles circulating (avs, hvs, loop_length,
   // stop_distance). network: any SUMO network with vehicles entering and
@@ -171,6 +195,10 @@ struct ScenarioConfig {
   // collisions that the theory's "AV goes, HV drives recklessly" may not
   // produce). The figure-8's crossing is always the game.
   EncounterPairs encounter_pairs = EncounterPairs::kColliding;
+  // Network scenarios: the major-road encounter at two-way stops (an AV at
+  // the minor stop line, an HV approaching on the major road); unset: off,
+  // only pairs that both stop at lines meet (see MajorRoadConfig).
+  std::optional<MajorRoadConfig> major_road;
 
   template <typename Archive>
   void Serialize(Archive* a) {
@@ -210,6 +238,7 @@ struct ScenarioConfig {
     a->Visit("nudge_check", &nudge_check);
     a->Visit("stall_action", &stall_action);
     a->Visit("encounter_pairs", &encounter_pairs);
+    a->Visit("major_road", &major_road);
   }
   bool IsNetwork() const { return kind == ScenarioKind::kNetwork; }
 };

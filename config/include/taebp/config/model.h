@@ -9,6 +9,7 @@
 #include "taebp/config/config.h"
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/likelihood.h"
+#include "taebp/persuasion/major_road.h"
 #include "taebp/persuasion/noise.h"
 #include "taebp/persuasion/trust_dynamics.h"
 #include "taebp/persuasion/trust_learning.h"
@@ -19,6 +20,9 @@ namespace taebp {
 
 // model.prior_go, model.collision_penalty
 persuasion::AvHvParams ToModel(const ModelConfig& model);
+// scenario.major_road with model.prior_go, model.collision_penalty: the
+// major-road game (yield_cost c; persuasion/major_road.h)
+persuasion::MajorRoadParams ToModel(const ModelConfig& model, const MajorRoadConfig& major);
 // model.noise: kind, scale, bias (delta and design belong to the AV's design)
 persuasion::PerceptionNoise ToModel(const NoiseConfig& noise);
 // model.trust_dynamics: the weights, the forgetting and the quality mapping

@@ -31,6 +31,8 @@ struct Mover {
   double front = 0;   // arc length of the front at release
   double length = 5.0, width = 1.8;
   double accel = 2.6, max_speed = 13.89;
+  double speed = 0;   // m/s at release (0: from rest; a major-road HV keeps its speed:
+                      //   accel 0, no limits, max_speed = speed)
 };
 
 // The theory's collision event made physical: do two vehicles released from
@@ -63,6 +65,23 @@ const char* ToString(BothProceed p);
 // than the second reaches before its rear leaves the junction.)
 // A reach >= 0: only that many metres ahead of the vehicle's front (0: where
 // it is now: a vehicle standing still).
+// The major-road encounter (persuasion/MAJOR_ROAD.md, "When is an approach the
+// game"): where on `m`'s path its body can touch `other` on its way through
+// the junction. `first`..`last`: the arcs of m's front at which its body (as
+// in BothProceedCollide) overlaps some body of `other` between other.front
+// and other's rear leaving the junction, sampled every `step` m of m's front
+// from m.front until its rear has left the junction. `conflict` false: never.
+struct ConflictZone {
+  bool conflict = false;
+  double first = 0, last = 0;
+};
+ConflictZone ZoneOnPath(const Mover& m, const Mover& other, double step = 0.25);
+
+// Seconds until m's front, released at m.front with m.speed and driving as in
+// BothProceedCollide (SUMO's Euler update), reaches arc `arc` (0 when it is
+// there); a large number when it never does.
+double TimeToReach(const Mover& m, double arc, double dt);
+
 bool PassedWay(const Mover& first, const Mover& second, double first_reach = -1,
                double second_reach = -1, double step = 0.25);
 

@@ -68,6 +68,26 @@
 //   form once both are inside the junction (a move not yet begun is neither
 //   at the lines a meeting looks at nor inside where the new moves' ways are
 //   checked); the encounter is recorded when both have left the junction.
+// - The major-road encounter (Timing::major_road, two-way stops only;
+//   persuasion/MAJOR_ROAD.md). An AV waiting (standing) at a minor stop line
+//   and an HV approaching on a major movement that conflicts with it (the
+//   front of its approach lane, driven by SUMO) meet when no encounter runs
+//   here and EncounterModel::MajorRoad says the approach is the game now
+//   (ClassifyMajorRoadApproach on SUMO's distances and speeds and the
+//   junction's conflict geometry, the premise "both proceed collides"). The
+//   AV is held and nudges as drawn; the signal lasts as long as the scheme's
+//   nudge whatever the draw (a still AV stands that long), and the HV keeps
+//   its speed meanwhile with SUMO's right of way off (kCruise: it does not
+//   brake for the nudged AV). Then the HV reads SUMO's displacement: DR, it
+//   keeps its speed through the junction; DC, it brakes at the comfortable
+//   deceleration after its reaction time (kYield) and is handed back to
+//   SUMO's rules once the AV that went has passed its way, or, when the AV
+//   waits, drives on past it after `confirm_delay` (right of way off). The
+//   AV that goes is released at once (the two start together: the premise);
+//   the AV that waits goes back to SUMO's rules (its stop sign and gap
+//   acceptance) once the HV is inside the junction, or, nudged past its
+//   line, once the HV has passed its way and its own way and the major road
+//   are clear.
 #pragma once
 
 #include "taebp/encounter/encounter.h"
@@ -105,6 +125,10 @@ struct JunctionSpec {
 
 struct Timing {
   double confirm_delay = 1.0;  // s: an HV driving if clear facing a still AV waits this long
+  // The major-road encounter (two-way stops): off unless set.
+  bool major_road = false;
+  double yield_decel = 3.0;    // m/s^2: a DC major-road HV brakes this hard
+  double reaction_time = 0.0;  // s: after its decision, before it brakes
 };
 
 // What the logic asks of the world (SUMO, through the controller).
@@ -144,6 +168,33 @@ class Environment {
     (void)vehicle, (void)partner;
     return {};
   }
+  // The major-road encounter: no major-road vehicle but `hv` and those behind
+  // it on its lane is inside or within the critical gap plus `extra` seconds
+  // of a major movement conflicting with `movement`.
+  virtual bool MajorClearBut(int movement, int hv, double extra) {
+    (void)hv, (void)extra;
+    return MajorClear(movement);
+  }
+};
+
+// An HV approaching a two-way stop on a major (not stop-controlled) movement:
+// the front vehicle of its approach lane, SUMO's view this step.
+struct MajorAt {
+  int vehicle = -1;
+  int movement = -1;
+  double gap = 0;    // m from its front to its stop line (the approach lane's end)
+  double speed = 0;  // m/s
+};
+
+// Is an approach the major-road game (EncounterModel::MajorRoad)?
+struct MajorVerdict {
+  enum class Kind {
+    kNotYet,  // not now (the HV still far, the major road busy): ask again next step
+    kGame,    // form the encounter now
+    kNever,   // not for this pair (it passed the window, or the premise fails)
+  };
+  Kind kind = Kind::kNotYet;
+  double signal = 0;  // s: how long the signal lasts (the scheme's nudge; a still AV stands it)
 };
 
 // The paper's game for one AV-HV pair: the AV's draw from its committed
@@ -158,6 +209,14 @@ class EncounterModel {
   virtual bool Game(int av, int hv, int av_movement, int hv_movement) {
     (void)av, (void)hv, (void)av_movement, (void)hv_movement;
     return true;
+  }
+  // The major-road encounter: is the AV waiting at its minor line and the
+  // approaching HV `hv` (its front `hv_gap` m before its line at `hv_speed`)
+  // the game now? (persuasion/major_road.h ClassifyMajorRoadApproach, and the
+  // premise on the geometry.)
+  virtual MajorVerdict MajorRoad(int av, const MajorAt& hv, int av_movement) {
+    (void)av, (void)hv, (void)av_movement;
+    return {};
   }
 };
 
@@ -178,10 +237,16 @@ struct Command {
     kHandBack,    // SUMO's own rules again (a careful release, a held third vehicle)
     kUnblock,     // a vehicle SUMO keeps waiting inside the junction for a vehicle of the
                   // game may pass it (Environment::Unblockable) until it has left the junction
+    kCruise,      // a major-road HV: keep `speed` with SUMO's right of way off (the signal, DR)
+    kYield,       // a major-road HV (DC): brake at `speed` m/s^2 from `delay` s on
   };
   Kind kind = Kind::kHold;
   int vehicle = -1;
   double distance = 0;
+  double speed = 0;
+  double delay = 0;     // kYield: reaction time
+  double duration = 0;  // kStartNudge: the signal lasts at least this long (a still AV too)
+  int movement = -1;    // kCruise: the HV's movement
   bool in_encounter = false;  // a release or hand-back of an encounter vehicle: report Cleared
 };
 
@@ -197,6 +262,7 @@ struct EncounterOutcome {
   // SUMO reported the two colliding after one was handed back to SUMO's
   // rules (not a move of the game: `collision` stays false).
   bool collision_after_handback = false;
+  bool major_road = false;  // the major-road encounter (the HV approached on the major road)
 };
 
 class Interception {
@@ -210,8 +276,9 @@ class Interception {
   // One step: `at_line` holds the front vehicle of every stop-controlled lane
   // of this junction that waits at its line or is coming to a stop there
   // (held ones included, as waiting). Returns the commands to execute.
+  // `major`: HVs approaching on major movements (Timing::major_road only).
   std::vector<Command> Step(double now, const std::vector<AtLine>& at_line, Environment& env,
-                            EncounterModel& model);
+                            EncounterModel& model, const std::vector<MajorAt>& major = {});
   // An encounter vehicle released has entered the junction (its front past
   // its stop line).
   void Entered(int vehicle, double now);
@@ -255,7 +322,17 @@ class Interception {
     bool av_entered = false, hv_entered = false;
     bool av_cleared = false, hv_cleared = false;
     bool av_handed_back = false, hv_handed_back = false;  // to SUMO's rules
+    bool major = false;         // the major-road encounter
+    bool major_moves = false;   // its first moves after the decision issued
   };
+  // A major-road meeting, if one forms now (Timing::major_road).
+  void FormMajor(double now, const std::vector<AtLine>& at_line,
+                 const std::vector<MajorAt>& major, Environment& env, EncounterModel& model,
+                 std::vector<Command>* out);
+  // The major-road encounter after the HV decided.
+  void StepMajor(double now, Environment& env, std::vector<Command>* out);
+  // Both released: watched until they have left the junction.
+  void Hand();
   bool ConflictsWithEncounter(int movement) const;
   // A meeting: the waiting ones held (the draw comes once both are).
   void Form(double now, const AtLine& av, const AtLine& hv, std::vector<Command>* out);
@@ -266,6 +343,7 @@ class Interception {
   std::vector<Active> leaving_;                 // both released, not both out of the junction
   std::vector<int> thirds_;                    // held for the running encounter
   std::set<std::pair<int, int>> not_game_;     // (AV, HV) meeting now, judged not the game
+  std::set<std::pair<int, int>> major_never_;  // (AV, HV) major-road approaches judged never
   std::vector<EncounterOutcome> finished_;
   double last_activity_ = 0;
   long non_game_ = 0, abandoned_ = 0;

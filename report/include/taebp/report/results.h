@@ -70,6 +70,9 @@ struct EncounterRecord {
   // not in `collision`).
   bool collision_after_handback = false;
   double decided_at = 0;    // when the HV decided (after the nudge)
+  // The major-road encounter (scenario.major_road: the HV approached on the
+  // major road of a two-way stop); else both stopped at lines.
+  bool major_road = false;
   double theory_dc = 0;         // library prediction for this AV-HV pair's design and HV
   double theory_collision = 0;
   BeyondEncounter beyond;
