@@ -127,8 +127,8 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
     if (s_.sumo.LaneVehicleNumber(in) > 0) return {Kind::kNotYet, 0};
   if (s_.sumo.LaneVehicleNumber(hm.to_lane) > 0) {
     const std::vector<std::string> ids = s_.sumo.LaneVehicleIDs(hm.to_lane);
-    if (!ids.empty() &&
-        s_.sumo.LanePosition(ids.front()) - s_.sumo.Length(ids.front()) < 30.0)
+    if (!ids.empty() && s_.sumo.LanePosition(ids.front()) - s_.sumo.Length(ids.front()) < 30.0 &&
+        s_.sumo.Speed(ids.front()) < v - 0.5)
       return {Kind::kNotYet, 0};
   }
   // The premise at the decision, on the geometry.
