@@ -112,14 +112,27 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
   ap.av_clear_time = junction::TimeToReach(g.av, g.av_zone.last + 0.25, s_.dt);
   if (!ap.IsValid(nullptr)) return {Kind::kNever, 0};
   const persuasion::ApproachWindow w = persuasion::ClassifyMajorRoadApproach(ap);
+  // encounter_pairs: all (checking the prediction against SUMO): approaches
+  // up to kAllBeyond s of the HV's speed beyond the game window are
+  // encounters too, each engaged at a point drawn per pair between the
+  // window's lower edge and that, so that "both proceed" both collides and
+  // does not.
+  const bool all = s_.sc.encounter_pairs == EncounterPairs::kAll;
+  constexpr double kAllBeyond = 1.5;  // s
   switch (w.kind) {
-    case persuasion::ApproachKind::kAvClearsFirst: return {Kind::kNotYet, 0};
+    case persuasion::ApproachKind::kAvClearsFirst:
+      if (!all) return {Kind::kNotYet, 0};
+      break;
     case persuasion::ApproachKind::kCannotYield:
     case persuasion::ApproachKind::kHvPassesFirst: return {Kind::kNever, 0};
     case persuasion::ApproachKind::kGame: break;
   }
   const double lower = std::max(w.yield_distance, w.conflict_min_distance);
-  if (ap.hv_distance > lower + 0.5 * (w.conflict_max_distance - lower)) return {Kind::kNotYet, 0};
+  const double engage =
+      all ? lower + HashUniform(s_.sc.seed, a.id + "/" + h.id, 0x6d616a6f72ULL) *
+                        (w.conflict_max_distance + v * kAllBeyond - lower)
+          : lower + 0.5 * (w.conflict_max_distance - lower);
+  if (ap.hv_distance > engage) return {Kind::kNotYet, 0};
   // Nothing ahead of the HV on its way that would make it brake: its
   // movement's internal lanes empty, its exit clear for a while.
   const MovementInfo& hm = info.movements[at.movement];
@@ -141,7 +154,7 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
   }
   if (premise == Premise::kHolds && !junction::PassedWay(hv_dec, g.av, -1.0, 0.0))
     premise = Premise::kNudgeInHvWay;
-  if (premise != Premise::kHolds) {
+  if (premise != Premise::kHolds && !all) {
     if (s_.measuring()) {
       JunctionRun& run = s_.junctions[a.junction].run;
       ++(premise == Premise::kNoCollision ? run.meetings_not_game : run.meetings_unpredictable);

@@ -213,6 +213,37 @@ TEST(MajorRoad, SumoCollidesExactlyWherePredictedAndRatesAgreeWithTheTheory) {
   std::cout << "both proceeded " << both << ", predicted to collide " << both_collide << "\n";
 }
 
+// (b) with both verdicts: under encounter_pairs: all, approaches up to 1.5 s
+// beyond the game window are encounters too (engaged at a point drawn per
+// pair), and with trust 0 every HV keeps its way (prior_go 0.45 < p* = 0.5,
+// so that many AVs go). On every pair where the
+// AV went SUMO collided exactly where the geometry predicted at the HV's
+// decision, and both verdicts occur; where the AV waited and the premise
+// holds it never collided. A collision read from the actions instead of
+// SUMO, or a prediction that always says "collides", turns this red.
+TEST(MajorRoad, WithAllPairsSumoCollidesExactlyWherePredicted) {
+  const PolicyRun r =
+      RunOn("no_trust", 3600,
+            {"scenario.encounter_pairs=all", "model.trust=0.0", "model.prior_go=0.45"});
+  std::map<std::string, long> n;
+  for (const EncounterRecord& e : r.encounters) {
+    const std::string where = e.av + "/" + e.hv + " at " + std::to_string(e.time) + ", " +
+                              ToString(e.premise);
+    EXPECT_TRUE(e.major_road) << where;
+    EXPECT_FALSE(e.hv_dc) << "trust 0: the HV always keeps its way, " << where;
+    ++n[std::string(ToString(e.premise)) + (e.av_first ? " go" : " wait")];
+    if (e.av_first) {
+      EXPECT_EQ(e.collision, e.both_proceed_collides) << "both proceeded, " << where;
+    } else if (e.premise == Premise::kHolds) {
+      EXPECT_FALSE(e.collision) << "the AV waited, " << where;
+    }
+  }
+  EXPECT_GT(n["holds go"], 10) << "too few colliding both-proceed pairs";
+  EXPECT_GT(n["no_collision go"], 10) << "too few both-proceed pairs that do not collide";
+  for (const auto& [k, v] : n) std::cout << k << " " << v << "; ";
+  std::cout << "\n";
+}
+
 // (d) The HV's decision follows the nudge SUMO realised: under TA-EBP the
 // nudge s* puts the HV's posterior exactly on p* (it yields), a still AV
 // leaves it at (1 - theta) lambda < p* (it keeps its way). So every nudged
