@@ -38,18 +38,19 @@ def test_run_equals_the_cli_files_and_table(tmp_path):
 
 def test_network_run_has_the_network_column():
     """A network scenario's encounters.csv adds both_proceed_collides,
-    premise (the meeting is the paper's game) and collision_after_handback
-    after the paper's columns."""
+    premise (the meeting is the paper's game), collision_after_handback and
+    encounter_kind after the paper's columns."""
     grid = os.path.join(os.path.dirname(PAPER), "grid_throughput.yaml")
     r = taebp.run(grid, overrides=["policies=[no_trust]", "scenario.duration=600",
                                    "scenario.warmup=0"])
     cols = taebp.encounter_columns(network=True)
     assert cols == taebp.encounter_columns() + ["both_proceed_collides", "premise",
-                                                "collision_after_handback"]
+                                                "collision_after_handback", "encounter_kind"]
     assert r.encounters.columns == cols
     assert len(r.encounters) > 20
     assert set(r.encounters["both_proceed_collides"]) == {1}
     assert set(r.encounters["premise"]) == {"holds"}
+    assert set(r.encounters["encounter_kind"]) == {"stop_lines"}
     # Every encounter is the game: SUMO collided exactly where the AV went
     # and the HV drove recklessly.
     for e in r.encounters:
