@@ -1,0 +1,253 @@
+// The major-road encounter's interception logic (interception.h, Timing::
+// major_road), SUMO-free, with fake time, vehicles, world and model: it forms
+// only at a two-way stop with the option on, between an AV standing at a
+// minor line and an HV approaching on a conflicting major movement when the
+// model says the approach is the game; the commands (hold, cruise, nudge for
+// the signal's duration) and, after the HV's reading, the moves of each
+// (intent, response): the AV that goes at once, the DR HV untouched (it keeps
+// its speed), the DC HV braking and handed back once the AV passed its way or
+// driving on past the waiting AV after confirm_delay, the waiting AV handed
+// back once the HV is inside. And the conflict zone and time to reach on a
+// plain crossing against closed forms.
+#include "taebp/junction/conflict_geometry.h"
+#include "taebp/junction/interception.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace taebp::junction {
+namespace {
+
+using Kind = Command::Kind;
+constexpr VehicleKind kAV = VehicleKind::kAV;
+
+// B1 of a netgenerate grid (as interception_test.cc), with the west and east
+// approaches as the major road of a two-way stop.
+enum Mv { kNr = 0, kNs = 1, kNl = 2, kEr = 3, kEs = 4, kEl = 5,
+          kSr = 6, kSs = 7, kSl = 8, kWr = 9, kWs = 10, kWl = 11 };
+const char* const kB1Foes[12] = {
+    "000100010000", "111100110000", "110111110000", "100010000000",
+    "100110000111", "111110000110", "010000000100", "110000111100",
+    "110000110111", "000000100010", "000111100110", "000110111110"};
+const char kDirs[12] = {'r', 's', 'l', 'r', 's', 'l', 'r', 's', 'l', 'r', 's', 'l'};
+
+JunctionSpec TwoWay(Rule rule = Rule::kTwoWay) {
+  JunctionSpec s;
+  s.id = "B1";
+  s.rule = rule;
+  s.approaches = 4;
+  for (int m = 0; m < 12; ++m) {
+    Movement mv;
+    mv.approach = m / 3;
+    mv.dir = kDirs[m];
+    mv.controlled = rule == Rule::kAllWay || (mv.approach != 1 && mv.approach != 3);
+    s.movements.push_back(mv);
+  }
+  s.conflict.assign(12, std::vector<bool>(12, false));
+  for (int i = 0; i < 12; ++i)
+    for (int k = 0; k < 12; ++k) s.conflict[i][k] = kB1Foes[i][11 - k] == '1';
+  return s;
+}
+
+struct Env : Environment {
+  std::set<std::pair<int, int>> passed;
+  std::set<int> past_line, moving;
+  bool major_busy = false;
+  bool WayClear(int, int) override { return true; }
+  bool Standing(int v) override { return !moving.count(v); }
+  bool ExitHasRoom(int, int) override { return true; }
+  bool MajorClear(int) override { return !major_busy; }
+  bool PastLine(int v) override { return past_line.count(v); }
+  bool Passed(int a, int b) override { return passed.count({a, b}); }
+};
+
+struct Model : EncounterModel {
+  MajorVerdict::Kind verdict = MajorVerdict::Kind::kGame;
+  AvDraw draw;
+  bool dc = false;
+  int asked = 0;
+  AvDraw Draw(int, int) override { return draw; }
+  HvReading Read(int, int, double observed) override {
+    HvReading r;
+    r.observed = observed;
+    r.drives_if_clear = dc;
+    return r;
+  }
+  MajorVerdict MajorRoad(int, const MajorAt&, int) override {
+    ++asked;
+    return {verdict, 2.0};
+  }
+};
+
+constexpr int kAv = 1, kHv = 2;
+const std::vector<AtLine> kAtLine = {{kAv, kAV, kNs, true, 0.0}};
+const std::vector<MajorAt> kMajor = {{kHv, kWs, 60.0, 12.0}};
+
+Timing On() {
+  Timing t;
+  t.confirm_delay = 1.0;
+  t.major_road = true;
+  t.yield_decel = 3.0;
+  t.reaction_time = 0.5;
+  return t;
+}
+
+using Cmd = std::pair<Kind, int>;
+std::vector<Cmd> Simple(const std::vector<Command>& cs) {
+  std::vector<Cmd> out;
+  for (const Command& c : cs) out.emplace_back(c.kind, c.vehicle);
+  return out;
+}
+
+TEST(MajorRoadInterception, FormsOnlyAtATwoWayStopWithTheOptionOnWhenTheModelSaysSo) {
+  Env env;
+  Model model;
+  {  // the option off: nobody is asked, nothing commanded
+    Interception off(TwoWay(), Timing{});
+    for (int t = 0; t < 20; ++t) EXPECT_TRUE(off.Step(t * 0.1, kAtLine, env, model, kMajor).empty());
+    EXPECT_EQ(model.asked, 0);
+  }
+  {  // an all-way stop has no major road
+    Interception all_way(TwoWay(Rule::kAllWay), On());
+    for (int t = 0; t < 20; ++t) EXPECT_TRUE(all_way.Step(t * 0.1, kAtLine, env, model, kMajor).empty());
+    EXPECT_EQ(model.asked, 0);
+  }
+  {  // movements that do not conflict (north straight, east right turn) never meet
+    Interception logic(TwoWay(), On());
+    EXPECT_TRUE(logic.Step(0, kAtLine, env, model, {{kHv, kEr, 60.0, 12.0}}).empty());
+    EXPECT_EQ(model.asked, 0);
+  }
+  Interception logic(TwoWay(), On());
+  model.verdict = MajorVerdict::Kind::kNotYet;
+  EXPECT_TRUE(logic.Step(0.0, kAtLine, env, model, kMajor).empty());
+  EXPECT_TRUE(logic.Step(0.1, kAtLine, env, model, kMajor).empty());
+  EXPECT_EQ(model.asked, 2);
+  model.verdict = MajorVerdict::Kind::kNever;  // judged never: not asked again while both are there
+  EXPECT_TRUE(logic.Step(0.2, kAtLine, env, model, kMajor).empty());
+  model.verdict = MajorVerdict::Kind::kGame;
+  EXPECT_TRUE(logic.Step(0.3, kAtLine, env, model, kMajor).empty());
+  EXPECT_EQ(model.asked, 3);
+  EXPECT_TRUE(logic.Step(0.4, {}, env, model, kMajor).empty());  // the AV left its line
+  // The AV still rolling: no encounter yet.
+  env.moving = {kAv};
+  EXPECT_TRUE(logic.Step(0.5, kAtLine, env, model, kMajor).empty());
+  env.moving.clear();
+  model.draw.nudge = true;
+  model.draw.nudge_distance = 1.6;
+  const std::vector<Command> c = logic.Step(0.6, kAtLine, env, model, kMajor);
+  EXPECT_EQ(Simple(c), (std::vector<Cmd>{{Kind::kHold, kAv}, {Kind::kCruise, kHv}, {Kind::kStartNudge, kAv}}));
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_DOUBLE_EQ(c[1].speed, 12.0);
+  EXPECT_EQ(c[1].movement, kWs);
+  EXPECT_DOUBLE_EQ(c[2].distance, 1.6);
+  EXPECT_DOUBLE_EQ(c[2].duration, 2.0);
+  EXPECT_TRUE(logic.Busy());
+  EXPECT_EQ(logic.Encounters(), 1);
+}
+
+// The moves after the HV's reading, for each (intent, response).
+TEST(MajorRoadInterception, TheMovesOfEachIntentAndResponse) {
+  struct Case {
+    bool go, dc, past_line;
+  };
+  for (const Case k : {Case{true, false, false}, Case{true, true, false}, Case{false, false, false},
+                       Case{false, true, false}, Case{false, false, true}}) {
+    SCOPED_TRACE(std::string(k.go ? "go" : "wait") + (k.dc ? " DC" : " DR") +
+                 (k.past_line ? " past its line" : ""));
+    Env env;
+    Model model;
+    model.draw.intent_go = model.draw.goes_first = k.go;
+    model.dc = k.dc;
+    Interception logic(TwoWay(), On());
+    ASSERT_EQ(logic.Step(0.0, kAtLine, env, model, kMajor).size(), 3u);
+    EXPECT_TRUE(logic.Step(1.0, kAtLine, env, model, kMajor).empty()) << "the signal";
+    if (k.past_line) env.past_line = {kAv};
+    logic.NudgeDone(kAv, 0.0, 2.0, model);
+    std::vector<Command> at = logic.Step(2.0, kAtLine, env, model, kMajor);
+    std::vector<Cmd> expected;
+    if (k.go) expected.push_back({Kind::kRelease, kAv});
+    if (k.dc) expected.push_back({Kind::kYield, kHv});
+    EXPECT_EQ(Simple(at), expected);
+    if (k.dc) {
+      EXPECT_DOUBLE_EQ(at.back().speed, 3.0);
+      EXPECT_DOUBLE_EQ(at.back().delay, 0.5);
+    }
+    if (k.go && k.dc) {  // the DC HV waits until the AV has passed its way
+      logic.Entered(kAv, 2.5);
+      EXPECT_TRUE(logic.Step(2.5, {}, env, model, kMajor).empty());
+      env.passed.insert({kAv, kHv});
+      EXPECT_EQ(Simple(logic.Step(3.0, {}, env, model, kMajor)), (std::vector<Cmd>{{Kind::kHandBack, kHv}}));
+    }
+    if (!k.go && k.dc) {  // slowed for nothing: on after confirm_delay, right of way off
+      EXPECT_TRUE(logic.Step(2.5, kAtLine, env, model, kMajor).empty());
+      EXPECT_EQ(Simple(logic.Step(3.0, kAtLine, env, model, kMajor)), (std::vector<Cmd>{{Kind::kRelease, kHv}}));
+    }
+    if (!k.go) {  // the waiting AV after the HV
+      EXPECT_TRUE(logic.Step(3.1, kAtLine, env, model, kMajor).empty());
+      logic.Entered(kHv, 3.2);
+      if (k.past_line) {  // inside the junction itself: once the HV has passed its way
+        EXPECT_TRUE(logic.Step(3.2, kAtLine, env, model, kMajor).empty());
+        env.passed.insert({kHv, kAv});
+        EXPECT_EQ(Simple(logic.Step(3.3, kAtLine, env, model, kMajor)), (std::vector<Cmd>{{Kind::kRelease, kAv}}));
+      } else {
+        EXPECT_EQ(Simple(logic.Step(3.2, kAtLine, env, model, kMajor)), (std::vector<Cmd>{{Kind::kHandBack, kAv}}));
+      }
+    }
+    // Both on their way: recorded once both have left the junction.
+    logic.Cleared(kAv, 5.0);
+    logic.Cleared(kHv, 5.0);
+    const std::vector<EncounterOutcome> done = logic.TakeFinished();
+    ASSERT_EQ(done.size(), 1u);
+    EXPECT_TRUE(done[0].major_road);
+    EXPECT_EQ(done[0].hv_movement, kWs);
+    EXPECT_FALSE(logic.Busy());
+    // The game's collision: the AV went and the HV kept its way (neither handed back).
+    EXPECT_FALSE(done[0].collision);
+  }
+}
+
+// A straight crossing at right angles (a along x, b along y, through the
+// origin, 30 m of approach each): a's body (5 m x 1.8 m) overlaps the band b
+// sweeps (|x| <= 0.9, from b's start until its rear has left) for fronts in
+// (30 - 0.9, 30 + 0.9 + 5) on a's path; time to reach: Euler from rest,
+// x_k = a dt^2 k (k + 1) / 2, and at constant speed d / v.
+TEST(MajorRoadGeometry, ZoneOnPathAndTimeToReachOnAPlainCrossing) {
+  Mover a, b;
+  a.path = {{-30, 0}, {30, 0}};
+  b.path = {{0, -30}, {0, 30}};
+  for (Mover* m : {&a, &b}) {
+    m->entry = 25;
+    m->exit = 35;
+    m->front = 0;
+  }
+  const ConflictZone z = ZoneOnPath(a, b);
+  ASSERT_TRUE(z.conflict);
+  EXPECT_NEAR(z.first, 29.1, 0.25);
+  EXPECT_NEAR(z.last, 35.9, 0.25);
+  Mover far = b;
+  far.path = {{20, -30}, {20, 30}};  // beyond where a leaves the junction: never
+  EXPECT_FALSE(ZoneOnPath(a, far).conflict);
+  const double dt = 0.1;
+  for (double d : {1.0, 7.3, 25.0}) {
+    long k = 0;
+    while (a.accel * dt * dt * k * (k + 1) / 2 < d) ++k;
+    EXPECT_NEAR(TimeToReach(a, d, dt), k * dt, 1e-9) << d;
+  }
+  Mover cruise = a;
+  cruise.speed = 10;
+  cruise.accel = 0;
+  cruise.max_speed = 10;
+  cruise.limits.clear();
+  EXPECT_NEAR(TimeToReach(cruise, 25.0, dt), 2.5, dt + 1e-9);
+  Mover still = a;
+  still.accel = 0;
+  EXPECT_GT(TimeToReach(still, 5.0, dt), 1e8) << "standing, accel 0: never";
+}
+
+}  // namespace
+}  // namespace taebp::junction
