@@ -259,6 +259,13 @@ PolicyRun NetworkController::Finish() {
   if (s.population) {
     s.out.beyond = s.population->Results(s.now);
     s.out.theory = s.population->Theory();
+    // Every encounter the major-road kind: its theory is the game at r_eff
+    // (a run mixing both kinds keeps the paper game's; each record has its own).
+    const bool all_major =
+        !s.out.encounters.empty() &&
+        std::all_of(s.out.encounters.begin(), s.out.encounters.end(),
+                    [](const EncounterRecord& e) { return e.major_road; });
+    if (s.major_population && all_major) s.out.theory = s.major_population->Theory();
   } else {
     s.out.beyond.on = s.cfg.BeyondPaper();  // sumo_native: the same columns as the others
   }

@@ -137,7 +137,10 @@ void ObserveMajor(RunState& s, JunctionState& j) {
       movement = s.topo.MajorMovementFor(jx, lane, s.topo.EdgeName(v.route[k + 1]));
       break;
     }
-    if (movement < 0) continue;
+    // Only a movement with the right of way over every foe (SUMO's 'M'): an
+    // HV keeping its way there does what SUMO's rules let it (a major left
+    // turn yields to the oncoming major road, which a cruising HV would ignore).
+    if (movement < 0 || s.topo.junctions()[jx].movements[movement].state != 'M') continue;
     const double speed = s.sumo.Speed(v.id);
     if (speed < kSlow) continue;  // a halted major vehicle yields under SUMO's rules
     j.major.push_back({h, movement, l->length - s.sumo.LanePosition(v.id), speed});

@@ -30,7 +30,8 @@ bool Watched(RunState& s, JunctionState& j);
 // or comes to, the stop lines.
 void Observe(RunState& s, JunctionState& j);
 // scenario.major_road, two-way stops: fills j.major with the HVs at the front
-// of the major approach lanes, driven by SUMO, moving towards the line (only
+// of the major approach lanes, driven by SUMO, moving towards the line, on a
+// movement with the right of way over every foe (SUMO's 'M' links; only
 // while an AV waits at a minor line here: nothing is read otherwise).
 void ObserveMajor(RunState& s, JunctionState& j);
 // A vehicle departed onto `edge`: its approaches are looked at again at once.

@@ -67,6 +67,7 @@ Topology::Topology(const ScenarioConfig& sc, const Scenario& scenario, const net
       m.to_lane = link.to_lane;
       m.internal = link.internal;
       m.dir = link.dir;
+      m.state = link.state;
       m.controlled = stop_approach[link.from_lane];
       if (const net::Lane* tl = net.FindLane(link.to_lane)) m.to_edge = tl->edge;
       if (!approach_of.count(link.from_lane)) {

@@ -33,6 +33,7 @@ struct MovementInfo {
   std::vector<std::string> internal;
   std::string to_edge;
   char dir = 's';
+  char state = 'M';             // SUMO's link state (M: right of way over every foe)
   bool controlled = false;      // a stop link (all links of its lane are)
   int exit = -1;                // Topology::exit()
   std::vector<int> major_foes;  // major movements (same junction) in conflict

@@ -54,11 +54,12 @@ std::string MajorRoadNet(const TempDir& dir) {
       "  <edge id=\"CS\" from=\"C\" to=\"S\" priority=\"1\" numLanes=\"1\"/>\n");
 }
 
-// AVs N -> S and S -> N every 8 s, HVs W -> E at random (0.2 per second).
-std::string MajorRoadRoutes(const TempDir& dir, double end) {
+// AVs N -> S and S -> N every 8 s, HVs W -> E at random (0.2 per second);
+// `both_ways`: HVs E -> W too (test::FourWay's two-way major road).
+std::string MajorRoadRoutes(const TempDir& dir, double end, bool both_ways = false) {
   const std::string e = std::to_string(end);
   return dir.Write(
-      "major.rou.xml",
+      both_ways ? "major2.rou.xml" : "major.rou.xml",
       "<routes>\n"
       "  <vType id=\"AV\" length=\"5\" width=\"1.8\" accel=\"2.6\" decel=\"4.5\" minGap=\"2\" "
       "maxSpeed=\"13.89\" sigma=\"0\" speedDev=\"0\"/>\n"
@@ -67,7 +68,10 @@ std::string MajorRoadRoutes(const TempDir& dir, double end) {
       "  <flow id=\"avn\" type=\"AV\" begin=\"0\" end=\"" + e +
           "\" period=\"8\" from=\"NC\" to=\"CS\" departSpeed=\"max\"/>\n"
       "  <flow id=\"hvw\" type=\"HV\" begin=\"0\" end=\"" + e +
-          "\" probability=\"0.2\" from=\"WC\" to=\"CE\" departSpeed=\"max\"/>\n"
+          "\" probability=\"0.2\" from=\"WC\" to=\"CE\" departSpeed=\"max\"/>\n" +
+      (both_ways ? "  <flow id=\"hve\" type=\"HV\" begin=\"0\" end=\"" + e +
+                       "\" probability=\"0.15\" from=\"EC\" to=\"CW\" departSpeed=\"max\"/>\n"
+                 : std::string()) +
       "  <flow id=\"avs\" type=\"AV\" begin=\"3\" end=\"" + e +
           "\" period=\"8\" from=\"SC\" to=\"CN\" departSpeed=\"max\"/>\n"
       "</routes>\n");
@@ -145,12 +149,15 @@ TEST(MajorRoad, FormsOnlyWhenTheOptionIsOnAndOffEveryTripIsSumoNatives) {
       << "encounters.csv says the kind";
 }
 
-// One run of `policy` with the option on, `duration` simulated seconds.
+// One run of `policy` with the option on, `duration` simulated seconds;
+// `both_ways`: on test::FourWay (a two-way major road E <-> W, 100 m arms)
+// with HVs both ways.
 PolicyRun RunOn(const std::string& policy, double duration,
-                const std::vector<std::string>& more = {}) {
+                const std::vector<std::string>& more = {}, bool both_ways = false) {
   static const TempDir dir("taebp_major_runs");
-  static const std::string net = MajorRoadNet(dir);
-  const std::string routes = MajorRoadRoutes(dir, duration);
+  const std::string net =
+      both_ways ? test::FourWay(dir, "four", "priority_stop") : MajorRoadNet(dir);
+  const std::string routes = MajorRoadRoutes(dir, duration, both_ways);
   std::vector<std::string> overrides = {kOn};
   overrides.insert(overrides.end(), more.begin(), more.end());
   const ExperimentConfig cfg =
@@ -221,27 +228,39 @@ TEST(MajorRoad, SumoCollidesExactlyWherePredictedAndRatesAgreeWithTheTheory) {
 // decision, and both verdicts occur; where the AV waited and the premise
 // holds it never collided. A collision read from the actions instead of
 // SUMO, or a prediction that always says "collides", turns this red.
+// On the one-way major road, and on a two-way one (HVs from both sides: the
+// near and the far lane).
 TEST(MajorRoad, WithAllPairsSumoCollidesExactlyWherePredicted) {
-  const PolicyRun r =
-      RunOn("no_trust", 3600,
-            {"scenario.encounter_pairs=all", "model.trust=0.0", "model.prior_go=0.45"});
-  std::map<std::string, long> n;
-  for (const EncounterRecord& e : r.encounters) {
-    const std::string where = e.av + "/" + e.hv + " at " + std::to_string(e.time) + ", " +
-                              ToString(e.premise);
-    EXPECT_TRUE(e.major_road) << where;
-    EXPECT_FALSE(e.hv_dc) << "trust 0: the HV always keeps its way, " << where;
-    ++n[std::string(ToString(e.premise)) + (e.av_first ? " go" : " wait")];
-    if (e.av_first) {
-      EXPECT_EQ(e.collision, e.both_proceed_collides) << "both proceeded, " << where;
-    } else if (e.premise == Premise::kHolds) {
-      EXPECT_FALSE(e.collision) << "the AV waited, " << where;
+  for (const bool both_ways : {false, true}) {
+    SCOPED_TRACE(both_ways ? "two-way major road" : "one-way major road");
+    const PolicyRun r =
+        RunOn("no_trust", 3600,
+              {"scenario.encounter_pairs=all", "model.trust=0.0", "model.prior_go=0.45"},
+              both_ways);
+    std::map<std::string, long> n;
+    for (const EncounterRecord& e : r.encounters) {
+      const std::string where = e.av + "/" + e.hv + " at " + std::to_string(e.time) + ", " +
+                                ToString(e.premise);
+      EXPECT_TRUE(e.major_road) << where;
+      EXPECT_FALSE(e.hv_dc) << "trust 0: the HV always keeps its way, " << where;
+      ++n[std::string(ToString(e.premise)) + (e.av_first ? " go" : " wait")];
+      if (e.av_first) {
+        EXPECT_EQ(e.collision, e.both_proceed_collides) << "both proceeded, " << where;
+      } else if (e.premise == Premise::kHolds) {
+        EXPECT_FALSE(e.collision) << "the AV waited, " << where;
+      }
     }
+    EXPECT_GT(n["holds go"], 10) << "too few colliding both-proceed pairs";
+    EXPECT_GT(n["no_collision go"], 10) << "too few both-proceed pairs that do not collide";
+    if (both_ways) {
+      long east = 0;
+      for (const EncounterRecord& e : r.encounters) east += e.hv_movement.rfind("EC", 0) == 0;
+      EXPECT_GT(east, 10) << "too few HVs from the far side";
+    }
+    std::cout << (both_ways ? "two-way: " : "one-way: ");
+    for (const auto& [k, v] : n) std::cout << k << " " << v << "; ";
+    std::cout << "\n";
   }
-  EXPECT_GT(n["holds go"], 10) << "too few colliding both-proceed pairs";
-  EXPECT_GT(n["no_collision go"], 10) << "too few both-proceed pairs that do not collide";
-  for (const auto& [k, v] : n) std::cout << k << " " << v << "; ";
-  std::cout << "\n";
 }
 
 // (d) The HV's decision follows the nudge SUMO realised: under TA-EBP the
