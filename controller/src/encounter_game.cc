@@ -144,7 +144,10 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
         s_.sumo.Speed(ids.front()) < v - 0.5)
       return {Kind::kNotYet, 0};
   }
-  // The premise at the decision, on the geometry.
+  // The premise at the decision, on the geometry. A merge (the HV's movement
+  // ends on the AV's exit lane) is not predictable: SUMO's car following
+  // makes the HV brake for the AV ahead of it on the merging lanes whatever
+  // its speed mode (checked: predicted collisions SUMO did not have).
   const junction::Mover hv_dec = Cruising(g.hv, front_decision, v);
   Premise premise = Premise::kNoCollision;
   switch (junction::PredictBothProceed(g.av, hv_dec, s_.dt)) {
@@ -152,9 +155,10 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
     case junction::BothProceed::kClear: premise = Premise::kNoCollision; break;
     case junction::BothProceed::kUncertain: premise = Premise::kUncertainMerge; break;
   }
+  if (info.movements[av_movement].to_lane == hm.to_lane) premise = Premise::kUncertainMerge;
   if (premise == Premise::kHolds && !junction::PassedWay(hv_dec, g.av, -1.0, 0.0))
     premise = Premise::kNudgeInHvWay;
-  if (premise != Premise::kHolds && !all) {
+  if (premise != Premise::kHolds && (!all || premise == Premise::kUncertainMerge)) {
     if (s_.measuring()) {
       JunctionRun& run = s_.junctions[a.junction].run;
       ++(premise == Premise::kNoCollision ? run.meetings_not_game : run.meetings_unpredictable);

@@ -357,27 +357,42 @@ void Interception::StepMajor(double now, Environment& env, std::vector<Command>*
       e.hv_released = true;  // keeps its speed, right of way off (kCruise)
     }
   }
+  // A standoff (as at stop lines): the AV stands nudged inside the junction
+  // and vehicles SUMO stopped there for it block a move of the game: those
+  // free to go may pass it.
+  const bool av_past = !e.av_released && env.PastLine(av);
+  auto unblock = [&](int vehicle, int partner) {
+    if (!av_past) return;
+    for (int b : env.Unblockable(vehicle, partner)) out->push_back({Command::Kind::kUnblock, b});
+  };
   if (hv_dc && !e.hv_released) {
     if (av_goes) {
       if (e.av_cleared || (e.av_entered && env.Passed(av, hv))) {
         e.hv_released = e.hv_handed_back = true;
         move(Command::Kind::kHandBack, hv);
       }
-    } else if (now >= e.out.decided_at + timing_.confirm_delay - 1e-9 && env.WayClear(hv, av)) {
-      e.hv_released = true;
-      move(Command::Kind::kRelease, hv);
+    } else if (now >= e.out.decided_at + timing_.confirm_delay - 1e-9) {
+      if (env.WayClear(hv, av)) {
+        e.hv_released = true;
+        move(Command::Kind::kRelease, hv);
+      } else {
+        unblock(hv, av);
+      }
     }
   }
   if (!av_goes && !e.av_released && e.hv_released) {
-    if (!env.PastLine(av)) {
+    if (!av_past) {
       if (e.hv_entered) {
         e.av_released = e.av_handed_back = true;
         move(Command::Kind::kHandBack, av);
       }
-    } else if ((e.hv_cleared || (e.hv_entered && env.Passed(hv, av))) && env.WayClear(av, hv) &&
-               env.ExitHasRoom(e.out.av_movement, av) && env.MajorClear(e.out.av_movement)) {
-      e.av_released = true;
-      move(Command::Kind::kRelease, av);
+    } else if (e.hv_cleared || (e.hv_entered && env.Passed(hv, av))) {
+      if (!env.WayClear(av, hv)) {
+        unblock(av, hv);
+      } else if (env.ExitHasRoom(e.out.av_movement, av) && env.MajorClear(e.out.av_movement)) {
+        e.av_released = true;
+        move(Command::Kind::kRelease, av);
+      }
     }
   }
   if (e.av_released && e.hv_released) Hand();
