@@ -263,6 +263,57 @@ TEST(MajorRoad, WithAllPairsSumoCollidesExactlyWherePredicted) {
   }
 }
 
+// (b) on a netgenerate two-way-stop grid with turning demand, AVs and HVs
+// everywhere: both kinds of encounter form; on every pair where both
+// proceeded SUMO collided exactly where the geometry predicted, and never
+// where the HV yielded or the AV waited; TA-EBP never collides. (Before
+// merges were excluded, SUMO's car following braked major HVs merging into
+// the AV's exit behind it: predicted collisions that did not happen.)
+TEST(MajorRoad, OnATwoWayGridWithTurnsSumoAgreesWithThePredictionOnEveryPair) {
+  const std::string yaml = std::string(
+                               "scenario:\n"
+                               "  kind: network\n"
+                               "  grid: {columns: 4, rows: 4, length: 100, attach_length: 100,"
+                               " junction_type: priority_stop}\n"
+                               "  demand: {flow: 150}\n"
+                               "  av_share: 0.5\n"
+                               "  cruise_speed: 13.89\n"
+                               "  duration: 1800\n"
+                               "  seed: 2\n"
+                               "  stall_action: record\n"
+                               "  major_road: {}\n") +
+                           kModel + "policies: [no_trust, ta_ebp]\n";
+  const ExperimentConfig cfg = ParseExperimentConfig(yaml, "major_road_test grid");
+  const Scenario sc = BuildScenario(cfg, "");
+  long major = 0, both = 0;
+  for (const std::string policy : {"no_trust", "ta_ebp"}) {
+    SCOPED_TRACE(policy);
+    const PolicyRun r = RunPolicy(cfg, policy, sc);
+    long collisions = 0, kinds[2] = {0, 0};
+    for (const EncounterRecord& e : r.encounters) {
+      const std::string where = e.junction + " " + e.av_movement + " (AV) / " + e.hv_movement +
+                                (e.major_road ? " major road" : " stop lines") + " at " +
+                                std::to_string(e.time);
+      ++kinds[e.major_road];
+      collisions += e.collision;
+      if (e.av_first && !e.hv_dc) {
+        ++both;
+        EXPECT_EQ(e.collision, e.both_proceed_collides) << where;
+      } else {
+        EXPECT_FALSE(e.collision) << where;
+      }
+      if (e.major_road) { EXPECT_NE(e.premise, Premise::kUncertainMerge) << where; }
+    }
+    major += kinds[1];
+    EXPECT_GT(kinds[0], 10) << "encounters at stop lines";
+    EXPECT_GT(kinds[1], 10) << "major-road encounters";
+    if (policy == "ta_ebp") { EXPECT_EQ(collisions, 0); }
+    std::cout << policy << ": " << kinds[0] << " at stop lines, " << kinds[1]
+              << " major road, " << collisions << " collisions\n";
+  }
+  EXPECT_GT(both, 10);
+}
+
 // (d) The HV's decision follows the nudge SUMO realised: under TA-EBP the
 // nudge s* puts the HV's posterior exactly on p* (it yields), a still AV
 // leaves it at (1 - theta) lambda < p* (it keeps its way). So every nudged
