@@ -281,9 +281,11 @@ bool ExperimentConfig::IsValid(std::string* why) const {
              " m/s^2 is above scenario.decel = " + Num(s.decel) +
              " (a yielding HV brakes comfortably, within its type's deceleration)");
     c.NonNegative("scenario.major_road.reaction_time", mr.reaction_time);
-    if (model.trust_dynamics || model.learning)
-      c.Fail("scenario.major_road is not modelled with model.trust_dynamics or model.learning "
-             "(an HV's trust state would be shared by two games)");
+    if (BeyondPaper())
+      c.Fail("scenario.major_road is modelled in the paper's setting only: not with "
+             "model.trust_dynamics, model.noise, model.learning or the policies "
+             "population_mean, ta_ebp_learned (an HV's trust state and the fleet's beliefs "
+             "would be split between two games, and regret would charge r_eff)");
   }
 
   const ModelConfig& m = model;

@@ -384,6 +384,13 @@ TEST(MajorRoad, TheLoaderRejectsBadValuesNamingKeyValueAndFile) {
   e = error("{reaction_time: soon}");
   EXPECT_THAT(e, HasSubstr("scenario.major_road.reaction_time"));
   EXPECT_THAT(e, HasSubstr("soon"));
+  e = test::ErrorOf<ConfigError>([&] {
+    LoadExperimentConfig(path, {kOn, "model.noise={kind: gaussian, scale: 0.05}"});
+  });
+  EXPECT_THAT(e, HasSubstr("scenario.major_road is modelled in the paper's setting only"));
+  e = test::ErrorOf<ConfigError>(
+      [&] { LoadExperimentConfig(path, {kOn, "policies=[population_mean]"}); });
+  EXPECT_THAT(e, HasSubstr("scenario.major_road is modelled in the paper's setting only"));
   const std::string fig8 = dir.Write("fig8.yaml", std::string("scenario:\n  kind: figure8\n") + kModel);
   e = test::ErrorOf<ConfigError>([&] { LoadExperimentConfig(fig8, {kOn}); });
   EXPECT_THAT(e, HasSubstr("scenario.major_road applies to scenario.kind = 'network' only"));

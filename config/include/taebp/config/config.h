@@ -124,7 +124,9 @@ struct OutputsConfig {
 // still yield braking at `comfortable_decel` after `reaction_time`. The AV
 // nudges, the HV reads SUMO's displacement and yields (DC: brakes so the AV
 // goes first) or keeps its speed (DR). Pairs where both wait at stop lines
-// stay as they are. Written `scenario.major_road: {}` for the defaults.
+// stay as they are. Written `scenario.major_road: {}` for the defaults. In the
+// paper's setting only (not with trust dynamics, noise, learning,
+// population_mean or ta_ebp_learned).
 struct MajorRoadConfig {
   double yield_cost = 0.0;         // c in [0, model.collision_penalty): the cost of yielding
   double comfortable_decel = 3.0;  // m/s^2 a > 0, at most the HV's SUMO decel: how a DC HV brakes
