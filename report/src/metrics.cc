@@ -409,7 +409,7 @@ const std::vector<Metric>& RunMetrics() {
      [](const MetricFacts& f) { return Learning(f, D(B(f).probes)); }},
     {"learning_final_mean_abs_error", T::kReal, "", kP, S::kBeyond, Pool::kMean, nullptr,
      nullptr, "learning.final_mean_abs_error",
-     "mean |belief mean - trust| over the HVs met, at the end (learned trust only)",
+     "mean absolute error of the belief mean against the trust, over the HVs met, at the end (learned trust only)",
      [](const MetricFacts& f) { return Learning(f, B(f).final_mean_abs_error); }},
     {"last_hour_from", T::kReal, "s", kP, S::kBeyond, Pool::kNone, nullptr, nullptr,
      "last_hour.from", "start of the last hour's window (or of the measurement)",
