@@ -86,6 +86,10 @@ void VehicleCommands::CountWait(JunctionState& j, const Vehicle& v) {
   j.run.wait_sum += wait;
   j.run.wait_max = std::max(j.run.wait_max, wait);
   ++j.run.held;
+  if (v.kind == VehicleKind::kAV) {
+    ++j.run.held_av;
+    j.run.wait_sum_av += wait;
+  }
 }
 
 void VehicleCommands::Release(JunctionState& j, int h, bool reckless) {

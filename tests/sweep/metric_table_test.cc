@@ -392,7 +392,7 @@ TEST(MetricTable, TheFixturesHaveTheAggregatesColumns) {
     ASSERT_NE(policy, header.end());
     const std::vector<std::string> metrics(policy + 3, header.end());
     EXPECT_THAT(metrics, ElementsAreArray(MetricColumns(kPolicyLevel, true)))
-        << "regenerate the fixture's header from the table (taebp metrics --print json)";
+        << "the fixture's header differs from the table: run tools/refresh-metric-docs";
   }
 }
 
