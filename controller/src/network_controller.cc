@@ -279,6 +279,8 @@ PolicyRun NetworkController::Finish() {
     s.out.wait_sum += j.run.wait_sum;
     s.out.wait_max = std::max(s.out.wait_max, j.run.wait_max);
     s.out.held += j.run.held;
+    s.out.held_av += j.run.held_av;
+    s.out.wait_sum_av += j.run.wait_sum_av;
     // Of the encounters drawn after the warm-up (as the rows): those still
     // running at the end.
     s.out.encounters_unfinished += j.logic->Encounters(s.sc.warmup);

@@ -5,6 +5,7 @@
 #include "taebp/report/interrupt.h"
 
 #include "sumo_messages.h"
+#include "vehicles.h"
 
 #include <pugixml.hpp>
 
@@ -246,18 +247,27 @@ std::optional<persuasion::Policy> PolicyOf(const std::string& name) {
 // end with arrival="-1.00" and its duration, timeLoss and waitingTime up to
 // the end (vaporized="end" for some, empty for others: arrival is the
 // marker); a vehicle never inserted has no record.
-void ReadTripinfo(const std::string& path, double warmup, NetworkRun* net) {
+// AVs and HVs apart as the controller tells them (control::IsAv).
+void ReadTripinfo(const std::string& path, const ScenarioConfig& sc, NetworkRun* net) {
   pugi::xml_document doc;
   if (!doc.load_file(path.c_str())) return;
   for (pugi::xml_node t : doc.child("tripinfos").children("tripinfo")) {
-    if (t.attribute("depart").as_double() < warmup) continue;
+    if (t.attribute("depart").as_double() < sc.warmup) continue;
     ++net->trips;
     if (t.attribute("arrival").as_double() < 0) ++net->trips_unfinished;
     net->duration_sum += t.attribute("duration").as_double();
     const double loss = t.attribute("timeLoss").as_double();
+    const double waiting = t.attribute("waitingTime").as_double();
     net->time_loss_sum += loss;
     net->time_loss_max = std::max(net->time_loss_max, loss);
-    net->waiting_time_sum += t.attribute("waitingTime").as_double();
+    net->waiting_time_sum += waiting;
+    const pugi::xml_node trip = t;
+    if (control::IsAv(sc, t.attribute("id").as_string(),
+                      [&trip] { return std::string(trip.attribute("vType").as_string()); })) {
+      ++net->trips_av;
+      net->time_loss_sum_av += loss;
+      net->waiting_time_sum_av += waiting;
+    }
   }
 }
 
@@ -339,7 +349,7 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     }
   }
   if (scenario.scratch && scenario.kind == ScenarioKind::kNetwork) {
-    ReadTripinfo(TripinfoPath(scenario, policy), config.scenario.warmup, &run.network);
+    ReadTripinfo(TripinfoPath(scenario, policy), config.scenario, &run.network);
     // SUMO's tripinfo and summary, their dated header replaced as for the
     // outputs (StripGeneratedComment).
     auto slurp = [](const fs::path& path) {

@@ -92,6 +92,10 @@ void VehicleCommands::CountWait(JunctionState& j, const Vehicle& v) {
   j.run.wait_sum += wait;
   j.run.wait_max = std::max(j.run.wait_max, wait);
   ++j.run.held;
+  if (v.kind == VehicleKind::kAV) {
+    ++j.run.held_av;
+    j.run.wait_sum_av += wait;
+  }
 }
 
 // A major-road HV of an encounter: it keeps `speed` with SUMO's right of way

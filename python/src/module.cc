@@ -7,6 +7,7 @@
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/persuasion.h"
+#include "taebp/report/metrics.h"
 #include "taebp/report/report.h"
 #include "taebp/runner/runner.h"
 #include "taebp/runner/theory.h"
@@ -165,6 +166,8 @@ PYBIND11_MODULE(_taebp, m) {
         taebp::SolveJson(taebp::ParseProblemConfig(problem_text, origin), origin);
     return py::make_tuple(out.json.dump(), out.optimal);
   });
+
+  m.def("metrics_json", [] { return taebp::MetricsJson(); });
 
   m.def("encounter_columns",
         [](bool beyond, bool network) { return taebp::EncounterCsvColumns(beyond, network); },

@@ -47,7 +47,7 @@ from . import _taebp
 
 __all__ = [
     "theory", "design", "predict", "solve", "run", "sweep", "load_run", "load_sweep",
-    "Table", "RunResult", "SweepResult", "to_pandas", "encounter_columns",
+    "Table", "RunResult", "SweepResult", "to_pandas", "encounter_columns", "metrics", "metric_sections",
     "ConfigError", "InvalidArgument", "OutputError", "SumoError", "BusyError", "StallError",
     "SweepError",
     "__version__",
@@ -255,10 +255,30 @@ def to_pandas(obj):
 def encounter_columns(beyond=False, network=False):
     """The columns of encounters.csv, in order; ``network=True``: those of a
     network scenario (adds ``both_proceed_collides``, ``premise``,
-    ``collision_after_handback``); ``beyond=True``: those
+    ``collision_after_handback``, ``encounter_kind``); ``beyond=True``: those
     of a run beyond the paper (dynamic / learned trust, noise,
     population_mean), which add columns after those."""
     return list(_taebp.encounter_columns(bool(beyond), bool(network)))
+
+
+def metrics():
+    """The result metrics, declared once in C++ (report/metrics.h; ``taebp
+    metrics``): a list of dicts with name, type (count, real, flag), unit,
+    levels (run, junction), scope (all, network, beyond), pool (how a sweep's
+    aggregate.csv pools the seeds: sum, rate, weighted, prediction, mean, max,
+    none), count / per (a rate's numerator / what it is per), was (its name
+    before taebp 0.2), description, columns (in summary.json, results.csv and
+    junctions.csv) and aggregate_columns (in aggregate.csv). A metric has the
+    same name in summary.json's policies.<p>, RunResult.to_pandas()["policies"],
+    SweepResult.results and SweepResult.aggregate."""
+    return json.loads(_taebp.metrics_json())["metrics"]
+
+
+def metric_sections():
+    """The structured parts of summary.json that are not metrics (scheme,
+    hv_trust, stalls, junctions, ...): dicts with name, level (run, junction),
+    scope, was and description."""
+    return json.loads(_taebp.metrics_json())["sections"]
 
 
 def _flatten(prefix, value, out):
@@ -307,7 +327,8 @@ class RunResult:
     def to_pandas(self):
         """{"encounters": one row per encounter, "junctions": one row per
         junction and policy, "policies": one row per policy with summary.json's
-        metrics flattened (e.g. theory.dc_rate)}, plus "timeseries" and
+        metrics (the names of the metric table, e.g. theory_dc_rate;
+        sections such as scheme flattened: scheme.nudge)}, plus "timeseries" and
         "hv_trust" for runs beyond the paper."""
         pd = _pandas()
         rows = []

@@ -110,6 +110,11 @@ long CrossingsAv(const MetricFacts& f) { return f.junction ? f.junction->crossin
 long CrossingsHv(const MetricFacts& f) { return f.junction ? f.junction->crossings_hv : f.run->crossings_hv; }
 long Held(const MetricFacts& f) { return f.junction ? f.junction->held : f.run->held; }
 double WaitSum(const MetricFacts& f) { return f.junction ? f.junction->wait_sum : f.run->wait_sum; }
+long HeldAv(const MetricFacts& f) { return f.junction ? f.junction->held_av : f.run->held_av; }
+double WaitSumAv(const MetricFacts& f) {
+  return f.junction ? f.junction->wait_sum_av : f.run->wait_sum_av;
+}
+double Mean(double sum, long n) { return n > 0 ? sum / n : kNaN; }
 const NetworkRun& Net(const MetricFacts& f) { return f.run->network; }
 double PerTrip(const MetricFacts& f, double sum) {
   return Net(f).trips ? sum / Net(f).trips : 0.0;
@@ -225,6 +230,18 @@ const std::vector<Metric>& RunMetrics() {
     {"wait_max", T::kReal, "s", kPJ, S::kAll, Pool::kMax, nullptr, nullptr,
      "wait_at_stop_line.max", "longest wait of a held vehicle at the stop line",
      [](const MetricFacts& f) { return f.junction ? f.junction->wait_max : f.run->wait_max; }},
+    {"held_av", T::kCount, "", kPJ, S::kAll, Pool::kSum, nullptr, nullptr, nullptr,
+     "of the held vehicles, AVs",
+     [](const MetricFacts& f) { return D(HeldAv(f)); }},
+    {"held_hv", T::kCount, "", kPJ, S::kAll, Pool::kSum, nullptr, nullptr, nullptr,
+     "of the held vehicles, HVs",
+     [](const MetricFacts& f) { return D(Held(f) - HeldAv(f)); }},
+    {"wait_mean_av", T::kReal, "s", kPJ, S::kAll, Pool::kMean, nullptr, "held_av", nullptr,
+     "mean wait of the held AVs at the stop line",
+     [](const MetricFacts& f) { return Mean(WaitSumAv(f), HeldAv(f)); }},
+    {"wait_mean_hv", T::kReal, "s", kPJ, S::kAll, Pool::kMean, nullptr, "held_hv", nullptr,
+     "mean wait of the held HVs at the stop line",
+     [](const MetricFacts& f) { return Mean(WaitSum(f) - WaitSumAv(f), Held(f) - HeldAv(f)); }},
     {"queue_max", T::kReal, "veh", kJ, S::kAll, Pool::kMax, nullptr, nullptr, nullptr,
      "longest queue of halting vehicles on an approach lane (sampled each second)",
      [](const MetricFacts& f) {
@@ -335,6 +352,29 @@ const std::vector<Metric>& RunMetrics() {
     {"waiting_time_mean", T::kReal, "s", kP, S::kNetwork, Pool::kMean, nullptr, nullptr,
      "network.waiting_time_mean", "mean time per trip spent standing (SUMO's waitingTime)",
      [](const MetricFacts& f) { return PerTrip(f, Net(f).waiting_time_sum); }},
+    {"trips_av", T::kCount, "", kP, S::kNetwork, Pool::kSum, nullptr, nullptr, nullptr,
+     "of the trips, AVs'",
+     [](const MetricFacts& f) { return D(Net(f).trips_av); }},
+    {"trips_hv", T::kCount, "", kP, S::kNetwork, Pool::kSum, nullptr, nullptr, nullptr,
+     "of the trips, HVs'",
+     [](const MetricFacts& f) { return D(Net(f).trips - Net(f).trips_av); }},
+    {"time_loss_mean_av", T::kReal, "s", kP, S::kNetwork, Pool::kMean, nullptr, "trips_av",
+     nullptr, "mean delay of an AV's trip (SUMO's timeLoss)",
+     [](const MetricFacts& f) { return Mean(Net(f).time_loss_sum_av, Net(f).trips_av); }},
+    {"time_loss_mean_hv", T::kReal, "s", kP, S::kNetwork, Pool::kMean, nullptr, "trips_hv",
+     nullptr, "mean delay of an HV's trip (SUMO's timeLoss)",
+     [](const MetricFacts& f) {
+       return Mean(Net(f).time_loss_sum - Net(f).time_loss_sum_av, Net(f).trips - Net(f).trips_av);
+     }},
+    {"waiting_time_mean_av", T::kReal, "s", kP, S::kNetwork, Pool::kMean, nullptr, "trips_av",
+     nullptr, "mean time an AV's trip spent standing (SUMO's waitingTime)",
+     [](const MetricFacts& f) { return Mean(Net(f).waiting_time_sum_av, Net(f).trips_av); }},
+    {"waiting_time_mean_hv", T::kReal, "s", kP, S::kNetwork, Pool::kMean, nullptr, "trips_hv",
+     nullptr, "mean time an HV's trip spent standing (SUMO's waitingTime)",
+     [](const MetricFacts& f) {
+       return Mean(Net(f).waiting_time_sum - Net(f).waiting_time_sum_av,
+                   Net(f).trips - Net(f).trips_av);
+     }},
     // Beyond the paper: trust, the oracle, regret, learning, the last hour.
     {"trust_hvs", T::kCount, "", kP, S::kBeyond, Pool::kSum, nullptr, nullptr, "trust.hvs",
      "HVs registered (each with its drawn trust)",
@@ -409,7 +449,7 @@ const std::vector<Metric>& RunMetrics() {
      [](const MetricFacts& f) { return Learning(f, D(B(f).probes)); }},
     {"learning_final_mean_abs_error", T::kReal, "", kP, S::kBeyond, Pool::kMean, nullptr,
      nullptr, "learning.final_mean_abs_error",
-     "mean |belief mean - trust| over the HVs met, at the end (learned trust only)",
+     "mean absolute error of the belief mean against the trust, over the HVs met, at the end (learned trust only)",
      [](const MetricFacts& f) { return Learning(f, B(f).final_mean_abs_error); }},
     {"last_hour_from", T::kReal, "s", kP, S::kBeyond, Pool::kNone, nullptr, nullptr,
      "last_hour.from", "start of the last hour's window (or of the measurement)",

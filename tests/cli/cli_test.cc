@@ -454,8 +454,8 @@ TEST(CliRun, WritesDocumentedOutputsDeterministically) {
     EXPECT_DOUBLE_EQ(p.at("dc_rate").get<double>(), static_cast<double>(dc[name]) / encounters);
     const per::PredictedOutcome o =
         per::PredictOutcome(per::ParsePolicy(name), params, 0.6, lik);
-    EXPECT_NEAR(p.at("theory").at("collision_rate").get<double>(), o.collision_rate, 1e-12);
-    EXPECT_NEAR(p.at("theory").at("dc_rate").get<double>(), o.dc_rate, 1e-12);
+    EXPECT_NEAR(p.at("theory_collision_rate").get<double>(), o.collision_rate, 1e-12);
+    EXPECT_NEAR(p.at("theory_dc_rate").get<double>(), o.dc_rate, 1e-12);
     EXPECT_EQ(p.at("teleports").get<long>(), 0);
     EXPECT_EQ(p.at("other_collisions").get<long>(), 0);
   }

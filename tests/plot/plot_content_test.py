@@ -56,6 +56,35 @@ def sweep_dir(name, fixture, info):
     return d
 
 
+# aggregate.csv's metric columns, from the one metric table (taebp metrics):
+# the fixtures below give values by name; every other column is empty.
+import subprocess  # noqa: E402
+METRICS = json.loads(subprocess.run([taebp, "metrics", "--print", "json"], check=True,
+                                    capture_output=True, text=True).stdout)["metrics"]
+AGGREGATE = [c for m in METRICS if "run" in m["levels"] for c in m["aggregate_columns"]]
+
+
+def write_aggregate(path, axes, rows):
+    """aggregate.csv with this version's header: point, the swept `axes`,
+    policy, runs_ok, runs_failed, then every metric; `rows` are dicts."""
+    import csv
+    header = ["point"] + list(axes) + ["policy", "runs_ok", "runs_failed"] + AGGREGATE
+    for r in rows:
+        unknown = set(r) - set(header)
+        assert not unknown, "fixture columns not in the metric table: %s" % sorted(unknown)
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(header)
+        for r in rows:
+            w.writerow(["" if r.get(c) is None else r.get(c) for c in header])
+
+
+def read_rows(path):
+    import csv
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
 def texts(fig):
     out = [t.get_text() for t in fig.texts]
     if fig._suptitle is not None:
@@ -97,12 +126,10 @@ d = sweep_dir("penetration", "aggregate_penetration.csv",
               {"config": {"model": {"prior_go": 0.2, "collision_penalty": 3.0, "trust": 0.6},
                           "scenario": {"avs": 8, "hvs": 8, "duration": 1800, "loop_length": 80}},
                "replicates": 3})
-with open(os.path.join(d, "aggregate.csv")) as f:
-    lines = f.read().splitlines()
-# A sweep of this version has wait_mean_sd; add it to the older fixture.
-lines = [lines[0] + ",wait_mean_sd"] + [l + ",0.25" for l in lines[1:]]
-with open(os.path.join(d, "aggregate.csv"), "w") as f:
-    f.write("\n".join(lines) + "\n")
+pen_rows = read_rows(os.path.join(d, "aggregate.csv"))
+for r in pen_rows:
+    r["wait_mean_sd"] = 0.25
+write_aggregate(os.path.join(d, "aggregate.csv"), ["scenario.avs", "scenario.hvs"], pen_rows)
 figures.clear()
 assert plot.main([d, "--no-theory-binary"]) == 0
 fig = figures[-1]
@@ -119,9 +146,9 @@ check(any("80 m loops" in t for t in all_text), "penetration: the loop length in
 check(any("Caveat" in t and "track" in t for t in all_text), "penetration: the track caveat")
 check(not any("stalled" in t for t in all_text), "penetration: no stall mark without stalled runs")
 # The same with one run of the second row stalled: ringed on the throughput panel.
-lines = [lines[0] + ",stalled_runs"] + [l + (",1" if i == 1 else ",0") for i, l in enumerate(lines[1:])]
-with open(os.path.join(d, "aggregate.csv"), "w") as f:
-    f.write("\n".join(lines) + "\n")
+for i, r in enumerate(pen_rows):
+    r["stalled"] = 1 if i == 1 else 0
+write_aggregate(os.path.join(d, "aggregate.csv"), ["scenario.avs", "scenario.hvs"], pen_rows)
 figures.clear()
 assert plot.main([d, "--no-theory-binary"]) == 0
 fig = figures[-1]
@@ -134,14 +161,15 @@ check(any("a seed stalled" in t for t in texts(fig)), "penetration: the legend e
 # ---- noise: the sigma = 0 limit is the paper's result, not the curves' end
 d = os.path.join(work, "noise")
 os.makedirs(d)
-cols = ("point,model.noise.scale,model.noise.design,policy,encounters,collision_rate,collision_rate_lo,"
-        "collision_rate_hi,dc_rate,dc_rate_lo,dc_rate_hi,theory_collision_rate,theory_dc_rate")
-rows = ["0,0.05,aware,ta_ebp,4118,0.0015,0.0007,0.0032,0.357,0.342,0.371,0.002,0.37125",
-        "1,0.05,paper,ta_ebp,4307,0.0947,0.0863,0.1038,0.185,0.174,0.197,0.1,0.1875",
-        "2,0.1,aware,ta_ebp,4114,0.0015,0.0007,0.0032,0.356,0.342,0.371,0.002,0.37125",
-        "3,0.1,paper,ta_ebp,4307,0.0947,0.0863,0.1038,0.185,0.174,0.197,0.1,0.1875"]
-with open(os.path.join(d, "aggregate.csv"), "w") as f:
-    f.write("\n".join([cols] + rows) + "\n")
+NOISE = ("point", "model.noise.scale", "model.noise.design", "policy", "encounters",
+         "collision_rate", "collision_rate_lo", "collision_rate_hi", "dc_rate", "dc_rate_lo",
+         "dc_rate_hi", "theory_collision_rate", "theory_dc_rate")
+write_aggregate(os.path.join(d, "aggregate.csv"), ["model.noise.scale", "model.noise.design"],
+                [dict(zip(NOISE, row.split(","))) for row in (
+                    "0,0.05,aware,ta_ebp,4118,0.0015,0.0007,0.0032,0.357,0.342,0.371,0.002,0.37125",
+                    "1,0.05,paper,ta_ebp,4307,0.0947,0.0863,0.1038,0.185,0.174,0.197,0.1,0.1875",
+                    "2,0.1,aware,ta_ebp,4114,0.0015,0.0007,0.0032,0.356,0.342,0.371,0.002,0.37125",
+                    "3,0.1,paper,ta_ebp,4307,0.0947,0.0863,0.1038,0.185,0.174,0.197,0.1,0.1875")])
 with open(os.path.join(d, "sweep.json"), "w") as f:
     json.dump({"config": {"model": {"prior_go": 0.2, "collision_penalty": 3.0, "trust": 0.6,
                                     "likelihood": {"type": "linear", "s_max": 2.0},
@@ -164,18 +192,16 @@ for ax, metric, paper in ((dc_ax, "DC", 0.375), (coll_ax, "collision", 0.0)):
 # served = offered, the title inside the figure
 d = os.path.join(work, "network_sweep")
 os.makedirs(d)
-cols = ("point,scenario.demand.flow,scenario.av_share,policy,runs_ok,runs_failed,encounters,"
-        "served_flow,served_flow_sd,time_loss_mean,time_loss_mean_sd,waiting_to_depart_end,"
-        "offered_flow,stalled_runs")
 rows = []
 for point, flow in enumerate((100, 200, 300)):
     for policy, enc in (("sumo_native", 0), ("no_ebp", 40 * (point + 1)), ("ta_ebp", 37 * (point + 1))):
         stalled = 2 if (policy == "ta_ebp" and flow == 300) else 0
-        rows.append("%d,%d,0.5,%s,3,0,%d,%d,5,%g,1,0,%d,%d"
-                    % (point, flow, policy, enc, 16 * flow * (0.7 if stalled else 1), 20 + flow / 10,
-                       16 * flow, stalled))
-with open(os.path.join(d, "aggregate.csv"), "w") as f:
-    f.write("\n".join([cols] + rows) + "\n")
+        rows.append({"point": point, "scenario.demand.flow": flow, "scenario.av_share": 0.5,
+                     "policy": policy, "runs_ok": 3, "runs_failed": 0, "encounters": enc,
+                     "served_flow": "%d" % (16 * flow * (0.7 if stalled else 1)), "served_flow_sd": 5,
+                     "time_loss_mean": "%g" % (20 + flow / 10), "time_loss_mean_sd": 1,
+                     "waiting_to_depart_end": 0, "offered_flow": 16 * flow, "stalled": stalled})
+write_aggregate(os.path.join(d, "aggregate.csv"), ["scenario.demand.flow", "scenario.av_share"], rows)
 with open(os.path.join(d, "sweep.json"), "w") as f:
     json.dump({"config": {"scenario": {"kind": "network", "duration": 1200,
                                        "grid": {"columns": 4, "rows": 4, "attach_length": 100,
@@ -229,7 +255,7 @@ for ax, policy in zip(panels, ("no_ebp", "ta_ebp")):
                c.__class__.__name__ == "PathCollection" for o in c.get_offsets()]
     check(len(offsets) == 9, "map: %s: 9 junction markers (got %d)" % (policy, len(offsets)))
     # The marker colour follows the sign of the queueing-delay change.
-    base = {j["id"]: plot.queueing_delay(j) for j in summary["policies"]["sumo_native"]["junctions"]}
+    base = {j["junction"]: plot.queueing_delay(j) for j in summary["policies"]["sumo_native"]["junctions"]}
     lanes, nodes = plot.read_net(os.path.join(run, "network.net.xml"))
     signs_ok = True
     compared = []
@@ -239,7 +265,7 @@ for ax, policy in zip(panels, ("no_ebp", "ta_ebp")):
             continue
         for (x, y), colour in zip(c.get_offsets(), c.get_facecolors()):
             jid = min(nodes, key=lambda k: (nodes[k][0] - x) ** 2 + (nodes[k][1] - y) ** 2)
-            j = [q for q in summary["policies"][policy]["junctions"] if q["id"] == jid][0]
+            j = [q for q in summary["policies"][policy]["junctions"] if q["junction"] == jid][0]
             d, b = plot.queueing_delay(j), base.get(jid)
             if d is None or b is None or abs(d - b) < 1e-3:
                 continue

@@ -27,6 +27,12 @@ def documented():
     return docs
 
 
+def metric_columns(level, aggregate=False):
+    """The metric columns of a level from the one table (taebp.metrics())."""
+    key = "aggregate_columns" if aggregate else "columns"
+    return [c for m in taebp.metrics() if level in m["levels"] for c in m[key]]
+
+
 def expand(columns, swept, run_columns):
     out = []
     for c in columns:
@@ -34,6 +40,12 @@ def expand(columns, swept, run_columns):
             out += swept
         elif c == "<encounters.csv of a run>":
             out += run_columns
+        elif c == "<run metrics>":
+            out += metric_columns("run")
+        elif c == "<pooled run metrics>":
+            out += metric_columns("run", aggregate=True)
+        elif c == "<junction metrics>":
+            out += metric_columns("junction")
         else:
             out.append(c)
     return out
@@ -87,3 +99,29 @@ def test_every_csv_of_a_run_and_a_sweep(tmp_path):
             empty = [r for r in rows if r["scenario.avs"] == "0"]
             assert empty and all(r["collision_rate"] == "" for r in empty)
     assert read > 100
+
+
+def test_a_run_reports_exactly_the_tables_metrics_under_their_names(tmp_path):
+    # summary.json of a real run: every key of a policy is a metric of the
+    # table (or a rate's interval) or one of its sections, and every run-level
+    # metric of the run's scope is there; a sweep's aggregate has the same names.
+    metrics = taebp.metrics()
+    sections = {s["name"] for s in taebp.metric_sections() if s["level"] == "run"}
+    r = taebp.run(PAPER, overrides=["scenario.duration=120"])
+    for name, p in r.summary["policies"].items():
+        declared = {c for m in metrics if "run" in m["levels"] for c in m["columns"]}
+        assert set(p) - declared - sections == set(), name
+        paper_scope = [c for m in metrics if "run" in m["levels"] and m["scope"] == "all"
+                       for c in m["columns"]]
+        assert [k for k in p if k in declared] == paper_scope, name
+    frame = r.to_pandas()["policies"] if _has_pandas() else None
+    if frame is not None:
+        assert "theory_dc_rate" in frame.columns and "dc_rate_lo" in frame.columns
+
+
+def _has_pandas():
+    try:
+        import pandas  # noqa: F401
+        return True
+    except ImportError:
+        return False

@@ -31,6 +31,37 @@ def test_edges_are_exact_closed_forms(z, n):
     assert abs(lo - (1 - edge)) < 1e-14 and hi == 1.0
 
 
+# Student's t, two-sided 95 % (Abramowitz & Stegun Table 26.10; any t table),
+# and df 1 / df 2 in closed form: tan(0.95 pi / 2) and sqrt(2 / (1 - 0.95^2) - 2).
+@pytest.mark.parametrize("df,t", [(1, 12.7062047), (2, 4.3026527), (3, 3.1824463),
+                                  (5, 2.5705818), (9, 2.2621572), (19, 2.0930241),
+                                  (30, 2.0422725), (120, 1.9799304)])
+def test_student_t_quantile_against_the_table(df, t):
+    assert abs(stats.student_t_quantile(df) - t) < 5e-7
+
+
+def test_student_t_closed_forms_and_limits():
+    import math
+    assert abs(stats.student_t_quantile(1) - math.tan(0.95 * math.pi / 2)) < 1e-9
+    assert abs(stats.student_t_quantile(2) - math.sqrt(2 / (1 - 0.95 ** 2) - 2)) < 1e-9
+    assert abs(stats.student_t_quantile(2, 0.5) - math.sqrt(2 / (1 - 0.5 ** 2) - 2)) < 1e-9
+    # Large df: the Cornish-Fisher expansion t = z + (z^3 + z) / (4 df) + O(1/df^2).
+    z = stats.Z95
+    assert abs(stats.student_t_quantile(2000) - (z + (z ** 3 + z) / 8000)) < 1e-6
+    for bad in ((0, 0.95), (2.5, 0.95), (3, 1.0)):
+        with pytest.raises(ValueError):
+            stats.student_t_quantile(*bad)
+
+
+def test_mean_interval():
+    m, lo, hi = stats.mean_interval([1, 2, 3, 4])
+    half = stats.student_t_quantile(3) * (5 / 3) ** 0.5 / 2  # sd = sqrt(5/3), n = 4
+    assert m == 2.5 and abs(lo - (2.5 - half)) < 1e-12 and abs(hi - (2.5 + half)) < 1e-12
+    assert stats.mean_interval([7.0]) == (7.0, 7.0, 7.0)
+    assert stats.mean_interval([]) == (None, None, None)
+    assert stats.mean_interval([3, 3, 3]) == (3.0, 3.0, 3.0)
+
+
 def test_small_samples_and_bad_counts():
     assert abs(stats.wilson(0, 1)[1] - 0.7935) < 5e-5
     assert abs(stats.wilson(1, 1)[0] - 0.2065) < 5e-5
@@ -48,10 +79,10 @@ def test_the_same_numbers_as_the_cpp_interval_in_a_run(tmp_path):
     checked = 0
     for name, p in r.summary["policies"].items():
         n = p["encounters"]
-        for key, k in (("collision_rate_ci95", p["collisions"]), ("dc_rate_ci95", p["dc"])):
+        for key, k in (("collision_rate", p["collisions"]), ("dc_rate", p["dc"])):
             lo, hi = stats.wilson(k, n)
-            assert p[key][0] == pytest.approx(lo, abs=1e-12), (name, key)
-            assert p[key][1] == pytest.approx(hi, abs=1e-12), (name, key)
+            assert p[key + "_lo"] == pytest.approx(lo, abs=1e-12), (name, key)
+            assert p[key + "_hi"] == pytest.approx(hi, abs=1e-12), (name, key)
             checked += 1
     assert checked == 4
 

@@ -2,6 +2,8 @@
 // spec errors naming the key, the config hash, journal parsing and tables.
 #include "taebp/sweep/plan.h"
 
+#include "taebp/report/metrics.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -195,7 +197,10 @@ TEST(SweepGrid, HashCoversConfigAndGridButNotReplicates) {
 
 Json Metrics(long encounters, long collisions) {
   Json m;
-  for (const std::string& c : MetricColumns()) m[c] = 0.5;
+  for (const std::string& c : MetricColumns()) {
+    const Metric* metric = FindMetric(c);  // NAME_lo / NAME_hi: a rate's interval
+    m[c] = metric && metric->type != MetricType::kReal ? Json(1) : Json(0.5);
+  }
   m["encounters"] = encounters;
   m["collisions"] = collisions;
   m["dc"] = 0;
@@ -230,11 +235,11 @@ TEST(SweepJournal, TornTailIgnoredOtherSweepRefusedOkWins) {
   AddEntry(&both, p, JournalEntry(p, p.tasks[2], "failed", "config error: model.trust", nullptr));
   const std::string csv = ResultsCsv(p, both);
   EXPECT_THAT(csv, HasSubstr("\n0,1,11,0.2,no_trust,ok,,10,2,0.5,"));
-  EXPECT_THAT(csv, HasSubstr("\n0,1,11,0.2,ta_ebp,ok,,0,0,,,,0,,,,0.5,0.5,,,0.5,"));
+  EXPECT_THAT(csv, HasSubstr("\n0,1,11,0.2,ta_ebp,ok,,0,0,,,,0,,,,0.5,0.5,0.5,0.5,,,1,"));
   EXPECT_THAT(csv, HasSubstr("\n1,0,10,0.8,ta_ebp,failed,config error: model.trust,,,"));
   EXPECT_THAT(ResultsJsonl(p, both), HasSubstr("\"collision_rate\":null"));
   const std::string agg = AggregateCsv(p, both);
-  EXPECT_THAT(agg, HasSubstr("\n0,0.2,no_trust,1,0,10,0.2,"));
+  EXPECT_THAT(agg, HasSubstr("\n0,0.2,no_trust,1,0,10,2,0.2,"));
   EXPECT_THAT(agg, HasSubstr("\n1,0.8,ta_ebp,0,1,,"));
 }
 

@@ -1,6 +1,6 @@
 // The result metrics, declared once.
 //
-// Every number a run reports per policy (summary.json's policies.<policy>) or
+// Every number a run reports per policy (summary.json's policies.POLICY) or
 // per controlled junction (summary.json's junctions[], junctions.csv) is one
 // row of RunMetrics(): its one name, type, unit, meaning, the levels it is
 // reported at and how a sweep pools it over seeds. summary.json, junctions.csv,
@@ -39,8 +39,8 @@ enum class Pool {
 
 // Where a metric is reported.
 enum MetricLevel : unsigned {
-  kPolicyLevel = 1,    // summary.json policies.<p>, results.csv, aggregate.csv
-  kJunctionLevel = 2,  // summary.json policies.<p>.junctions[], junctions.csv
+  kPolicyLevel = 1,    // summary.json policies.POLICY, results.csv, aggregate.csv
+  kJunctionLevel = 2,  // summary.json policies.POLICY.junctions[], junctions.csv
 };
 
 // Which runs have it (absent from summary.json otherwise; empty in the CSVs).
@@ -74,7 +74,7 @@ const std::vector<Metric>& RunMetrics();
 // The metric named `name`, or nullptr.
 const Metric* FindMetric(const std::string& name);
 
-// A structured, non-numeric part of summary.json's policies.<p> (or of a
+// A structured, non-numeric part of summary.json's policies.POLICY (or of a
 // junction's object: `junction` true).
 struct MetricSection {
   const char* name;

@@ -93,6 +93,8 @@ struct JunctionRun {
   long crossings_av = 0, crossings_hv = 0;  // vehicles through the junction
   long held = 0;                            // vehicles held at a stop line and released
   double wait_sum = 0, wait_max = 0;        // their waits at the line (s)
+  long held_av = 0;                         // of those, AVs
+  double wait_sum_av = 0;
   // AV-HV meetings on conflicting movements where both proceeding would not
   // collide (a merge the AV leads, ...): not the paper's game, they went by
   // arrival (scenario.encounter_pairs: colliding).
@@ -125,6 +127,8 @@ struct NetworkRun {
   long trips = 0;
   long trips_unfinished = 0;         // of those, still in the network at the end
   double duration_sum = 0, time_loss_sum = 0, waiting_time_sum = 0;  // their sums (s)
+  long trips_av = 0;                 // of the trips, AVs' (scenario.av_types / av_share)
+  double time_loss_sum_av = 0, waiting_time_sum_av = 0;
   double time_loss_max = 0;
 };
 
@@ -205,6 +209,8 @@ struct PolicyRun {
   long crossings_av = 0, crossings_hv = 0;
   long held = 0;                          // vehicles held at a stop line and released
   double wait_sum = 0, wait_max = 0;      // their stop-line waits (s)
+  long held_av = 0;                       // of those, AVs
+  double wait_sum_av = 0;
   long other_collisions = 0;              // collisions outside AV-HV encounters
   // ... of which one vehicle was an encounter's, released with SUMO's right
   // of way off (the HV driving recklessly, the AV that goes) and the other a

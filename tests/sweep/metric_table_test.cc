@@ -1,0 +1,422 @@
+// The one metric table (report/metrics.h) against every output made from it:
+// summary.json (policy and junction objects), junctions.csv, the sweep's
+// results and aggregate (pooled as declared), the test fixtures, the README's
+// generated table and CHANGELOG.md's renames. A metric added to the table but
+// missing from an output, or an output key not in the table, fails here.
+#include "taebp/report/metrics.h"
+#include "taebp/report/report.h"
+#include "taebp/sweep/plan.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace taebp::sweep {
+namespace {
+
+using ::testing::ElementsAreArray;
+using ::testing::HasSubstr;
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> SplitCsvLine(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cell;
+  for (char c : line) {
+    if (c == ',') {
+      out.push_back(cell);
+      cell.clear();
+    } else {
+      cell += c;
+    }
+  }
+  out.push_back(cell);
+  return out;
+}
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+EncounterRecord Encounter(const std::string& junction, double time, bool collision, bool dc,
+                          double commanded) {
+  EncounterRecord e;
+  e.junction = junction;
+  e.time = time;
+  e.collision = collision;
+  e.hv_dc = dc;
+  e.commanded = commanded;
+  e.observed = commanded + 1e-6;
+  e.theory_dc = 0.375;
+  e.theory_collision = 0.0;
+  e.beyond.oracle_dc = 0.4;
+  e.beyond.regret = 0.025;
+  e.beyond.failure_probability = 0.1;
+  return e;
+}
+
+// A network run beyond the paper (dynamics, learning and noise on), with
+// encounters at one of its two junctions.
+PolicyRun NetworkRun() {
+  PolicyRun r;
+  r.policy = "ta_ebp";
+  r.scenario_kind = "network";
+  r.simulated_seconds = 700;
+  r.measured_seconds = 600;
+  r.crossings_av = 30;
+  r.crossings_hv = 50;
+  r.held = 4;
+  r.wait_sum = 10;
+  r.wait_max = 4;
+  r.encounters = {Encounter("J1", 150, true, false, 1.6), Encounter("J1", 300, false, true, 1.6),
+                  Encounter("J1", 500, false, false, 0)};
+  r.encounters_formed = 4;
+  r.encounters_unfinished = 1;
+  JunctionRun j1;
+  j1.id = "J1";
+  j1.type = "allway_stop";
+  j1.original_type = "priority";
+  j1.rule = "all_way_stop";
+  j1.crossings_av = 20;
+  j1.crossings_hv = 30;
+  j1.held = 4;
+  j1.wait_sum = 10;
+  j1.wait_max = 4;
+  j1.approaches = {{"a_0", 3, 60, 600}, {"b_0", 5, 120, 600}};
+  JunctionRun j2 = j1;
+  j2.id = "J2";
+  j2.crossings_av = 10;
+  j2.crossings_hv = 20;
+  j2.held = 0;
+  j2.wait_sum = 0;
+  j2.wait_max = 0;
+  r.junctions = {j1, j2};
+  r.network.departed = 90;
+  r.network.arrived = 84;
+  r.network.pending_end = 2;
+  r.network.trips = 90;
+  r.network.trips_unfinished = 6;
+  r.network.time_loss_sum = 900;
+  r.network.duration_sum = 4500;
+  r.network.waiting_time_sum = 180;
+  r.stalls = {{"J2", 100, 400}};
+  r.beyond.on = true;
+  r.beyond.long_run = true;
+  r.beyond.learning = true;
+  r.beyond.noise = true;
+  r.beyond.final_mean_trust = 0.55;
+  r.beyond.expected_long_run_mean = 0.5;
+  return r;
+}
+
+PolicyRun Figure8Run() {
+  PolicyRun r;
+  r.policy = "no_ebp";
+  r.simulated_seconds = 300;
+  r.measured_seconds = 300;
+  r.theory.dc_rate = 0;
+  r.junctions = {JunctionRun{}};
+  r.junctions[0].id = "C";
+  return r;
+}
+
+nlohmann::ordered_json Summary(const std::vector<PolicyRun>& runs) {
+  Provenance prov;
+  prov.config_json = "{}";
+  return nlohmann::ordered_json::parse(SummaryJson(runs, prov));
+}
+
+// What the table says a policy (junction) object of `run` holds, in order.
+std::vector<std::string> Expected(const PolicyRun& run, MetricLevel level) {
+  std::vector<std::string> keys;
+  if (level == kJunctionLevel)
+    for (const MetricSection& s : RunSections())
+      if (s.junction && std::string(s.name) != "approaches") keys.emplace_back(s.name);
+  for (const Metric& m : RunMetrics()) {
+    if (!(m.levels & level)) continue;
+    const bool in_scope = m.scope == MetricScope::kAll ||
+                          (m.scope == MetricScope::kNetwork && run.scenario_kind == "network") ||
+                          (m.scope == MetricScope::kBeyond && run.beyond.on &&
+                           run.policy != "sumo_native");
+    if (!in_scope) continue;
+    for (const std::string& c : MetricColumns(m, false)) keys.push_back(c);
+  }
+  for (const MetricSection& s : RunSections()) {
+    if (s.junction != (level == kJunctionLevel)) continue;
+    if (level == kJunctionLevel && std::string(s.name) != "approaches") continue;
+    if (s.scope == MetricScope::kBeyond && !(run.beyond.on && run.policy != "sumo_native"))
+      continue;
+    keys.emplace_back(s.name);
+  }
+  return keys;
+}
+
+std::vector<std::string> Keys(const nlohmann::ordered_json& j) {
+  std::vector<std::string> keys;
+  for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
+  return keys;
+}
+
+TEST(MetricTable, IsWellFormed) {
+  std::set<std::string> names;
+  for (const Metric& m : RunMetrics()) {
+    SCOPED_TRACE(m.name);
+    std::set<std::string> own;  // its columns in runs and pooled
+    for (bool aggregate : {false, true})
+      for (const std::string& c : MetricColumns(m, aggregate)) own.insert(c);
+    for (const std::string& c : own)
+      EXPECT_TRUE(names.insert(c).second) << c << " is declared twice";
+    EXPECT_NE(m.levels, 0u);
+    EXPECT_GT(std::string(m.description).size(), 10u);
+    EXPECT_EQ(std::string(m.description).find('|'), std::string::npos) << "breaks the table";
+    if (m.pool == Pool::kRate) {
+      ASSERT_NE(m.count, nullptr);
+    }
+    if (m.pool == Pool::kRate || m.pool == Pool::kWeighted || m.pool == Pool::kPrediction) {
+      ASSERT_NE(m.per, nullptr);
+    }
+    for (const char* ref : {m.count, m.per}) {
+      if (!ref) continue;
+      const Metric* r = FindMetric(ref);
+      ASSERT_NE(r, nullptr) << ref;
+      EXPECT_EQ(r->levels & m.levels, m.levels) << ref << " is not reported where " << m.name << " is";
+      EXPECT_NE(r->type, MetricType::kReal) << ref << " is not a count";
+    }
+  }
+  for (const MetricSection& s : RunSections())
+    EXPECT_EQ(FindMetric(s.name), nullptr) << s.name << " is both a metric and a section";
+}
+
+TEST(MetricTable, SummaryJsonHoldsExactlyTheTable) {
+  const std::vector<PolicyRun> runs = {NetworkRun(), Figure8Run()};
+  const auto s = Summary(runs);
+  for (const PolicyRun& r : runs) {
+    SCOPED_TRACE(r.policy);
+    const auto& p = s["policies"][r.policy];
+    EXPECT_THAT(Keys(p), ElementsAreArray(Expected(r, kPolicyLevel)));
+    for (const auto& j : p["junctions"])
+      EXPECT_THAT(Keys(j), ElementsAreArray(Expected(r, kJunctionLevel)));
+  }
+  // Values computed independently of the table.
+  const auto& p = s["policies"]["ta_ebp"];
+  EXPECT_EQ(p["encounters"], 3);
+  EXPECT_DOUBLE_EQ(p["collision_rate"].get<double>(), 1.0 / 3);
+  const Interval ci = Wilson(1, 3);
+  EXPECT_DOUBLE_EQ(p["collision_rate_lo"].get<double>(), ci.low);
+  EXPECT_DOUBLE_EQ(p["collision_rate_hi"].get<double>(), ci.high);
+  EXPECT_DOUBLE_EQ(p["served_flow"].get<double>(), 84 * 3600.0 / 600);
+  EXPECT_DOUBLE_EQ(p["throughput_all"].get<double>(), 80 / (600 / 3600.0));
+  EXPECT_DOUBLE_EQ(p["time_loss_mean"].get<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(p["wait_mean"].get<double>(), 2.5);
+  EXPECT_EQ(p["nudges"], 2);
+  EXPECT_EQ(p["failures"], 1);  // the first encounter: nudged, then the HV drove recklessly
+  EXPECT_EQ(p["stalled"], true);
+  EXPECT_DOUBLE_EQ(p["regret_per_encounter"].get<double>(), 0.025);
+  EXPECT_DOUBLE_EQ(p["oracle_dc_rate"].get<double>(), 0.4);
+  EXPECT_EQ(p["last_hour_encounters"], 3);
+  const auto& j1 = p["junctions"][0];
+  EXPECT_EQ(j1["junction"], "J1");
+  EXPECT_DOUBLE_EQ(j1["throughput_all"].get<double>(), 50 * 3600.0 / 600);
+  EXPECT_DOUBLE_EQ(j1["queue_mean"].get<double>(), 180.0 / 1200);
+  EXPECT_DOUBLE_EQ(j1["queue_max"].get<double>(), 5);
+  EXPECT_EQ(j1["collisions"], 1);
+  EXPECT_TRUE(p["junctions"][1]["wait_mean"].is_null()) << "nobody held at J2";
+  const auto& f8 = s["policies"]["no_ebp"];
+  EXPECT_FALSE(f8.contains("served_flow")) << "a network metric on the figure-8";
+  EXPECT_FALSE(f8.contains("regret")) << "a beyond metric in a paper run";
+}
+
+TEST(MetricTable, JunctionsCsvIsTheSummarysJunctionsRowForRow) {
+  const std::vector<PolicyRun> runs = {NetworkRun(), Figure8Run()};
+  const auto s = Summary(runs);
+  const std::vector<std::string> lines = Lines(JunctionsCsv(runs));
+  std::vector<std::string> header = {"policy", "junction", "type", "original_type", "rule"};
+  for (const std::string& c : MetricColumns(kJunctionLevel, false)) header.push_back(c);
+  ASSERT_THAT(SplitCsvLine(lines[0]), ElementsAreArray(header));
+  ASSERT_EQ(lines.size(), 4u);
+  std::size_t row = 1;
+  for (const PolicyRun& r : runs) {
+    for (const auto& j : s["policies"][r.policy]["junctions"]) {
+      const std::vector<std::string> cells = SplitCsvLine(lines[row++]);
+      ASSERT_EQ(cells.size(), header.size());
+      EXPECT_EQ(cells[0], r.policy);
+      for (std::size_t c = 1; c < header.size(); ++c) {
+        SCOPED_TRACE(header[c]);
+        const auto& v = j[header[c]];
+        if (v.is_null()) {
+          EXPECT_EQ(cells[c], "");
+        } else if (v.is_string()) {
+          EXPECT_EQ(cells[c], v.get<std::string>());
+        } else {
+          EXPECT_DOUBLE_EQ(std::stod(cells[c]), v.get<double>());
+        }
+      }
+    }
+  }
+}
+
+TEST(MetricTable, TheSweepReadsEveryRunMetricUnderItsName) {
+  const std::vector<PolicyRun> runs = {NetworkRun(), Figure8Run()};
+  const auto s = Summary(runs);
+  const Json m = MetricsFromSummary(Json::parse(s.dump()), {"ta_ebp", "no_ebp"});
+  EXPECT_THAT(MetricColumns(), ElementsAreArray(MetricColumns(kPolicyLevel, false)));
+  for (const char* p : {"ta_ebp", "no_ebp"}) {
+    SCOPED_TRACE(p);
+    EXPECT_THAT(Keys(m[p]), ElementsAreArray(MetricColumns()));
+    for (const std::string& c : MetricColumns()) {
+      const auto& in_summary = s["policies"][p];
+      if (!in_summary.contains(c)) {
+        EXPECT_TRUE(m[p][c].is_null()) << c;
+      } else if (in_summary[c].is_boolean()) {
+        EXPECT_EQ(m[p][c], in_summary[c].get<bool>() ? 1 : 0) << c;
+      } else {
+        EXPECT_EQ(m[p][c].dump(), in_summary[c].dump()) << c;
+      }
+    }
+  }
+}
+
+// One point, three seeds: each metric pooled as the table says, against sums
+// and means written out here.
+TEST(MetricTable, TheAggregatePoolsEachMetricAsDeclared) {
+  const Plan plan = ExpandSweep(
+      "scenario: {avs: 8, hvs: 8, duration: 60}\npolicies: [ta_ebp]\n"
+      "sweep:\n  replicates: 3\n  grid:\n    model.trust: [0.6]\n",
+      "test.yaml", {});
+  auto run = [](long enc, long coll, long dc, double served, double given, bool stalled,
+                double wait_max) {
+    Json m;
+    for (const std::string& c : MetricColumns()) m[c] = nullptr;
+    m["encounters"] = enc;
+    m["collisions"] = coll;
+    m["dc"] = dc;
+    m["collision_rate"] = enc ? static_cast<double>(coll) / enc : 0.0;
+    m["theory_dc_rate"] = 0.375;
+    m["theory_given_hvs_dc_rate"] = given;
+    m["served_flow"] = served;
+    m["stalled"] = stalled ? 1 : 0;
+    m["wait_max"] = wait_max;
+    m["simulated_seconds"] = 60.0;
+    return Json{{"ta_ebp", m}};
+  };
+  Journal journal;
+  AddEntry(&journal, plan, JournalEntry(plan, plan.tasks[0], "ok", "", run(10, 1, 4, 100, 0.3, false, 5)));
+  AddEntry(&journal, plan, JournalEntry(plan, plan.tasks[1], "ok", "", run(30, 2, 12, 130, 0.4, true, 9)));
+  AddEntry(&journal, plan, JournalEntry(plan, plan.tasks[2], "ok", "", run(0, 0, 0, 160, 0.9, false, 2)));
+  const std::vector<std::string> lines = Lines(AggregateCsv(plan, journal));
+  ASSERT_EQ(lines.size(), 2u);
+  std::vector<std::string> header = {"point", "model.trust", "policy", "runs_ok", "runs_failed"};
+  for (const std::string& c : MetricColumns(kPolicyLevel, true)) header.push_back(c);
+  ASSERT_THAT(SplitCsvLine(lines[0]), ElementsAreArray(header));
+  const std::vector<std::string> cells = SplitCsvLine(lines[1]);
+  ASSERT_EQ(cells.size(), header.size());
+  std::map<std::string, std::string> row;
+  for (std::size_t i = 0; i < header.size(); ++i) row[header[i]] = cells[i];
+  EXPECT_EQ(row["runs_ok"], "3");
+  EXPECT_EQ(row["encounters"], "40");                              // sum
+  EXPECT_EQ(row["collisions"], "3");
+  const Interval ci = Wilson(3, 40);                               // pooled rate
+  EXPECT_DOUBLE_EQ(std::stod(row["collision_rate"]), 3.0 / 40);
+  EXPECT_DOUBLE_EQ(std::stod(row["collision_rate_lo"]), ci.low);
+  EXPECT_DOUBLE_EQ(std::stod(row["collision_rate_hi"]), ci.high);
+  EXPECT_DOUBLE_EQ(std::stod(row["dc_rate"]), 16.0 / 40);
+  // Weighted by encounters; the run without encounters does not count.
+  EXPECT_NEAR(std::stod(row["theory_given_hvs_dc_rate"]), (10 * 0.3 + 30 * 0.4) / 40, 1e-15);
+  EXPECT_DOUBLE_EQ(std::stod(row["theory_dc_rate"]), 0.375);
+  EXPECT_DOUBLE_EQ(std::stod(row["served_flow"]), 130);            // mean and SD
+  EXPECT_DOUBLE_EQ(std::stod(row["served_flow_sd"]), 30);
+  EXPECT_EQ(row["stalled"], "1");                                   // runs that stalled
+  EXPECT_EQ(row["wait_max"], "9");                                  // max
+  EXPECT_EQ(row.count("simulated_seconds"), 0u) << "not pooled";
+  EXPECT_EQ(row["time_loss_mean"], "") << "absent in every run: empty";
+}
+
+TEST(MetricTable, ThePredictionWithoutEncountersIsThePlainMean) {
+  const Plan plan = ExpandSweep(
+      "scenario: {avs: 0, hvs: 16, duration: 60}\npolicies: [no_ebp]\n"
+      "sweep:\n  replicates: 2\n  grid:\n    model.trust: [0.6]\n",
+      "test.yaml", {});
+  auto run = [](double theory) {
+    Json m;
+    for (const std::string& c : MetricColumns()) m[c] = nullptr;
+    m["encounters"] = 0;
+    m["collision_rate"] = 0.0;
+    m["theory_dc_rate"] = theory;
+    m["theory_given_hvs_dc_rate"] = 0.0;
+    return Json{{"no_ebp", m}};
+  };
+  Journal journal;
+  AddEntry(&journal, plan, JournalEntry(plan, plan.tasks[0], "ok", "", run(0.2)));
+  AddEntry(&journal, plan, JournalEntry(plan, plan.tasks[1], "ok", "", run(0.4)));
+  const std::vector<std::string> lines = Lines(AggregateCsv(plan, journal));
+  const std::vector<std::string> header = SplitCsvLine(lines[0]);
+  const std::vector<std::string> cells = SplitCsvLine(lines[1]);
+  std::map<std::string, std::string> row;
+  for (std::size_t i = 0; i < header.size(); ++i) row[header[i]] = cells[i];
+  EXPECT_DOUBLE_EQ(std::stod(row["theory_dc_rate"]), 0.3);
+  EXPECT_EQ(row["theory_given_hvs_dc_rate"], "") << "no HV met";
+  EXPECT_EQ(row["collision_rate"], "") << "no encounter";
+  // In results.csv the undefined rates are empty too.
+  const std::string results = ResultsCsv(plan, journal);
+  const std::vector<std::string> rh = SplitCsvLine(Lines(results)[0]);
+  const std::vector<std::string> r1 = SplitCsvLine(Lines(results)[1]);
+  for (std::size_t i = 0; i < rh.size(); ++i)
+    if (rh[i] == "collision_rate" || rh[i] == "theory_given_hvs_dc_rate") {
+      EXPECT_EQ(r1[i], "") << rh[i];
+    }
+}
+
+TEST(MetricTable, TheFixturesHaveTheAggregatesColumns) {
+  for (const char* name : {"aggregate_mismatch.csv", "aggregate_penetration.csv",
+                           "aggregate_trust.csv"}) {
+    SCOPED_TRACE(name);
+    const std::string text = ReadFile(std::string(TAEBP_SOURCE_DIR) + "/tests/data/" + name);
+    ASSERT_FALSE(text.empty());
+    const std::vector<std::string> header = SplitCsvLine(Lines(text)[0]);
+    const auto policy = std::find(header.begin(), header.end(), "policy");
+    ASSERT_NE(policy, header.end());
+    const std::vector<std::string> metrics(policy + 3, header.end());
+    EXPECT_THAT(metrics, ElementsAreArray(MetricColumns(kPolicyLevel, true)))
+        << "the fixture's header differs from the table: run tools/refresh-metric-docs";
+  }
+}
+
+std::string Block(const std::string& doc, const std::string& marker) {
+  const std::string begin = "<!-- " + marker + ":begin";
+  const std::string end = "<!-- " + marker + ":end -->";
+  const auto b = doc.find(begin);
+  const auto e = doc.find(end);
+  if (b == std::string::npos || e == std::string::npos) return "(no " + marker + " block)";
+  const auto first = doc.find('\n', b) + 1;
+  return doc.substr(first, e - first);
+}
+
+TEST(MetricTable, ReadmeTableIsGenerated) {
+  const std::string readme = ReadFile(std::string(TAEBP_SOURCE_DIR) + "/README.md");
+  EXPECT_EQ(Block(readme, "metrics"), MetricsMarkdown() + "\n" + SampleColumnsMarkdown())
+      << "README.md's metric table differs from the table: run tools/refresh-metric-docs";
+  const std::string changelog = ReadFile(std::string(TAEBP_SOURCE_DIR) + "/CHANGELOG.md");
+  EXPECT_EQ(Block(changelog, "renames"), RenamesMarkdown())
+      << "CHANGELOG.md's renames differ from the table: run tools/refresh-metric-docs";
+  // Every metric is in the README's table under its name.
+  for (const Metric& m : RunMetrics())
+    EXPECT_THAT(readme, HasSubstr(std::string("| `") + m.name + "`")) << m.name;
+}
+
+}  // namespace
+}  // namespace taebp::sweep
