@@ -179,10 +179,11 @@ Premise EncounterGame::MajorPremiseNow(int av, int hv) const {
   const JunctionInfo& info = s_.topo.junctions()[a.junction];
   junction::Mover ma = g.av;
   ma.front = info.movements[g.av_movement].ArcOf(s_.sumo.LaneID(a.id), s_.sumo.LanePosition(a.id));
-  const double hf =
-      info.movements[g.hv_movement].ArcOf(s_.sumo.LaneID(h.id), s_.sumo.LanePosition(h.id));
-  if (ma.front < 0 || hf < 0) return Premise::kNoCollision;
-  const junction::Mover mh = Cruising(g.hv, hf, h.major_speed);
+  // The HV may still be upstream of its approach lane (negative arcs).
+  const std::optional<double> hf =
+      info.movements[g.hv_movement].PathArc(s_.sumo.LaneID(h.id), s_.sumo.LanePosition(h.id));
+  if (ma.front < 0 || !hf) return Premise::kNoCollision;
+  const junction::Mover mh = Cruising(g.hv, *hf, h.major_speed);
   switch (junction::PredictBothProceed(ma, mh, s_.dt)) {
     case junction::BothProceed::kCollide: return Premise::kHolds;
     case junction::BothProceed::kClear: return Premise::kNoCollision;

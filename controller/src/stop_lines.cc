@@ -120,30 +120,76 @@ void ObserveMajor(RunState& s, JunctionState& j) {
   });
   if (!av_waits) return;
   const int jx = s.Index(j);
-  for (const std::string& lane : s.topo.junctions()[jx].major_lanes) {
-    if (s.sumo.LaneVehicleNumber(lane) == 0) continue;
-    const std::vector<std::string> ids = s.sumo.LaneVehicleIDs(lane);
-    if (ids.empty()) continue;
-    const int h = s.vehicles.Find(ids.back());
-    if (h < 0) continue;
-    const Vehicle& v = s.vehicles[h];
-    if (v.kind != VehicleKind::kHV || v.state != State::kFree) continue;
+  const JunctionInfo& info = s.topo.junctions()[jx];
+  for (const std::string& lane : info.major_lanes) {
     const net::Lane* l = s.net.FindLane(lane);
     if (!l) continue;
+    // The first vehicle coming to this lane's line: its front vehicle, or,
+    // with the lane empty, the nearest front of the lanes feeding it whose
+    // route goes on through it (OSM approach lanes are often shorter than the
+    // game's window: the HV is still upstream when the window opens).
+    const MovementInfo* feeds = nullptr;
+    for (const MovementInfo& m : info.movements)
+      if (!m.controlled && m.from_lane == lane) feeds = &m;
+    if (!feeds) continue;
+    int h = -1;
+    std::size_t on_route = 0;  // where `lane`'s edge is on its route
+    double gap = 0;
+    bool blocked = false;  // the nearest vehicle is not one the controller knows
+    bool upstream = false;  // it is on a feeder, not the approach lane
+    std::string on_lane;
+    for (const auto& [feeder, offset] : feeds->feeders) {
+      if (s.sumo.LaneVehicleNumber(feeder) == 0) continue;
+      const std::vector<std::string> ids = s.sumo.LaneVehicleIDs(feeder);
+      const net::Lane* fl = s.net.FindLane(feeder);
+      // Front first: the first vehicle on this lane whose route goes on
+      // through `lane` (on the approach lane itself, its front vehicle).
+      for (auto id = ids.rbegin(); id != ids.rend(); ++id) {
+        const double d = offset + (fl ? fl->length : 0) - s.sumo.LanePosition(*id);
+        if ((h >= 0 || blocked) && d >= gap) break;
+        const int c = s.vehicles.Find(*id);
+        if (c < 0) {
+          blocked = true;
+          h = -1;
+          gap = d;
+          break;
+        }
+        const Vehicle& cv = s.vehicles[c];
+        const std::size_t from = static_cast<std::size_t>(std::max(0, cv.route_pos));
+        std::size_t k = from;
+        while (k < cv.route.size() && s.topo.EdgeName(cv.route[k]) != l->edge) ++k;
+        bool through = k < cv.route.size();
+        if (through && offset > 0) {  // upstream: its own edge comes before `lane`'s
+          through = false;
+          for (std::size_t q = from; q < k; ++q)
+            if (fl && s.topo.EdgeName(cv.route[q]) == fl->edge) through = true;
+        }
+        if (offset > 0 && !through) continue;  // turns off before: not in the way
+        blocked = false;
+        h = c;
+        gap = d;
+        on_route = k;
+        upstream = offset > 0;
+        on_lane = feeder;
+        break;
+      }
+    }
+    if (h < 0 || blocked) continue;
+    // Upstream only where its way to the approach lane has the right of way.
+    if (upstream && !feeds->IsUpstream(on_lane)) continue;
+    const Vehicle& v = s.vehicles[h];
+    if (v.kind != VehicleKind::kHV || v.state != State::kFree) continue;
     // Its next edge after this lane's.
     int movement = -1;
-    for (std::size_t k = std::max(0, v.route_pos); k + 1 < v.route.size(); ++k) {
-      if (s.topo.EdgeName(v.route[k]) != l->edge) continue;
-      movement = s.topo.MajorMovementFor(jx, lane, s.topo.EdgeName(v.route[k + 1]));
-      break;
-    }
+    if (on_route + 1 < v.route.size())
+      movement = s.topo.MajorMovementFor(jx, lane, s.topo.EdgeName(v.route[on_route + 1]));
     // Only a movement with the right of way over every foe (SUMO's 'M'): an
     // HV keeping its way there does what SUMO's rules let it (a major left
     // turn yields to the oncoming major road, which a cruising HV would ignore).
     if (movement < 0 || s.topo.junctions()[jx].movements[movement].state != 'M') continue;
     const double speed = s.sumo.Speed(v.id);
     if (speed < kSlow) continue;  // a halted major vehicle yields under SUMO's rules
-    j.major.push_back({h, movement, l->length - s.sumo.LanePosition(v.id), speed});
+    j.major.push_back({h, movement, gap, speed});
   }
 }
 
@@ -248,13 +294,10 @@ bool StopLineEnvironment::MajorClear(int movement) {
 // The major-road encounter: MajorClear, but the HV of the encounter and the
 // vehicles behind it on its lane (and the lanes feeding it) are its own
 // traffic, and the gap must last `extra` s longer (the signal).
-bool StopLineEnvironment::MajorClearBut(int movement, int hv, double extra) {
+bool StopLineEnvironment::MajorClearBut(int movement, int hv, int hv_movement, double extra) {
   const Vehicle& h = s_.vehicles[hv];
-  std::vector<std::string> own;
-  const std::string at = s_.sumo.LaneID(h.id);
-  for (const MovementInfo& m : info_.movements)
-    if (!m.controlled && m.from_lane == at)
-      for (const auto& [lane, offset] : m.feeders) own.push_back(lane);
+  std::vector<std::string> own;  // its approach lane and the lanes feeding it
+  for (const auto& [lane, offset] : info_.movements[hv_movement].feeders) own.push_back(lane);
   auto mine = [&](const std::string& lane) {
     return std::find(own.begin(), own.end(), lane) != own.end();
   };
@@ -288,7 +331,9 @@ bool StopLineEnvironment::MajorClearBut(int movement, int hv, double extra) {
 // passes the end of its approach lane (the stop line).
 bool StopLineEnvironment::PastLine(int vehicle) {
   const Vehicle& v = s_.vehicles[vehicle];
-  return s_.sumo.LaneID(v.id) != info_.movements[v.movement].from_lane;
+  const MovementInfo& m = info_.movements[v.movement];
+  const std::string lane = s_.sumo.LaneID(v.id);
+  return lane != m.from_lane && !m.IsUpstream(lane);
 }
 
 junction::Mover StopLineEnvironment::MoverNow(int vehicle) {
@@ -297,9 +342,9 @@ junction::Mover StopLineEnvironment::MoverNow(int vehicle) {
   junction::Mover mv = m.mover;
   mv.length = v.length;
   mv.width = v.width;
-  const double arc = m.ArcOf(s_.sumo.LaneID(v.id), s_.sumo.LanePosition(v.id));
+  const std::optional<double> arc = m.PathArc(s_.sumo.LaneID(v.id), s_.sumo.LanePosition(v.id));
   // Off its path (e.g. already behind the exit lane): past everything.
-  mv.front = arc >= 0 ? arc : mv.exit + mv.length;
+  mv.front = arc ? *arc : mv.exit + mv.length;
   return mv;
 }
 

@@ -47,7 +47,7 @@ class StopLineEnvironment : public junction::Environment {
   bool Standing(int vehicle) override;
   bool ExitHasRoom(int movement, int vehicle) override;
   bool MajorClear(int movement) override;
-  bool MajorClearBut(int movement, int hv, double extra) override;
+  bool MajorClearBut(int movement, int hv, int hv_movement, double extra) override;
   bool PastLine(int vehicle) override;
   bool Passed(int first, int second) override;
   std::vector<int> Unblockable(int vehicle, int partner) override;

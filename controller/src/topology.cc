@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <string>
+#include <tuple>
 
 namespace taebp::control {
 namespace {
@@ -131,17 +133,28 @@ Topology::Topology(const ScenarioConfig& sc, const Scenario& scenario, const net
         if (m.controlled) continue;
         const net::Lane* l = net.FindLane(m.from_lane);
         const double reach = (l ? l->speed : 13.89) * sc.critical_gap + kMajorNear;
-        std::vector<std::pair<std::string, double>> frontier = {{m.from_lane, 0.0}};
+        // (lane, distance from its end to the line, whether every link from
+        // it to the approach lane has the right of way over every foe there)
+        std::vector<std::tuple<std::string, double, bool>> frontier = {{m.from_lane, 0.0, true}};
         std::set<std::string> seen;
         while (!frontier.empty()) {
-          auto [lane, offset] = frontier.back();
+          auto [lane, offset, free] = frontier.back();
           frontier.pop_back();
           if (!seen.insert(lane).second) continue;
           m.feeders.emplace_back(lane, offset);
           const net::Lane* fl = net.FindLane(lane);
+          // A major-road HV of an encounter may be here (it keeps its speed
+          // with SUMO's right of way off, so only where nothing on its way
+          // to the approach lane would have made it yield).
+          if (offset > 0 && fl && free) m.upstream.push_back({lane, m.mover.entry - offset, fl->length});
           const double next = offset + (fl ? fl->length : 0);
           if (next >= reach) continue;
-          for (const std::string& p : net.Predecessors(lane)) frontier.emplace_back(p, next);
+          for (const std::string& p : net.Predecessors(lane)) {
+            bool major = false;
+            for (int li : net.LinksFrom(p))
+              if (net.links()[li].to_lane == lane && net.links()[li].state == 'M') major = true;
+            frontier.emplace_back(p, next, free && major);
+          }
         }
       }
     }
@@ -248,6 +261,20 @@ double MovementInfo::ArcOf(const std::string& lane, double pos) const {
   for (const LaneOnPath& l : lanes_on_path)
     if (l.lane == lane) return l.start + pos * l.scale;
   return -1;
+}
+
+bool MovementInfo::IsUpstream(const std::string& lane) const {
+  for (const Upstream& u : upstream)
+    if (u.lane == lane) return true;
+  return false;
+}
+
+std::optional<double> MovementInfo::PathArc(const std::string& lane, double pos) const {
+  for (const LaneOnPath& l : lanes_on_path)
+    if (l.lane == lane) return l.start + pos * l.scale;
+  for (const Upstream& u : upstream)
+    if (u.lane == lane) return u.end - u.length + pos;
+  return std::nullopt;
 }
 
 }  // namespace taebp::control

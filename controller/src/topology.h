@@ -15,6 +15,7 @@
 #include "taebp/scenario/scenario.h"
 
 #include <map>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -52,6 +53,20 @@ struct MovementInfo {
   std::vector<LaneOnPath> lanes_on_path;
   // The arc of a front at `pos` on `lane` (-1: the lane is not on the path).
   double ArcOf(const std::string& lane, double pos) const;
+  // Major movements at two-way stops: the feeders upstream of the approach
+  // lane (a major-road HV may still be on one: OSM approach lanes are often
+  // shorter than the game's window), each with where its end lies on the path
+  // extended backwards (negative arcs: before the approach lane).
+  struct Upstream {
+    std::string lane;
+    double end = 0, length = 0;
+  };
+  std::vector<Upstream> upstream;
+  // Is `lane` upstream of the approach lane on this movement's feeders?
+  bool IsUpstream(const std::string& lane) const;
+  // The arc of a front at `pos` on `lane` on the path or upstream of it
+  // (nullopt: neither).
+  std::optional<double> PathArc(const std::string& lane, double pos) const;
 };
 
 struct ApproachInfo {  // a stop-controlled lane into a controlled junction

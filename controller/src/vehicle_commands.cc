@@ -196,7 +196,7 @@ void VehicleCommands::Clear(int h) {
 
 bool VehicleCommands::ClearedJunction(const Vehicle& v, const std::string& lane) {
   const MovementInfo& m = s_.topo.junctions()[v.junction].movements[v.movement];
-  if (lane == m.from_lane) return false;
+  if (lane == m.from_lane || m.IsUpstream(lane)) return false;  // a major HV not there yet
   if (std::find(m.internal.begin(), m.internal.end(), lane) != m.internal.end()) return false;
   if (!lane.empty() && lane[0] == ':') return false;  // some other internal lane
   if (lane == m.to_lane) return s_.sumo.LanePosition(v.id) >= v.length;
@@ -210,8 +210,8 @@ void VehicleCommands::UpdateCrossing() {
     v.lane = s_.sumo.LaneID(v.id);
     if (ClearedJunction(v, v.lane)) {
       Clear(h);
-    } else if (!v.entered &&
-               v.lane != s_.topo.junctions()[v.junction].movements[v.movement].from_lane) {
+    } else if (const MovementInfo& m = s_.topo.junctions()[v.junction].movements[v.movement];
+               !v.entered && v.lane != m.from_lane && !m.IsUpstream(v.lane)) {
       v.entered = true;  // inside the junction: a careful partner may follow it under SUMO's rules
       s_.junctions[v.junction].logic->Entered(h, s_.now);
     }

@@ -295,7 +295,7 @@ void Interception::FormMajor(double now, const std::vector<AtLine>& at_line,
       // major vehicle comes within the critical gap while the signal lasts;
       // the AV stands (the nudge is measured from here).
       if (!env.WayClear(av->vehicle, hv->vehicle) ||
-          !env.MajorClearBut(av->movement, hv->vehicle, v.signal) || !env.Standing(av->vehicle))
+          !env.MajorClearBut(av->movement, hv->vehicle, hv->movement, v.signal) || !env.Standing(av->vehicle))
         continue;
       Active e;
       e.major = true;

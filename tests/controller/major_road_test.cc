@@ -263,6 +263,97 @@ TEST(MajorRoad, WithAllPairsSumoCollidesExactlyWherePredicted) {
   }
 }
 
+// The major road's approach lane shorter than the game's window, as OSM
+// imports have them: the major road W -> E is split 15 m before C by a
+// priority node P (a shape node, the through road's link 'M'), so an HV at
+// 13.89 m/s is still on WP when the window opens (it needs some 35 m to
+// yield at 3 m/s^2). Without looking upstream no encounter forms here.
+std::string ShortApproachNet(const TempDir& dir) {
+  return test::Netconvert(
+      dir, "short",
+      "  <node id=\"C\" x=\"0\" y=\"0\" type=\"priority_stop\"/>\n"
+      "  <node id=\"P\" x=\"-15\" y=\"0\" type=\"priority\"/>\n"
+      "  <node id=\"N\" x=\"0\" y=\"100\" type=\"dead_end\"/>\n"
+      "  <node id=\"S\" x=\"0\" y=\"-100\" type=\"dead_end\"/>\n"
+      "  <node id=\"E\" x=\"150\" y=\"0\" type=\"dead_end\"/>\n"
+      "  <node id=\"W\" x=\"-150\" y=\"0\" type=\"dead_end\"/>\n",
+      "  <edge id=\"WP\" from=\"W\" to=\"P\" priority=\"2\" numLanes=\"1\"/>\n"
+      "  <edge id=\"PC\" from=\"P\" to=\"C\" priority=\"2\" numLanes=\"1\"/>\n"
+      "  <edge id=\"CE\" from=\"C\" to=\"E\" priority=\"2\" numLanes=\"1\"/>\n"
+      "  <edge id=\"NC\" from=\"N\" to=\"C\" priority=\"1\" numLanes=\"1\"/>\n"
+      "  <edge id=\"CN\" from=\"C\" to=\"N\" priority=\"1\" numLanes=\"1\"/>\n"
+      "  <edge id=\"SC\" from=\"S\" to=\"C\" priority=\"1\" numLanes=\"1\"/>\n"
+      "  <edge id=\"CS\" from=\"C\" to=\"S\" priority=\"1\" numLanes=\"1\"/>\n");
+}
+
+PolicyRun RunOnShortApproach(const std::string& policy, double duration,
+                             const std::vector<std::string>& more = {}) {
+  static const TempDir dir("taebp_major_short");
+  const std::string net = ShortApproachNet(dir);
+  std::string routes = MajorRoadRoutes(dir, duration);
+  // The same demand, the HVs from W over P.
+  std::string text = test::ReadText(routes);
+  const std::string from = "from=\"WC\"";
+  text.replace(text.find(from), from.size(), "from=\"WP\"");
+  routes = dir.Write("short.rou.xml", text);
+  std::vector<std::string> overrides = {kOn, "scenario.junctions={ids: [C]}"};
+  overrides.insert(overrides.end(), more.begin(), more.end());
+  const ExperimentConfig cfg =
+      ParseExperimentConfig(MajorRoadYaml(net, routes, duration), "major_road_test", overrides);
+  return RunPolicy(cfg, policy, BuildScenario(cfg, ""));
+}
+
+// An HV still upstream of a short approach lane (OSM's): the encounter forms
+// while it is on WP, the HV cruises over P (its link there has the right of
+// way) and through C; on every pair where both proceeded SUMO collided
+// exactly where the geometry predicted at the decision, from the HV's arc
+// upstream of the approach lane; a yielding HV or a waiting AV never
+// collided; nothing after the hand-back. Under encounter_pairs: all (HVs that
+// always keep their way) both verdicts occur. Reading only the approach
+// lane's front vehicle forms nothing here; a premise read as "not on the
+// path" upstream, or an HV cleared before it reached the junction, turns
+// this red.
+TEST(MajorRoad, AnHvStillUpstreamOfAShortApproachLaneIsMet) {
+  struct Case {
+    std::string policy;
+    std::vector<std::string> more;
+  };
+  for (const Case& c : {Case{"ta_ebp", {}}, Case{"no_trust", {}},
+                        Case{"no_trust", {"scenario.encounter_pairs=all", "model.trust=0.0",
+                                          "model.prior_go=0.45"}}}) {
+    SCOPED_TRACE(c.policy + (c.more.empty() ? "" : " with all pairs"));
+    const PolicyRun r = RunOnShortApproach(c.policy, 1800, c.more);
+    std::map<std::string, long> n;
+    for (const EncounterRecord& e : r.encounters) {
+      const std::string where = e.av + "/" + e.hv + " at " + std::to_string(e.time) + ", " +
+                                ToString(e.premise);
+      EXPECT_TRUE(e.major_road) << where;
+      EXPECT_EQ(e.hv_movement.substr(0, 2), "PC") << where;
+      ++n[std::string(ToString(e.premise)) + (e.av_first ? " go" : " wait")];
+      if (e.av_first && !e.hv_dc) {
+        EXPECT_EQ(e.collision, e.both_proceed_collides) << "both proceeded, " << where;
+      } else {
+        EXPECT_FALSE(e.collision) << "a yielding HV or a waiting AV collided, " << where;
+      }
+      EXPECT_FALSE(e.collision_after_handback) << where;
+    }
+    EXPECT_GT(r.encounters.size(), 40u) << "the HVs upstream of PC were not met";
+    long collisions = 0;
+    for (const EncounterRecord& e : r.encounters) collisions += e.collision;
+    if (c.policy == "ta_ebp") {
+      EXPECT_EQ(collisions, 0);
+    }
+    if (!c.more.empty()) {
+      EXPECT_GT(n["holds go"], 5) << "too few colliding both-proceed pairs";
+      EXPECT_GT(n["no_collision go"], 5) << "too few both-proceed pairs that do not collide";
+    }
+    std::cout << c.policy << (c.more.empty() ? "" : " all pairs") << ": "
+              << r.encounters.size() << " encounters; ";
+    for (const auto& [k, v] : n) std::cout << k << " " << v << "; ";
+    std::cout << "\n";
+  }
+}
+
 // (b) on a netgenerate two-way-stop grid with turning demand, AVs and HVs
 // everywhere: both kinds of encounter form; on every pair where both
 // proceeded SUMO collided exactly where the geometry predicted, and never

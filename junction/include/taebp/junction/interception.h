@@ -168,11 +168,12 @@ class Environment {
     (void)vehicle, (void)partner;
     return {};
   }
-  // The major-road encounter: no major-road vehicle but `hv` and those behind
-  // it on its lane is inside or within the critical gap plus `extra` seconds
-  // of a major movement conflicting with `movement`.
-  virtual bool MajorClearBut(int movement, int hv, double extra) {
-    (void)hv, (void)extra;
+  // The major-road encounter: no major-road vehicle but `hv` (on
+  // `hv_movement`) and those behind it on its way is inside or within the
+  // critical gap plus `extra` seconds of a major movement conflicting with
+  // `movement`.
+  virtual bool MajorClearBut(int movement, int hv, int hv_movement, double extra) {
+    (void)hv, (void)hv_movement, (void)extra;
     return MajorClear(movement);
   }
 };
@@ -182,7 +183,8 @@ class Environment {
 struct MajorAt {
   int vehicle = -1;
   int movement = -1;
-  double gap = 0;    // m from its front to its stop line (the approach lane's end)
+  double gap = 0;    // m from its front to its stop line (the approach lane's end), along its
+                     // route (it may still be on a lane feeding the approach lane)
   double speed = 0;  // m/s
 };
 
