@@ -38,15 +38,22 @@ using test::TempDir;
 namespace per = persuasion;
 
 // The junction C: a one-way major road W -> E, a two-way minor road N <-> S.
-std::string MajorRoadNet(const TempDir& dir) {
+// `split` > 0: the major road split that far before C by a priority node P
+// (a shape node, as OSM imports have them), edges WP and PC instead of WC.
+std::string MajorRoadNet(const TempDir& dir, double split = 0) {
+  const std::string p = std::to_string(-split);
   return test::Netconvert(
-      dir, "major",
-      "  <node id=\"C\" x=\"0\" y=\"0\" type=\"priority_stop\"/>\n"
-      "  <node id=\"N\" x=\"0\" y=\"100\" type=\"dead_end\"/>\n"
-      "  <node id=\"S\" x=\"0\" y=\"-100\" type=\"dead_end\"/>\n"
-      "  <node id=\"E\" x=\"150\" y=\"0\" type=\"dead_end\"/>\n"
-      "  <node id=\"W\" x=\"-150\" y=\"0\" type=\"dead_end\"/>\n",
-      "  <edge id=\"WC\" from=\"W\" to=\"C\" priority=\"2\" numLanes=\"1\"/>\n"
+      dir, split > 0 ? "short" : "major",
+      "  <node id=\"C\" x=\"0\" y=\"0\" type=\"priority_stop\"/>\n" +
+          (split > 0 ? "  <node id=\"P\" x=\"" + p + "\" y=\"0\" type=\"priority\"/>\n"
+                     : std::string()) +
+          "  <node id=\"N\" x=\"0\" y=\"100\" type=\"dead_end\"/>\n"
+          "  <node id=\"S\" x=\"0\" y=\"-100\" type=\"dead_end\"/>\n"
+          "  <node id=\"E\" x=\"150\" y=\"0\" type=\"dead_end\"/>\n"
+          "  <node id=\"W\" x=\"-150\" y=\"0\" type=\"dead_end\"/>\n",
+      (split > 0 ? "  <edge id=\"WP\" from=\"W\" to=\"P\" priority=\"2\" numLanes=\"1\"/>\n"
+                   "  <edge id=\"PC\" from=\"P\" to=\"C\" priority=\"2\" numLanes=\"1\"/>\n"
+                 : std::string("  <edge id=\"WC\" from=\"W\" to=\"C\" priority=\"2\" numLanes=\"1\"/>\n")) +
       "  <edge id=\"CE\" from=\"C\" to=\"E\" priority=\"2\" numLanes=\"1\"/>\n"
       "  <edge id=\"NC\" from=\"N\" to=\"C\" priority=\"1\" numLanes=\"1\"/>\n"
       "  <edge id=\"CN\" from=\"C\" to=\"N\" priority=\"1\" numLanes=\"1\"/>\n"
@@ -55,8 +62,10 @@ std::string MajorRoadNet(const TempDir& dir) {
 }
 
 // AVs N -> S and S -> N every 8 s, HVs W -> E at random (0.2 per second);
-// `both_ways`: HVs E -> W too (test::FourWay's two-way major road).
-std::string MajorRoadRoutes(const TempDir& dir, double end, bool both_ways = false) {
+// `both_ways`: HVs E -> W too (test::FourWay's two-way major road); `hv_from`:
+// the HVs' first edge (WP on the split major road).
+std::string MajorRoadRoutes(const TempDir& dir, double end, bool both_ways = false,
+                            const std::string& hv_from = "WC") {
   const std::string e = std::to_string(end);
   return dir.Write(
       both_ways ? "major2.rou.xml" : "major.rou.xml",
@@ -68,7 +77,7 @@ std::string MajorRoadRoutes(const TempDir& dir, double end, bool both_ways = fal
       "  <flow id=\"avn\" type=\"AV\" begin=\"0\" end=\"" + e +
           "\" period=\"8\" from=\"NC\" to=\"CS\" departSpeed=\"max\"/>\n"
       "  <flow id=\"hvw\" type=\"HV\" begin=\"0\" end=\"" + e +
-          "\" probability=\"0.2\" from=\"WC\" to=\"CE\" departSpeed=\"max\"/>\n" +
+          "\" probability=\"0.2\" from=\"" + hv_from + "\" to=\"CE\" departSpeed=\"max\"/>\n" +
       (both_ways ? "  <flow id=\"hve\" type=\"HV\" begin=\"0\" end=\"" + e +
                        "\" probability=\"0.15\" from=\"EC\" to=\"CW\" departSpeed=\"max\"/>\n"
                  : std::string()) +
@@ -264,38 +273,15 @@ TEST(MajorRoad, WithAllPairsSumoCollidesExactlyWherePredicted) {
 }
 
 // The major road's approach lane shorter than the game's window, as OSM
-// imports have them: the major road W -> E is split 15 m before C by a
-// priority node P (a shape node, the through road's link 'M'), so an HV at
-// 13.89 m/s is still on WP when the window opens (it needs some 35 m to
-// yield at 3 m/s^2). Without looking upstream no encounter forms here.
-std::string ShortApproachNet(const TempDir& dir) {
-  return test::Netconvert(
-      dir, "short",
-      "  <node id=\"C\" x=\"0\" y=\"0\" type=\"priority_stop\"/>\n"
-      "  <node id=\"P\" x=\"-15\" y=\"0\" type=\"priority\"/>\n"
-      "  <node id=\"N\" x=\"0\" y=\"100\" type=\"dead_end\"/>\n"
-      "  <node id=\"S\" x=\"0\" y=\"-100\" type=\"dead_end\"/>\n"
-      "  <node id=\"E\" x=\"150\" y=\"0\" type=\"dead_end\"/>\n"
-      "  <node id=\"W\" x=\"-150\" y=\"0\" type=\"dead_end\"/>\n",
-      "  <edge id=\"WP\" from=\"W\" to=\"P\" priority=\"2\" numLanes=\"1\"/>\n"
-      "  <edge id=\"PC\" from=\"P\" to=\"C\" priority=\"2\" numLanes=\"1\"/>\n"
-      "  <edge id=\"CE\" from=\"C\" to=\"E\" priority=\"2\" numLanes=\"1\"/>\n"
-      "  <edge id=\"NC\" from=\"N\" to=\"C\" priority=\"1\" numLanes=\"1\"/>\n"
-      "  <edge id=\"CN\" from=\"C\" to=\"N\" priority=\"1\" numLanes=\"1\"/>\n"
-      "  <edge id=\"SC\" from=\"S\" to=\"C\" priority=\"1\" numLanes=\"1\"/>\n"
-      "  <edge id=\"CS\" from=\"C\" to=\"S\" priority=\"1\" numLanes=\"1\"/>\n");
-}
-
+// imports have them: the major road W -> E split 15 m before C by a priority
+// node P (MajorRoadNet's `split`; the through road's link there 'M'), so an
+// HV at 13.89 m/s is still on WP when the window opens (it needs some 35 m
+// to yield at 3 m/s^2). Without looking upstream no encounter forms here.
 PolicyRun RunOnShortApproach(const std::string& policy, double duration,
                              const std::vector<std::string>& more = {}) {
   static const TempDir dir("taebp_major_short");
-  const std::string net = ShortApproachNet(dir);
-  std::string routes = MajorRoadRoutes(dir, duration);
-  // The same demand, the HVs from W over P.
-  std::string text = test::ReadText(routes);
-  const std::string from = "from=\"WC\"";
-  text.replace(text.find(from), from.size(), "from=\"WP\"");
-  routes = dir.Write("short.rou.xml", text);
+  const std::string net = MajorRoadNet(dir, 15);
+  const std::string routes = MajorRoadRoutes(dir, duration, false, "WP");  // over P
   std::vector<std::string> overrides = {kOn, "scenario.junctions={ids: [C]}"};
   overrides.insert(overrides.end(), more.begin(), more.end());
   const ExperimentConfig cfg =
