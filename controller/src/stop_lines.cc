@@ -159,7 +159,10 @@ void ObserveMajor(RunState& s, JunctionState& j) {
         std::size_t k = from;
         while (k < cv.route.size() && s.topo.EdgeName(cv.route[k]) != l->edge) ++k;
         bool through = k < cv.route.size();
-        if (through && offset > 0) {  // upstream: its own edge comes before `lane`'s
+        // On a node's internal lane upstream: on its way into the feeders
+        // (the lane leads there) when its route goes on through `lane`.
+        const bool connector = fl && !fl->edge.empty() && fl->edge[0] == ':';
+        if (through && offset > 0 && !connector) {  // upstream: its own edge comes before `lane`'s
           through = false;
           for (std::size_t q = from; q < k; ++q)
             if (fl && s.topo.EdgeName(cv.route[q]) == fl->edge) through = true;

@@ -149,11 +149,27 @@ Topology::Topology(const ScenarioConfig& sc, const Scenario& scenario, const net
           if (offset > 0 && fl && free) m.upstream.push_back({lane, m.mover.entry - offset, fl->length});
           const double next = offset + (fl ? fl->length : 0);
           if (next >= reach) continue;
+          // Each feeding lane and the internal lanes of the node between it
+          // and this one (an OSM road's shape and lane-change nodes): a
+          // vehicle there is on its way too, and their lengths are part of
+          // its distance to the line.
           for (const std::string& p : net.Predecessors(lane)) {
-            bool major = false;
-            for (int li : net.LinksFrom(p))
-              if (net.links()[li].to_lane == lane && net.links()[li].state == 'M') major = true;
-            frontier.emplace_back(p, next, free && major);
+            for (int li : net.LinksFrom(p)) {
+              const net::Link& link = net.links()[static_cast<std::size_t>(li)];
+              if (link.to_lane != lane) continue;
+              const bool on = free && link.state == 'M';
+              double d = next;
+              for (auto in = link.internal.rbegin(); in != link.internal.rend(); ++in) {
+                const net::Lane* il = net.FindLane(*in);
+                const double len = il ? il->length : 0;
+                if (seen.insert(*in).second) {
+                  m.feeders.emplace_back(*in, d);
+                  if (on && il) m.upstream.push_back({*in, m.mover.entry - d, len});
+                }
+                d += len;
+              }
+              frontier.emplace_back(p, d, on);
+            }
           }
         }
       }

@@ -69,23 +69,55 @@ FringeEdges FindFringe(const net::NetFile& net) {
   return f;
 }
 
-std::vector<Trip> FringeTrips(const net::NetFile& net, const DemandSpec& spec) {
-  const FringeEdges f = FindFringe(net);
+FringeEdges FindMinorRoads(const net::NetFile& net, const std::vector<std::string>& junctions) {
+  const std::set<std::string> at(junctions.begin(), junctions.end());
+  FringeEdges f;
+  for (const auto& [id, e] : net.edges()) {
+    if (!CarEdge(net, e) || !at.count(e.to)) continue;
+    // A link that yields or stops, and no straight one with the right of way
+    // (a major road's approach has both when its left turn yields).
+    bool yields = false, major = false;
+    for (const std::string& lane : e.lanes) {
+      for (int k : net.LinksFrom(lane)) {
+        const net::Link& link = net.links()[static_cast<std::size_t>(k)];
+        if (link.junction != e.to) continue;
+        if (link.state != 'M') yields = true;
+        if (link.state == 'M' && link.dir == 's') major = true;
+      }
+    }
+    if (yields && !major) f.entries.push_back(id);
+  }
+  f.exits = f.entries;
+  const std::vector<std::string> out = FindFringe(net).exits;
+  f.exits.insert(f.exits.end(), out.begin(), out.end());
+  std::sort(f.exits.begin(), f.exits.end());
+  f.exits.erase(std::unique(f.exits.begin(), f.exits.end()), f.exits.end());
+  return f;
+}
+
+std::vector<Trip> DemandTrips(const net::NetFile& net, const DemandSpec& spec) {
+  const bool fringe = spec.origins == DemandOrigins::kFringe;
+  const FringeEdges f = fringe ? FindFringe(net) : FindMinorRoads(net, spec.junctions);
   if (f.entries.empty() || f.exits.empty())
-    throw std::invalid_argument("the network " + net.path() +
-                                " has no fringe (no edge from or to a dead-end junction) for "
-                                "generated demand; give scenario.routes instead");
+    throw std::invalid_argument(
+        "the network " + net.path() +
+        (fringe ? " has no fringe (no edge from or to a dead-end junction) for generated demand"
+                : " has no minor road (an approach of a controlled junction where every link "
+                  "yields or stops) for generated demand (origins: minor_roads)") +
+        "; give scenario.routes instead");
   std::vector<Trip> trips;
   const double rate = spec.flow / 3600.0;  // per second
   for (std::size_t k = 0; k < f.entries.size(); ++k) {
     const std::string& entry = f.entries[k];
-    const std::string from_junction = net.FindEdge(entry)->from;
-    // The exits a car can reach from this entry (one-way streets, turn
-    // restrictions), not the way back.
+    // Not the way back (fringe), not another approach of the same junction
+    // (minor roads).
+    const std::string home = fringe ? net.FindEdge(entry)->from : net.FindEdge(entry)->to;
+    // The destinations a car can reach from this origin (one-way streets,
+    // turn restrictions).
     const std::set<std::string> reachable = Reachable(net, entry);
     std::vector<std::string> exits;
     for (const std::string& x : f.exits)
-      if (net.FindEdge(x)->to != from_junction && reachable.count(x)) exits.push_back(x);
+      if (net.FindEdge(x)->to != home && x != entry && reachable.count(x)) exits.push_back(x);
     if (exits.empty()) continue;
     // One stream per entry edge: adding an edge does not shift the others.
     std::seed_seq seq{static_cast<std::uint32_t>(spec.seed & 0xffffffffu),
@@ -107,10 +139,10 @@ std::vector<Trip> FringeTrips(const net::NetFile& net, const DemandSpec& spec) {
   return trips;
 }
 
-long WriteFringeDemand(const net::NetFile& net, const DemandSpec& spec, const std::string& path) {
+long WriteDemand(const net::NetFile& net, const DemandSpec& spec, const std::string& path) {
   std::vector<Trip> trips;
   try {
-    trips = FringeTrips(net, spec);
+    trips = DemandTrips(net, spec);
   } catch (const std::invalid_argument& e) {
     throw ConfigError(std::string("scenario.demand: ") + e.what());
   }

@@ -598,6 +598,8 @@ Scenario BuildNetwork(const ExperimentConfig& config, const std::string& config_
   if (sc.demand) {
     const std::string routes = (fs::path(s.scratch->path()) / "demand.rou.xml").string();
     DemandSpec spec;
+    spec.origins = sc.demand->origins;
+    for (const ControlledJunction& j : s.junctions) spec.junctions.push_back(j.id);
     spec.flow = sc.demand->flow;
     spec.end = sc.demand->end < 0 ? sc.duration : sc.demand->end;
     spec.seed = sc.seed;
@@ -607,7 +609,7 @@ Scenario BuildNetwork(const ExperimentConfig& config, const std::string& config_
     spec.accel = sc.accel;
     spec.decel = sc.decel;
     spec.max_speed = sc.cruise_speed;
-    s.generated_trips = WriteFringeDemand(net, spec, routes);
+    s.generated_trips = WriteDemand(net, spec, routes);
     s.route_files.push_back(routes);
   }
   CheckAvsExist(config, s);

@@ -40,10 +40,13 @@ namespace per = persuasion;
 // The junction C: a one-way major road W -> E, a two-way minor road N <-> S.
 // `split` > 0: the major road split that far before C by a priority node P
 // (a shape node, as OSM imports have them), edges WP and PC instead of WC.
-std::string MajorRoadNet(const TempDir& dir, double split = 0) {
+// `split` > 0: the major road from W is split at P, `split` m before C (a
+// short approach lane PC); `wide`: WP has two lanes that merge into PC's one
+// at P over an 8 m internal lane (an OSM road's lane-change node).
+std::string MajorRoadNet(const TempDir& dir, double split = 0, bool wide = false) {
   const std::string p = std::to_string(-split);
   return test::Netconvert(
-      dir, split > 0 ? "short" : "major",
+      dir, split > 0 ? (wide ? "short_wide" : "short") : "major",
       "  <node id=\"C\" x=\"0\" y=\"0\" type=\"priority_stop\"/>\n" +
           (split > 0 ? "  <node id=\"P\" x=\"" + p + "\" y=\"0\" type=\"priority\"/>\n"
                      : std::string()) +
@@ -51,7 +54,8 @@ std::string MajorRoadNet(const TempDir& dir, double split = 0) {
           "  <node id=\"S\" x=\"0\" y=\"-100\" type=\"dead_end\"/>\n"
           "  <node id=\"E\" x=\"150\" y=\"0\" type=\"dead_end\"/>\n"
           "  <node id=\"W\" x=\"-150\" y=\"0\" type=\"dead_end\"/>\n",
-      (split > 0 ? "  <edge id=\"WP\" from=\"W\" to=\"P\" priority=\"2\" numLanes=\"1\"/>\n"
+      (split > 0 ? "  <edge id=\"WP\" from=\"W\" to=\"P\" priority=\"2\" numLanes=\"" +
+                       std::string(wide ? "2" : "1") + "\"/>\n"
                    "  <edge id=\"PC\" from=\"P\" to=\"C\" priority=\"2\" numLanes=\"1\"/>\n"
                  : std::string("  <edge id=\"WC\" from=\"W\" to=\"C\" priority=\"2\" numLanes=\"1\"/>\n")) +
       "  <edge id=\"CE\" from=\"C\" to=\"E\" priority=\"2\" numLanes=\"1\"/>\n"
@@ -278,9 +282,9 @@ TEST(MajorRoad, WithAllPairsSumoCollidesExactlyWherePredicted) {
 // HV at 13.89 m/s is still on WP when the window opens (it needs some 35 m
 // to yield at 3 m/s^2). Without looking upstream no encounter forms here.
 PolicyRun RunOnShortApproach(const std::string& policy, double duration,
-                             const std::vector<std::string>& more = {}) {
+                             const std::vector<std::string>& more = {}, bool wide = false) {
   static const TempDir dir("taebp_major_short");
-  const std::string net = MajorRoadNet(dir, 15);
+  const std::string net = MajorRoadNet(dir, 15, wide);
   const std::string routes = MajorRoadRoutes(dir, duration, false, "WP");  // over P
   std::vector<std::string> overrides = {kOn, "scenario.junctions={ids: [C]}"};
   overrides.insert(overrides.end(), more.begin(), more.end());
@@ -337,6 +341,36 @@ TEST(MajorRoad, AnHvStillUpstreamOfAShortApproachLaneIsMet) {
               << r.encounters.size() << " encounters; ";
     for (const auto& [k, v] : n) std::cout << k << " " << v << "; ";
     std::cout << "\n";
+  }
+}
+
+// The same with an 8 m internal lane at P (two lanes merging into one, as on
+// OSM roads' lane-change nodes): the HV on it is still upstream, at its true
+// distance (the internal lane's length counted), and not inside C. Found on
+// SUMO's DRT Berlin import, where an HV on such a node was taken as inside C
+// and as past the AV, which was released into it: a TA-EBP collision.
+TEST(MajorRoad, AnHvOnAnUpstreamNodesInternalLaneIsNotInsideTheJunction) {
+  for (const char* policy : {"ta_ebp", "no_trust"}) {
+    SCOPED_TRACE(policy);
+    const PolicyRun r = RunOnShortApproach(policy, 1800, {}, true);
+    long collisions = 0;
+    for (const EncounterRecord& e : r.encounters) {
+      const std::string where = e.av + "/" + e.hv + " at " + std::to_string(e.time);
+      EXPECT_TRUE(e.major_road) << where;
+      if (e.av_first && !e.hv_dc) {
+        EXPECT_EQ(e.collision, e.both_proceed_collides) << "both proceeded, " << where;
+      } else {
+        EXPECT_FALSE(e.collision) << "a yielding HV or a waiting AV collided, " << where;
+      }
+      EXPECT_FALSE(e.collision_after_handback) << where;
+      collisions += e.collision;
+    }
+    EXPECT_GT(r.encounters.size(), 30u);
+    if (std::string(policy) == "ta_ebp") {
+      EXPECT_EQ(collisions, 0);
+    }
+    std::cout << policy << ": " << r.encounters.size() << " encounters, " << collisions
+              << " collisions\n";
   }
 }
 

@@ -401,7 +401,7 @@ std::string MixedRoutes(const std::string& net_path, const std::string& hv_type,
   spec.flow = 150;
   spec.end = end;
   spec.seed = 3;
-  const std::vector<Trip> trips = FringeTrips(net::NetFile::Load(net_path), spec);
+  const std::vector<Trip> trips = DemandTrips(net::NetFile::Load(net_path), spec);
   const std::string path = dir + "/mixed.rou.xml";
   std::ofstream out(path);
   out << "<routes>\n"

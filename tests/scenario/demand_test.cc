@@ -76,14 +76,14 @@ TEST_F(DemandOnGrid, FringeIsTheEdgesFromAndToDeadEnds) {
   const net::NetFile bare = net::NetFile::Load(test::Netgenerate(dir, "bare", 3, "allway_stop"));
   EXPECT_TRUE(FindFringe(bare).entries.empty());
   const std::string msg =
-      ErrorOf<std::invalid_argument>([&] { FringeTrips(bare, DemandSpec{}); });
+      ErrorOf<std::invalid_argument>([&] { DemandTrips(bare, DemandSpec{}); });
   EXPECT_THAT(msg, HasSubstr(bare.path()));
   EXPECT_THAT(msg, HasSubstr("fringe"));
   const net::NetFile fig8 = net::NetFile::Load(DefaultNetworkPath());
-  EXPECT_THROW(FringeTrips(fig8, DemandSpec{}), std::invalid_argument);
+  EXPECT_THROW(DemandTrips(fig8, DemandSpec{}), std::invalid_argument);
   // Through the writer: a ConfigError naming the key.
   const std::string out = (dir.path() / "x.rou.xml").string();
-  EXPECT_THAT(ErrorOf<ConfigError>([&] { WriteFringeDemand(bare, DemandSpec{}, out); }),
+  EXPECT_THAT(ErrorOf<ConfigError>([&] { WriteDemand(bare, DemandSpec{}, out); }),
               HasSubstr("scenario.demand"));
 }
 
@@ -101,10 +101,10 @@ TEST_F(DemandOnGrid, TripsAreDeterministicSortedNamedAndNeverUTurns) {
   spec.flow = 600;
   spec.end = 3600;
   spec.seed = 1;
-  const std::vector<Trip> a = FringeTrips(*net_, spec);
-  EXPECT_TRUE(SameTrips(a, FringeTrips(*net_, spec)));
+  const std::vector<Trip> a = DemandTrips(*net_, spec);
+  EXPECT_TRUE(SameTrips(a, DemandTrips(*net_, spec)));
   spec.seed = 2;
-  const std::vector<Trip> b = FringeTrips(*net_, spec);
+  const std::vector<Trip> b = DemandTrips(*net_, spec);
   EXPECT_FALSE(SameTrips(a, b));
   ASSERT_GT(a.size(), 1000u);
 
@@ -127,7 +127,7 @@ TEST_F(DemandOnGrid, TripsAreDeterministicSortedNamedAndNeverUTurns) {
   // A longer horizon continues each entry's stream: the first hour is unchanged.
   spec.seed = 1;
   spec.end = 7200;
-  std::vector<Trip> longer = FringeTrips(*net_, spec);
+  std::vector<Trip> longer = DemandTrips(*net_, spec);
   longer.erase(std::remove_if(longer.begin(), longer.end(),
                               [](const Trip& t) { return t.depart >= 3600; }),
                longer.end());
@@ -139,7 +139,7 @@ TEST_F(DemandOnGrid, ArrivalsArePoissonAtTheFlowAndExitsUniform) {
   spec.flow = 300;            // veh/h per entry
   spec.end = 100 * 3600.0;    // 100 h: 30000 expected per entry
   spec.seed = 7;
-  const std::vector<Trip> trips = FringeTrips(*net_, spec);
+  const std::vector<Trip> trips = DemandTrips(*net_, spec);
   const FringeEdges f = FindFringe(*net_);
   const double expected = spec.flow * spec.end / 3600.0;
   const double bin = 60.0;  // s
@@ -184,7 +184,7 @@ TEST_F(DemandOnGrid, BeginAndEndAreHonoured) {
   spec.flow = 400;
   spec.begin = 1800;
   spec.end = 2700;
-  const std::vector<Trip> trips = FringeTrips(*net_, spec);
+  const std::vector<Trip> trips = DemandTrips(*net_, spec);
   ASSERT_FALSE(trips.empty());
   for (const Trip& t : trips) {
     EXPECT_GT(t.depart, 1800.0);
@@ -195,7 +195,7 @@ TEST_F(DemandOnGrid, BeginAndEndAreHonoured) {
   EXPECT_LE(std::abs(static_cast<double>(trips.size()) - expected), kZ999 * std::sqrt(expected));
   // An empty window gives no trips.
   spec.end = spec.begin;
-  EXPECT_TRUE(FringeTrips(*net_, spec).empty());
+  EXPECT_TRUE(DemandTrips(*net_, spec).empty());
 }
 
 TEST_F(DemandOnGrid, TheRoutesFileRunsInSumo) {
@@ -206,8 +206,8 @@ TEST_F(DemandOnGrid, TheRoutesFileRunsInSumo) {
   spec.length = 4.5;
   spec.max_speed = 10;
   const std::string routes = (dir_->path() / "demand.rou.xml").string();
-  const long written = WriteFringeDemand(*net_, spec, routes);
-  const std::vector<Trip> trips = FringeTrips(*net_, spec);
+  const long written = WriteDemand(*net_, spec, routes);
+  const std::vector<Trip> trips = DemandTrips(*net_, spec);
   ASSERT_EQ(written, static_cast<long>(trips.size()));
   const std::string text = test::ReadText(routes);
   long lines = 0;
@@ -245,7 +245,7 @@ TEST_F(DemandOnGrid, TheRoutesFileRunsInSumo) {
   EXPECT_GT(due, 100);
   // Unwritable output: a ConfigError naming the key and the path.
   const std::string bad = (dir_->path() / "no" / "such" / "dir.rou.xml").string();
-  const std::string msg = ErrorOf<ConfigError>([&] { WriteFringeDemand(*net_, spec, bad); });
+  const std::string msg = ErrorOf<ConfigError>([&] { WriteDemand(*net_, spec, bad); });
   EXPECT_THAT(msg, HasSubstr("scenario.demand"));
   EXPECT_THAT(msg, HasSubstr(bad));
 }
@@ -291,7 +291,7 @@ TEST(DemandOnAnImport, OnlyCarEdgesAndReachableExits) {
   spec.flow = 600;
   spec.end = 600;
   spec.seed = 5;
-  const std::vector<Trip> trips = FringeTrips(net, spec);
+  const std::vector<Trip> trips = DemandTrips(net, spec);
   std::map<std::string, std::set<std::string>> pairs;
   for (const Trip& t : trips) pairs[t.from].insert(t.to);
   // E reaches both exits, S only W (its way back excluded), W none (turn deleted, no U-turn).
@@ -300,7 +300,7 @@ TEST(DemandOnAnImport, OnlyCarEdgesAndReachableExits) {
   EXPECT_EQ(pairs.count("WC"), 0u);
 
   const std::string routes = (dir.path() / "demand.rou.xml").string();
-  ASSERT_GT(WriteFringeDemand(net, spec, routes), 0);
+  ASSERT_GT(WriteDemand(net, spec, routes), 0);
   sumo::Start({"sumo", "-n", net_path, "-r", routes, "--no-step-log", "true", "--xml-validation",
                "never", "--step-length", "0.5", "--end", "700"});
   long departed = 0;
@@ -310,6 +310,72 @@ TEST(DemandOnAnImport, OnlyCarEdgesAndReachableExits) {
   }
   sumo::Close();
   EXPECT_EQ(departed, static_cast<long>(trips.size()));
+}
+
+// origins: minor_roads. On a priority crossing whose east-west road has the
+// right of way, the minor roads are exactly the north and south approaches;
+// at an all-way stop every approach stops. A junction not given has none.
+TEST(DemandOnMinorRoads, TheMinorApproachesOfTheGivenJunctions) {
+  TempDir dir("taebp_demand_minor");
+  const net::NetFile two_way = net::NetFile::Load(test::FourWay(dir, "tw", "priority"));
+  const FringeEdges f = FindMinorRoads(two_way, {"C"});
+  EXPECT_EQ(f.entries, (std::vector<std::string>{"NC", "SC"}));
+  // Destinations: the minor roads and the way out of the city.
+  EXPECT_EQ(f.exits, (std::vector<std::string>{"CE", "CN", "CS", "CW", "NC", "SC"}));
+  EXPECT_TRUE(FindMinorRoads(two_way, {}).entries.empty());
+  // The major approaches' left turns yield ('m'), their straight links have
+  // the right of way ('M'): not minor roads.
+  for (const std::string id : {"EC", "WC"}) {
+    bool left_yields = false, straight_major = false;
+    for (int k : two_way.LinksFrom(id + "_0")) {
+      const net::Link& l = two_way.links()[static_cast<std::size_t>(k)];
+      left_yields = left_yields || (l.dir == 'l' && l.state == 'm');
+      straight_major = straight_major || (l.dir == 's' && l.state == 'M');
+    }
+    EXPECT_TRUE(left_yields && straight_major) << id;
+  }
+  const net::NetFile all_way = net::NetFile::Load(test::FourWay(dir, "aw", "allway_stop"));
+  EXPECT_EQ(FindMinorRoads(all_way, {"C"}).entries,
+            (std::vector<std::string>{"EC", "NC", "SC", "WC"}));
+}
+
+// Trips from the minor roads: every one starts on a minor road, ends on a
+// destination it can reach other than another approach of its own junction,
+// at the flow per origin; a network without minor roads is an error naming
+// the key.
+TEST(DemandOnMinorRoads, TripsStartOnMinorRoadsAtTheFlow) {
+  TempDir dir("taebp_demand_minor2");
+  const net::NetFile net = net::NetFile::Load(test::FourWay(dir, "tw", "priority"));
+  DemandSpec spec;
+  spec.origins = DemandOrigins::kMinorRoads;
+  spec.junctions = {"C"};
+  spec.flow = 360;
+  spec.end = 100 * 3600.0;
+  spec.seed = 3;
+  const std::vector<Trip> trips = DemandTrips(net, spec);
+  std::map<std::string, std::map<std::string, long>> n;
+  for (const Trip& t : trips) ++n[t.from][t.to];
+  ASSERT_EQ(n.size(), 2u);
+  for (const auto& [from, to] : n) {
+    EXPECT_TRUE(from == "NC" || from == "SC") << from;
+    // Not the other minor approach of C, not the way back: the three exits.
+    std::set<std::string> dest;
+    long total = 0;
+    for (const auto& [x, k] : to) {
+      dest.insert(x);
+      total += k;
+    }
+    const std::string straight = from == "NC" ? "CS" : "CN";
+    EXPECT_EQ(dest, (std::set<std::string>{"CE", "CW", straight})) << from;
+    // 36000 expected per origin over 100 h (Poisson: sd 190): 99.9 %.
+    EXPECT_NEAR(static_cast<double>(total), 36000.0, kZ999 * std::sqrt(36000.0)) << from;
+  }
+  spec.junctions = {};
+  EXPECT_THAT(ErrorOf<std::invalid_argument>([&] { DemandTrips(net, spec); }),
+              HasSubstr("has no minor road"));
+  const std::string out = (dir.path() / "x.rou.xml").string();
+  EXPECT_THAT(ErrorOf<ConfigError>([&] { WriteDemand(net, spec, out); }),
+              HasSubstr("scenario.demand"));
 }
 
 }  // namespace

@@ -78,19 +78,27 @@ struct GridConfig {
   }
 };
 
-// Generated demand: every fringe edge entering the network gets `flow`
-// vehicles per hour (random arrivals, seeded), each bound for a random
-// fringe exit (routing: random) and routed by SUMO on the fastest path.
+// Generated demand: every origin edge gets `flow` vehicles per hour (random
+// arrivals, seeded), each bound for a random destination it can reach
+// (routing: random) and routed by SUMO on the fastest path. Origins: fringe,
+// the edges entering the network from a dead end, bound for the fringe exits
+// (not the way back); minor_roads, the minor approaches of the controlled
+// junctions (a link from the edge yields or stops there and none goes
+// straight on with the right of way), bound for
+// another junction's minor approach or a fringe exit: a city's side streets,
+// where a two-way stop's minor road meets its major road.
 struct DemandConfig {
-  double flow = 300.0;           // veh/h entering per fringe edge
-  Routing routing = Routing::kRandom;  // random: uniformly random fringe exit (not the way back)
+  double flow = 300.0;           // veh/h departing per origin edge
+  Routing routing = Routing::kRandom;  // random: a uniformly random reachable destination
   double end = -1.0;             // s, last departure (< 0: scenario.duration)
+  DemandOrigins origins = DemandOrigins::kFringe;
 
   template <typename Archive>
   void Serialize(Archive* a) {
     a->Visit("flow", &flow);
     a->Visit("routing", &routing);
     a->Visit("end", &end);
+    a->Visit("origins", &origins);
   }
 };
 

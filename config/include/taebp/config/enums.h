@@ -25,6 +25,8 @@ enum class StopRule { kTwoWay, kAllWay };
 enum class GridJunctionType { kAllwayStop, kPriorityStop, kPriority, kRightBeforeLeft };
 // scenario.demand.routing
 enum class Routing { kRandom };
+// scenario.demand.origins: where generated trips start and end.
+enum class DemandOrigins { kFringe, kMinorRoads };
 // scenario.nudge_check: a nudge SUMO did not realise stops the run or is counted.
 enum class NudgeCheck { kError, kCount };
 // scenario.stall_action: a stall stops the run or is recorded.
@@ -54,6 +56,8 @@ TAEBP_ENUM_NAMES(GridJunctionType, {GridJunctionType::kAllwayStop, "allway_stop"
                  {GridJunctionType::kPriority, "priority"},
                  {GridJunctionType::kRightBeforeLeft, "right_before_left"});
 TAEBP_ENUM_NAMES(Routing, {Routing::kRandom, "random"});
+TAEBP_ENUM_NAMES(DemandOrigins, {DemandOrigins::kFringe, "fringe"},
+                 {DemandOrigins::kMinorRoads, "minor_roads"});
 TAEBP_ENUM_NAMES(NudgeCheck, {NudgeCheck::kError, "error"}, {NudgeCheck::kCount, "count"});
 TAEBP_ENUM_NAMES(StallAction, {StallAction::kError, "error"}, {StallAction::kRecord, "record"});
 TAEBP_ENUM_NAMES(EncounterPairs, {EncounterPairs::kColliding, "colliding"},

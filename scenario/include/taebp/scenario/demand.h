@@ -1,9 +1,13 @@
-// Generated demand on a network's fringe: every edge that enters the network
-// from a dead end gets random arrivals (a Poisson process of `flow` vehicles
-// per hour, seeded), each a SUMO `<trip>` to a uniformly random fringe exit
-// other than the way back, routed by SUMO (fastest path) when it departs.
+// Generated demand: every origin edge gets random departures (a Poisson
+// process of `flow` vehicles per hour, seeded), each a SUMO `<trip>` to a
+// uniformly random destination it can reach, routed by SUMO (fastest path)
+// when it departs. Origins on the fringe (edges entering the network from a
+// dead end, bound for a fringe exit other than the way back) or on the minor
+// roads (the approaches of the controlled junctions that yield or stop and
+// do not go straight on with the right of way, bound for another junction's minor approach or a fringe exit).
 #pragma once
 
+#include "taebp/config/enums.h"
 #include "taebp/scenario/net_file.h"
 
 #include <cstdint>
@@ -13,7 +17,11 @@
 namespace taebp {
 
 struct DemandSpec {
-  double flow = 300;   // veh/h per entering fringe edge
+  DemandOrigins origins = DemandOrigins::kFringe;
+  // minor_roads: the junctions whose minor approaches are origins (the
+  // controlled ones).
+  std::vector<std::string> junctions;
+  double flow = 300;   // veh/h per origin edge
   double begin = 0;    // s, first departure time not before
   double end = 3600;   // s, no departure at or after
   std::uint64_t seed = 1;
@@ -26,6 +34,11 @@ struct FringeEdges {
 };
 // Normal edges leaving (entries) and reaching (exits) dead-end junctions.
 FringeEdges FindFringe(const net::NetFile& net);
+// The minor approaches of `junctions` (entries): car edges ending there
+// with a link that yields or stops (state not 'M') and no straight link
+// with the right of way (a major approach whose left turn yields), sorted; the exits
+// are they and the fringe exits (side streets and the way out of the city).
+FringeEdges FindMinorRoads(const net::NetFile& net, const std::vector<std::string>& junctions);
 
 struct Trip {
   std::string id;
@@ -33,11 +46,11 @@ struct Trip {
   std::string from, to;
 };
 // The trips, sorted by departure time (ties by entry order). Throws
-// std::invalid_argument when the network has no fringe entries or exits.
-std::vector<Trip> FringeTrips(const net::NetFile& net, const DemandSpec& spec);
+// std::invalid_argument when the network has no origins or destinations.
+std::vector<Trip> DemandTrips(const net::NetFile& net, const DemandSpec& spec);
 
 // Writes the trips and their vType as a SUMO routes file; returns the count.
 // Throws ConfigError (naming scenario.demand) on failure.
-long WriteFringeDemand(const net::NetFile& net, const DemandSpec& spec, const std::string& path);
+long WriteDemand(const net::NetFile& net, const DemandSpec& spec, const std::string& path);
 
 }  // namespace taebp
