@@ -76,11 +76,16 @@ FringeEdges FindMinorRoads(const net::NetFile& net, const std::vector<std::strin
     if (!CarEdge(net, e) || !at.count(e.to)) continue;
     // A link that yields or stops, and no straight one with the right of way
     // (a major road's approach has both when its left turn yields).
+    // Cars' links only (an OSM sidewalk's link to a walking area goes
+    // straight on with 'M').
     bool yields = false, major = false;
     for (const std::string& lane : e.lanes) {
+      const net::Lane* from = net.FindLane(lane);
+      if (!from || !from->passenger) continue;
       for (int k : net.LinksFrom(lane)) {
         const net::Link& link = net.links()[static_cast<std::size_t>(k)];
-        if (link.junction != e.to) continue;
+        const net::Lane* to = net.FindLane(link.to_lane);
+        if (link.junction != e.to || !to || !to->passenger) continue;
         if (link.state != 'M') yields = true;
         if (link.state == 'M' && link.dir == 's') major = true;
       }

@@ -334,6 +334,17 @@ TEST(DemandOnMinorRoads, TheMinorApproachesOfTheGivenJunctions) {
     }
     EXPECT_TRUE(left_yields && straight_major) << id;
   }
+  // A T's stem turns only (no straight link): minor; with sidewalks too,
+  // whose links to the walking areas go straight on with 'M' (OSM imports).
+  for (const std::string extra : {"", "--sidewalks.guess true"}) {
+    const net::NetFile t =
+        net::NetFile::Load(test::TJunction(dir, extra.empty() ? "t" : "tsw", "priority", extra));
+    EXPECT_EQ(FindMinorRoads(t, {"C"}).entries, (std::vector<std::string>{"SC"})) << extra;
+    if (!extra.empty()) {
+      ASSERT_NE(t.FindLane("SC_1"), nullptr) << "no sidewalk guessed";
+      EXPECT_FALSE(t.FindLane("SC_0")->passenger);
+    }
+  }
   const net::NetFile all_way = net::NetFile::Load(test::FourWay(dir, "aw", "allway_stop"));
   EXPECT_EQ(FindMinorRoads(all_way, {"C"}).entries,
             (std::vector<std::string>{"EC", "NC", "SC", "WC"}));

@@ -79,7 +79,8 @@ inline std::string FourWay(const TempDir& dir, const std::string& name, const st
 }
 
 // A T: the east-west road (priority 2) with a stem to the south (priority 1).
-inline std::string TJunction(const TempDir& dir, const std::string& name, const std::string& type) {
+inline std::string TJunction(const TempDir& dir, const std::string& name, const std::string& type,
+                             const std::string& extra = "") {
   return Netconvert(
       dir, name,
       "  <node id=\"C\" x=\"0\" y=\"0\" type=\"" + type + "\"/>\n"
@@ -91,7 +92,8 @@ inline std::string TJunction(const TempDir& dir, const std::string& name, const 
       "  <edge id=\"EC\" from=\"E\" to=\"C\" priority=\"2\" numLanes=\"1\"/>\n"
       "  <edge id=\"CE\" from=\"C\" to=\"E\" priority=\"2\" numLanes=\"1\"/>\n"
       "  <edge id=\"SC\" from=\"S\" to=\"C\" priority=\"1\" numLanes=\"1\"/>\n"
-      "  <edge id=\"CS\" from=\"C\" to=\"S\" priority=\"1\" numLanes=\"1\"/>\n");
+      "  <edge id=\"CS\" from=\"C\" to=\"S\" priority=\"1\" numLanes=\"1\"/>\n",
+      extra);
 }
 
 }  // namespace taebp::test
