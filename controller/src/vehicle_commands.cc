@@ -211,11 +211,7 @@ void VehicleCommands::UpdateCrossing() {
     if (ClearedJunction(v, v.lane)) {
       Clear(h);
     } else if (const MovementInfo& m = s_.topo.junctions()[v.junction].movements[v.movement];
-               !v.entered && v.lane != m.from_lane && !m.IsUpstream(v.lane) &&
-               // another node's internal lane (upstream, on a road's shape
-               // node) is not inside this junction
-               (v.lane.empty() || v.lane[0] != ':' ||
-                std::find(m.internal.begin(), m.internal.end(), v.lane) != m.internal.end())) {
+               !v.entered && v.lane != m.from_lane && !m.IsUpstream(v.lane)) {
       v.entered = true;  // inside the junction: a careful partner may follow it under SUMO's rules
       s_.junctions[v.junction].logic->Entered(h, s_.now);
     }
