@@ -107,8 +107,9 @@ std::vector<Trip> DemandTrips(const net::NetFile& net, const DemandSpec& spec) {
     throw std::invalid_argument(
         "the network " + net.path() +
         (fringe ? " has no fringe (no edge from or to a dead-end junction) for generated demand"
-                : " has no minor road (an approach of a controlled junction where every link "
-                  "yields or stops) for generated demand (origins: minor_roads)") +
+                : " has no minor road (an approach of a controlled junction with a car link that "
+                  "yields or stops and none going straight on with the right of way) for generated "
+                  "demand (origins: minor_roads)") +
         "; give scenario.routes instead");
   std::vector<Trip> trips;
   const double rate = spec.flow / 3600.0;  // per second
@@ -122,7 +123,7 @@ std::vector<Trip> DemandTrips(const net::NetFile& net, const DemandSpec& spec) {
     const std::set<std::string> reachable = Reachable(net, entry);
     std::vector<std::string> exits;
     for (const std::string& x : f.exits)
-      if (net.FindEdge(x)->to != home && x != entry && reachable.count(x)) exits.push_back(x);
+      if (net.FindEdge(x)->to != home && reachable.count(x)) exits.push_back(x);
     if (exits.empty()) continue;
     // One stream per entry edge: adding an edge does not shift the others.
     std::seed_seq seq{static_cast<std::uint32_t>(spec.seed & 0xffffffffu),

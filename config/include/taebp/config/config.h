@@ -84,9 +84,9 @@ struct GridConfig {
 // the edges entering the network from a dead end, bound for the fringe exits
 // (not the way back); minor_roads, the minor approaches of the controlled
 // junctions (a link from the edge yields or stops there and none goes
-// straight on with the right of way), bound for
-// another junction's minor approach or a fringe exit: a city's side streets,
-// where a two-way stop's minor road meets its major road.
+// straight on with the right of way), bound for another junction's minor
+// approach or a fringe exit: a city's side streets, where a two-way stop's
+// minor road meets its major road.
 struct DemandConfig {
   double flow = 300.0;           // veh/h departing per origin edge
   Routing routing = Routing::kRandom;  // random: a uniformly random reachable destination

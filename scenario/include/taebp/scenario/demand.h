@@ -4,7 +4,8 @@
 // when it departs. Origins on the fringe (edges entering the network from a
 // dead end, bound for a fringe exit other than the way back) or on the minor
 // roads (the approaches of the controlled junctions that yield or stop and
-// do not go straight on with the right of way, bound for another junction's minor approach or a fringe exit).
+// do not go straight on with the right of way, bound for another junction's
+// minor approach or a fringe exit).
 #pragma once
 
 #include "taebp/config/enums.h"
@@ -35,9 +36,10 @@ struct FringeEdges {
 // Normal edges leaving (entries) and reaching (exits) dead-end junctions.
 FringeEdges FindFringe(const net::NetFile& net);
 // The minor approaches of `junctions` (entries): car edges ending there
-// with a link that yields or stops (state not 'M') and no straight link
-// with the right of way (a major approach whose left turn yields), sorted; the exits
-// are they and the fringe exits (side streets and the way out of the city).
+// with a car link that yields or stops (state not 'M') and no straight car
+// link with the right of way (a major approach whose left turn yields),
+// sorted; the exits are they and the fringe exits (side streets and the way
+// out of the city).
 FringeEdges FindMinorRoads(const net::NetFile& net, const std::vector<std::string>& junctions);
 
 struct Trip {
