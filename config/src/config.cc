@@ -240,6 +240,10 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     if (!(std::isfinite(d.flow) && d.flow > 0 && d.flow <= 3600.0 / s.step_length))
       c.Fail("scenario.demand.flow = " + Num(d.flow) +
              " veh/h must be > 0 and at most one vehicle per step and edge");
+    if (!(std::isfinite(d.major_flow) && d.major_flow >= 0 &&
+          d.major_flow <= 3600.0 / s.step_length))
+      c.Fail("scenario.demand.major_flow = " + Num(d.major_flow) +
+             " veh/h must be >= 0 and at most one vehicle per step and edge");
     if (!(std::isfinite(d.end)))
       c.Fail("scenario.demand.end = " + Num(d.end) + " must be a number of seconds");
   }

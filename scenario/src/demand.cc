@@ -69,15 +69,21 @@ FringeEdges FindFringe(const net::NetFile& net) {
   return f;
 }
 
-FringeEdges FindMinorRoads(const net::NetFile& net, const std::vector<std::string>& junctions) {
+namespace {
+
+// The controlled junctions' approaches open to cars, sorted: minor (a car
+// link that yields or stops there, and no straight car link with the right of
+// way: a major road's approach has both when its left turn yields) and major
+// (a straight car link with the right of way). Cars' links only (an OSM
+// sidewalk's link to a walking area goes straight on with 'M').
+struct Approaches {
+  std::vector<std::string> minor, major;
+};
+Approaches FindApproaches(const net::NetFile& net, const std::vector<std::string>& junctions) {
   const std::set<std::string> at(junctions.begin(), junctions.end());
-  FringeEdges f;
+  Approaches a;
   for (const auto& [id, e] : net.edges()) {
     if (!CarEdge(net, e) || !at.count(e.to)) continue;
-    // A link that yields or stops, and no straight one with the right of way
-    // (a major road's approach has both when its left turn yields).
-    // Cars' links only (an OSM sidewalk's link to a walking area goes
-    // straight on with 'M').
     bool yields = false, major = false;
     for (const std::string& lane : e.lanes) {
       const net::Lane* from = net.FindLane(lane);
@@ -90,13 +96,70 @@ FringeEdges FindMinorRoads(const net::NetFile& net, const std::vector<std::strin
         if (link.state == 'M' && link.dir == 's') major = true;
       }
     }
-    if (yields && !major) f.entries.push_back(id);
+    if (yields && !major) a.minor.push_back(id);
+    if (major) a.major.push_back(id);
   }
-  f.exits = f.entries;
+  return a;
+}
+
+// The minor roads' and the major roads' destinations: the minor roads and
+// the fringe exits.
+std::vector<std::string> CityExits(const net::NetFile& net, const std::vector<std::string>& minor) {
+  std::vector<std::string> exits = minor;
   const std::vector<std::string> out = FindFringe(net).exits;
-  f.exits.insert(f.exits.end(), out.begin(), out.end());
-  std::sort(f.exits.begin(), f.exits.end());
-  f.exits.erase(std::unique(f.exits.begin(), f.exits.end()), f.exits.end());
+  exits.insert(exits.end(), out.begin(), out.end());
+  std::sort(exits.begin(), exits.end());
+  exits.erase(std::unique(exits.begin(), exits.end()), exits.end());
+  return exits;
+}
+
+// One Poisson stream of `flow` veh/h per entry, each trip to a uniformly
+// random destination among f.exits it can reach, other than those ending at
+// the entry's `home` junction (fringe: where it comes from, the way back;
+// otherwise: the junction it approaches). Each entry has its own random
+// stream (seed, salt, index): adding an edge does not shift the others.
+void AppendStreams(const net::NetFile& net, const FringeEdges& f, bool fringe, double flow,
+                   std::uint32_t salt, const DemandSpec& spec, std::vector<Trip>* trips) {
+  const double rate = flow / 3600.0;  // per second
+  for (std::size_t k = 0; k < f.entries.size(); ++k) {
+    const std::string& entry = f.entries[k];
+    const std::string home = fringe ? net.FindEdge(entry)->from : net.FindEdge(entry)->to;
+    // The destinations a car can reach from this origin (one-way streets,
+    // turn restrictions).
+    const std::set<std::string> reachable = Reachable(net, entry);
+    std::vector<std::string> exits;
+    for (const std::string& x : f.exits)
+      if (net.FindEdge(x)->to != home && reachable.count(x)) exits.push_back(x);
+    if (exits.empty()) continue;
+    std::seed_seq seq{static_cast<std::uint32_t>(spec.seed & 0xffffffffu),
+                      static_cast<std::uint32_t>(spec.seed >> 32), salt,
+                      static_cast<std::uint32_t>(k)};
+    std::mt19937_64 rng(seq);
+    double t = spec.begin;
+    for (;;) {
+      t += -std::log1p(-Uniform01(rng)) / rate;
+      if (t >= spec.end) break;
+      const std::size_t pick =
+          std::min(exits.size() - 1, static_cast<std::size_t>(Uniform01(rng) * exits.size()));
+      trips->push_back({"", t, entry, exits[pick]});
+    }
+  }
+}
+
+}  // namespace
+
+FringeEdges FindMinorRoads(const net::NetFile& net, const std::vector<std::string>& junctions) {
+  FringeEdges f;
+  f.entries = FindApproaches(net, junctions).minor;
+  f.exits = CityExits(net, f.entries);
+  return f;
+}
+
+FringeEdges FindMajorRoads(const net::NetFile& net, const std::vector<std::string>& junctions) {
+  const Approaches a = FindApproaches(net, junctions);
+  FringeEdges f;
+  f.entries = a.major;
+  f.exits = CityExits(net, a.minor);
   return f;
 }
 
@@ -112,32 +175,14 @@ std::vector<Trip> DemandTrips(const net::NetFile& net, const DemandSpec& spec) {
                   "demand (origins: minor_roads)") +
         "; give scenario.routes instead");
   std::vector<Trip> trips;
-  const double rate = spec.flow / 3600.0;  // per second
-  for (std::size_t k = 0; k < f.entries.size(); ++k) {
-    const std::string& entry = f.entries[k];
-    // Not the way back (fringe), not another approach of the same junction
-    // (minor roads).
-    const std::string home = fringe ? net.FindEdge(entry)->from : net.FindEdge(entry)->to;
-    // The destinations a car can reach from this origin (one-way streets,
-    // turn restrictions).
-    const std::set<std::string> reachable = Reachable(net, entry);
-    std::vector<std::string> exits;
-    for (const std::string& x : f.exits)
-      if (net.FindEdge(x)->to != home && reachable.count(x)) exits.push_back(x);
-    if (exits.empty()) continue;
-    // One stream per entry edge: adding an edge does not shift the others.
-    std::seed_seq seq{static_cast<std::uint32_t>(spec.seed & 0xffffffffu),
-                      static_cast<std::uint32_t>(spec.seed >> 32), 0x64656d64u,
-                      static_cast<std::uint32_t>(k)};
-    std::mt19937_64 rng(seq);
-    double t = spec.begin;
-    for (;;) {
-      t += -std::log1p(-Uniform01(rng)) / rate;
-      if (t >= spec.end) break;
-      const std::size_t pick =
-          std::min(exits.size() - 1, static_cast<std::size_t>(Uniform01(rng) * exits.size()));
-      trips.push_back({"", t, entry, exits[pick]});
-    }
+  AppendStreams(net, f, fringe, spec.flow, 0x64656d64u, spec, &trips);
+  if (spec.major_flow > 0) {
+    const FringeEdges m = FindMajorRoads(net, spec.junctions);
+    if (m.entries.empty() || m.exits.empty())
+      throw std::invalid_argument("the network " + net.path() +
+                                  " has no major road (an approach of a controlled junction with "
+                                  "a straight car link that has the right of way) for major_flow");
+    AppendStreams(net, m, false, spec.major_flow, 0x6d616a72u, spec, &trips);
   }
   std::stable_sort(trips.begin(), trips.end(),
                    [](const Trip& a, const Trip& b) { return a.depart < b.depart; });

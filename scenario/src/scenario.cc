@@ -601,6 +601,7 @@ Scenario BuildNetwork(const ExperimentConfig& config, const std::string& config_
     spec.origins = sc.demand->origins;
     for (const ControlledJunction& j : s.junctions) spec.junctions.push_back(j.id);
     spec.flow = sc.demand->flow;
+    spec.major_flow = sc.demand->major_flow;
     spec.end = sc.demand->end < 0 ? sc.duration : sc.demand->end;
     spec.seed = sc.seed;
     spec.length = sc.vehicle_length;

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 #include <set>
 #include <string>
 #include <vector>
@@ -387,6 +388,71 @@ TEST(DemandOnMinorRoads, TripsStartOnMinorRoadsAtTheFlow) {
   const std::string out = (dir.path() / "x.rou.xml").string();
   EXPECT_THAT(ErrorOf<ConfigError>([&] { WriteDemand(net, spec, out); }),
               HasSubstr("scenario.demand"));
+}
+
+// The major roads' own traffic (major_flow): trips from the major approaches
+// of the junctions, at the flow per approach, to the minor roads' destinations
+// (not back through their own junction); the origins' trips are those
+// without it, renumbered; a network without a major approach is an error.
+TEST(DemandOnMajorRoads, TripsStartOnTheMajorApproachesAtTheFlowOnTopOfTheOrigins) {
+  TempDir dir("taebp_demand_major");
+  const net::NetFile net = net::NetFile::Load(test::FourWay(dir, "tw", "priority"));
+  const FringeEdges m = FindMajorRoads(net, {"C"});
+  EXPECT_EQ(m.entries, (std::vector<std::string>{"EC", "WC"}));
+  EXPECT_EQ(m.exits, FindMinorRoads(net, {"C"}).exits);
+  EXPECT_TRUE(FindMajorRoads(net, {}).entries.empty());
+
+  DemandSpec spec;
+  spec.origins = DemandOrigins::kMinorRoads;
+  spec.junctions = {"C"};
+  spec.flow = 90;
+  spec.end = 100 * 3600.0;
+  spec.seed = 5;
+  const std::vector<Trip> minor_only = DemandTrips(net, spec);
+  spec.major_flow = 360;
+  const std::vector<Trip> trips = DemandTrips(net, spec);
+  std::map<std::string, std::map<std::string, long>> n;
+  std::vector<std::tuple<double, std::string, std::string>> from_minor, expected_minor;
+  for (const Trip& t : trips) {
+    ++n[t.from][t.to];
+    if (t.from == "NC" || t.from == "SC") from_minor.emplace_back(t.depart, t.from, t.to);
+  }
+  for (const Trip& t : minor_only) expected_minor.emplace_back(t.depart, t.from, t.to);
+  EXPECT_EQ(from_minor, expected_minor);
+  for (std::size_t i = 0; i < trips.size(); ++i) {
+    EXPECT_EQ(trips[i].id, "d" + std::to_string(i));
+    if (i > 0) {
+      EXPECT_LE(trips[i - 1].depart, trips[i].depart);
+    }
+  }
+  ASSERT_EQ(n.size(), 4u);
+  for (const std::string from : {"EC", "WC"}) {
+    std::set<std::string> dest;
+    long total = 0;
+    for (const auto& [x, k] : n[from]) {
+      dest.insert(x);
+      total += k;
+    }
+    // Straight on, left or right: not the way back (no U-turn at C), not
+    // C's own minor approaches.
+    const std::string straight = from == "EC" ? "CW" : "CE";
+    EXPECT_EQ(dest, (std::set<std::string>{"CN", "CS", straight})) << from;
+    // 36000 expected per approach over 100 h: 99.9 %.
+    EXPECT_NEAR(static_cast<double>(total), 36000.0, kZ999 * std::sqrt(36000.0)) << from;
+  }
+  // On the fringe demand too; an all-way stop has no major approach.
+  spec.origins = DemandOrigins::kFringe;
+  spec.end = 3600;
+  const std::size_t with_major = DemandTrips(net, spec).size();
+  spec.major_flow = 0;
+  const std::size_t without = DemandTrips(net, spec).size();
+  // 2 approaches x 360 veh/h more.
+  EXPECT_NEAR(static_cast<double>(with_major - without), 720.0, kZ999 * std::sqrt(720.0));
+  spec.major_flow = 360;
+  const net::NetFile all_way = net::NetFile::Load(test::FourWay(dir, "aw", "allway_stop"));
+  spec.origins = DemandOrigins::kMinorRoads;
+  EXPECT_THAT(ErrorOf<std::invalid_argument>([&] { DemandTrips(all_way, spec); }),
+              HasSubstr("has no major road"));
 }
 
 }  // namespace

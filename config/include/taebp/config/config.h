@@ -92,6 +92,7 @@ struct DemandConfig {
   Routing routing = Routing::kRandom;  // random: a uniformly random reachable destination
   double end = -1.0;             // s, last departure (< 0: scenario.duration)
   DemandOrigins origins = DemandOrigins::kFringe;
+  double major_flow = 0.0;       // veh/h per major approach of the controlled junctions
 
   template <typename Archive>
   void Serialize(Archive* a) {
@@ -99,6 +100,7 @@ struct DemandConfig {
     a->Visit("routing", &routing);
     a->Visit("end", &end);
     a->Visit("origins", &origins);
+    a->Visit("major_flow", &major_flow);
   }
 };
 

@@ -5,7 +5,9 @@
 // dead end, bound for a fringe exit other than the way back) or on the minor
 // roads (the approaches of the controlled junctions that yield or stop and
 // do not go straight on with the right of way, bound for another junction's
-// minor approach or a fringe exit).
+// minor approach or a fringe exit). On top of either, `major_flow` vehicles
+// per hour from every major approach of the junctions (the major roads' own
+// traffic), bound like the minor roads' trips.
 #pragma once
 
 #include "taebp/config/enums.h"
@@ -19,10 +21,11 @@ namespace taebp {
 
 struct DemandSpec {
   DemandOrigins origins = DemandOrigins::kFringe;
-  // minor_roads: the junctions whose minor approaches are origins (the
-  // controlled ones).
+  // minor_roads, major_flow: the junctions whose minor / major approaches
+  // are origins (the controlled ones).
   std::vector<std::string> junctions;
   double flow = 300;   // veh/h per origin edge
+  double major_flow = 0;  // veh/h per major approach of `junctions`, on top
   double begin = 0;    // s, first departure time not before
   double end = 3600;   // s, no departure at or after
   std::uint64_t seed = 1;
@@ -41,14 +44,19 @@ FringeEdges FindFringe(const net::NetFile& net);
 // sorted; the exits are they and the fringe exits (side streets and the way
 // out of the city).
 FringeEdges FindMinorRoads(const net::NetFile& net, const std::vector<std::string>& junctions);
+// The major approaches of `junctions` (entries): car edges ending there with
+// a straight car link that has the right of way ('M'), sorted; the exits are
+// those of FindMinorRoads.
+FringeEdges FindMajorRoads(const net::NetFile& net, const std::vector<std::string>& junctions);
 
 struct Trip {
   std::string id;
   double depart = 0;
   std::string from, to;
 };
-// The trips, sorted by departure time (ties by entry order). Throws
-// std::invalid_argument when the network has no origins or destinations.
+// The trips, sorted by departure time (ties: the origins' trips before the
+// major roads', then by entry order). Throws std::invalid_argument when the
+// network has no origins or destinations (no major approach, with major_flow).
 std::vector<Trip> DemandTrips(const net::NetFile& net, const DemandSpec& spec);
 
 // Writes the trips and their vType as a SUMO routes file; returns the count.
