@@ -258,6 +258,9 @@ bool ExperimentConfig::IsValid(std::string* why) const {
                "right_before_left, unregulated)");
   }
   c.NonNegative("scenario.junctions.max_speed", s.junctions.max_speed);
+  if (s.junctions.min_arms < 0 || s.junctions.min_arms > 64)
+    c.Fail("scenario.junctions.min_arms = " + std::to_string(s.junctions.min_arms) +
+           " must be in [0, 64] (roads meeting at a junction)");
   if (s.av_share) c.Closed01("scenario.av_share", *s.av_share);
   c.NonNegative("scenario.warmup", s.warmup);
   if (c.ok() && s.warmup >= s.duration)

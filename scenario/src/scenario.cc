@@ -369,10 +369,29 @@ void SelectJunctions(const ScenarioConfig& sc, const net::NetFile& net, Scenario
       }
     return false;
   };
+  // Arms (scenario.junctions.min_arms): the distinct junctions a junction's
+  // normal car edges lead to or come from.
+  std::map<std::string, std::set<std::string>> arms;
+  if (sel.min_arms > 0)
+    for (const auto& [id, e] : net.edges()) {
+      if (!e.function.empty() || e.from == e.to) continue;
+      bool car = false;
+      for (const std::string& lane : e.lanes)
+        if (const net::Lane* l = net.FindLane(lane)) car = car || l->passenger;
+      if (!car) continue;
+      arms[e.to].insert(e.from);
+      arms[e.from].insert(e.to);
+    }
+  auto enough_arms = [&](const std::string& id) {
+    if (sel.min_arms <= 0) return true;
+    const auto it = arms.find(id);
+    return it != arms.end() && static_cast<int>(it->second.size()) >= sel.min_arms;
+  };
   // Why junctions of a selected type were passed over, for the message when
   // nothing is selected.
   std::map<std::string, int> all_types;
-  int of_type = 0, was_excluded = 0, too_fast = 0, no_internal = 0, not_intersection = 0;
+  int of_type = 0, was_excluded = 0, too_fast = 0, no_internal = 0, not_intersection = 0,
+      few_arms = 0;
   for (const auto& [id, j] : net.junctions()) {
     if (j.type != "internal") ++all_types[j.type];
     if (!ids.count(id) && types.count(j.type)) {
@@ -383,6 +402,10 @@ void SelectJunctions(const ScenarioConfig& sc, const net::NetFile& net, Scenario
       }
       if (!slow_enough(j)) {
         ++too_fast;
+        continue;
+      }
+      if (!enough_arms(id)) {
+        ++few_arms;
         continue;
       }
       if (!intersection(j)) {
@@ -414,6 +437,8 @@ void SelectJunctions(const ScenarioConfig& sc, const net::NetFile& net, Scenario
     add(was_excluded, "in scenario.junctions.exclude");
     add(too_fast, "with an approach faster than scenario.junctions.max_speed = " +
                       Fmt(sel.max_speed) + " m/s");
+    add(few_arms, "where fewer than scenario.junctions.min_arms = " +
+                      std::to_string(sel.min_arms) + " roads open to cars meet");
     add(no_internal,
         "without internal lanes (the network was built with --no-internal-links: SUMO reports "
         "no collision inside such a junction and has no conflicts for it; rebuild it with "

@@ -432,6 +432,7 @@ TEST(ConfigErrors, OutOfRangeValuesNameKeyAndValue) {
        "scenario.av_share = 1.5"},
       {"scenario: {junctions: {types: [traffic_light]}}\n", "'traffic_light' is not a junction type"},
       {"scenario: {junctions: {priority: three_way}}\n", "scenario.junctions.priority = 'three_way'"},
+      {"scenario: {junctions: {min_arms: -1}}\n", "scenario.junctions.min_arms = -1 must be in [0, 64]"},
       {"scenario: {grid: {columns: 1, rows: 4}, kind: network, demand: {flow: 10}}\n",
        "scenario.grid = 1 x 4"},
       {"scenario: {kind: network, grid: {}, demand: {flow: -3}}\n", "scenario.demand.flow = -3"},

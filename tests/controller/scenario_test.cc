@@ -373,6 +373,55 @@ TEST(ScenarioBadInput, AnEmptySelectionListsTheNetworksTypesAndWhy) {
   EXPECT_THAT(msg, HasSubstr("of the selected types 0 junctions."));
 }
 
+// scenario.junctions.min_arms: a junction is selected by type only where at
+// least that many roads open to cars meet (a 3 x 3 grid without fringe edges:
+// 4 corners with 2 arms, 4 sides with 3, the centre with 4); an arm closed to
+// cars does not count; a selection it empties says why.
+TEST(ScenarioJunctions, MinArmsKeepsJunctionsWhereThatManyCarRoadsMeet) {
+  TempDir dir;
+  const std::string grid = (dir.path() / "g.net.xml").string();
+  ASSERT_EQ(std::system(("netgenerate --grid --grid.number 3 --grid.length 100 "
+                         "--grid.attach-length 0 --default-junction-type allway_stop -o " +
+                         grid + " >/dev/null 2>&1")
+                            .c_str()),
+            0);
+  // The centre's arm to C1 closed to cars (both directions).
+  const std::string patch = dir.Write("p.edg.xml",
+                                      "<edges>\n  <edge id=\"B1C1\" disallow=\"passenger\"/>\n"
+                                      "  <edge id=\"C1B1\" disallow=\"passenger\"/>\n</edges>\n");
+  const std::string closed = (dir.path() / "closed.net.xml").string();
+  ASSERT_EQ(std::system(("netconvert -s " + grid + " -e " + patch + " -o " + closed +
+                         " >/dev/null 2>&1")
+                            .c_str()),
+            0);
+  const std::string routes = dir.Write(
+      "r.rou.xml", "<routes>\n  <trip id=\"a\" depart=\"0\" from=\"A0A1\" to=\"C1C2\"/>\n</routes>\n");
+  auto selected = [&](const std::string& net, int min_arms) {
+    const std::string path = dir.Write(
+        "c.yaml", "scenario: {kind: network, network: " + net + ", routes: [" + routes +
+                      "], av_share: 0.5, junctions: {min_arms: " +
+                      std::to_string(min_arms) + "}}\n");
+    std::set<std::string> ids;
+    for (const ControlledJunction& j : BuildScenario(LoadExperimentConfig(path), "").junctions)
+      ids.insert(j.id);
+    return ids;
+  };
+  const std::set<std::string> sides = {"A1", "B0", "B1", "B2", "C1"};
+  EXPECT_EQ(selected(grid, 3), sides);
+  EXPECT_EQ(selected(grid, 4), (std::set<std::string>{"B1"}));
+  const std::set<std::string> any = selected(grid, 0);
+  for (const std::string& id : sides) EXPECT_TRUE(any.count(id)) << id;
+  // C1 keeps 2 arms for cars, B1 3.
+  EXPECT_EQ(selected(closed, 3), (std::set<std::string>{"A1", "B0", "B1", "B2"}));
+  const std::string path = dir.Write(
+      "c.yaml", "scenario: {kind: network, network: " + closed + ", routes: [" + routes +
+                    "], av_share: 0.5, junctions: {min_arms: 4}}\n");
+  const std::string msg =
+      ErrorOf<ConfigError>([&] { BuildScenario(LoadExperimentConfig(path), ""); });
+  EXPECT_THAT(msg, HasSubstr("where fewer than scenario.junctions.min_arms = 4 roads open to "
+                             "cars meet"));
+}
+
 // A .sumocfg's options other than its files are not applied: listed as
 // ignored (with taebp's own key where it has one), in the notes that go to
 // stderr and summary.json (they used to be dropped without a word).

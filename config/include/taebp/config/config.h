@@ -38,6 +38,13 @@ struct JunctionSelection {
   // (m/s; 0: any), e.g. 13.9 keeps an OSM import's town streets and leaves
   // its motorway and trunk junctions to SUMO. Applies to `types`, not `ids`.
   double max_speed = 0.0;
+  // Only junctions where at least this many roads open to cars meet (arms:
+  // the distinct junctions their car edges lead to or come from; 0: any),
+  // e.g. 3 keeps an OSM import's intersections and leaves to SUMO the nodes
+  // along one street (a lane added or dropped, a footway or a cycle path
+  // crossing), whose stop signs would stop the street's own traffic. Applies
+  // to `types`, not `ids`.
+  int min_arms = 0;
   // Junctions left to SUMO although `types` selects them (e.g. the two
   // halves of a dual carriageway a few metres apart, where two stop lines
   // leave no room to queue between them).
@@ -48,6 +55,7 @@ struct JunctionSelection {
     a->Visit("ids", &ids);
     a->Visit("types", &types);
     a->Visit("max_speed", &max_speed);
+    a->Visit("min_arms", &min_arms);
     a->Visit("exclude", &exclude);
     a->Visit("priority", &priority);
     a->Visit("right_before_left", &right_before_left);
