@@ -22,16 +22,6 @@ double Uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11)
 
 namespace {
 
-// A normal edge cars may use: one of its lanes lets class passenger drive.
-bool CarEdge(const net::NetFile& net, const net::Edge& e) {
-  if (!e.function.empty()) return false;
-  for (const std::string& lane : e.lanes) {
-    const net::Lane* l = net.FindLane(lane);
-    if (l && l->passenger) return true;
-  }
-  return false;
-}
-
 // The car edges reachable from `from` through the junctions' links between
 // car lanes (breadth first over edges).
 std::set<std::string> Reachable(const net::NetFile& net, const std::string& from) {
@@ -60,7 +50,7 @@ std::set<std::string> Reachable(const net::NetFile& net, const std::string& from
 FringeEdges FindFringe(const net::NetFile& net) {
   FringeEdges f;
   for (const auto& [id, e] : net.edges()) {
-    if (!CarEdge(net, e)) continue;
+    if (!net.IsCarEdge(e)) continue;
     const net::Junction* from = net.FindJunction(e.from);
     const net::Junction* to = net.FindJunction(e.to);
     if (from && from->type == "dead_end") f.entries.push_back(id);
@@ -83,7 +73,7 @@ Approaches FindApproaches(const net::NetFile& net, const std::vector<std::string
   const std::set<std::string> at(junctions.begin(), junctions.end());
   Approaches a;
   for (const auto& [id, e] : net.edges()) {
-    if (!CarEdge(net, e) || !at.count(e.to)) continue;
+    if (!net.IsCarEdge(e) || !at.count(e.to)) continue;
     bool yields = false, major = false;
     for (const std::string& lane : e.lanes) {
       const net::Lane* from = net.FindLane(lane);

@@ -195,6 +195,14 @@ const Edge* NetFile::FindEdge(const std::string& id) const {
   const auto it = edges_.find(id);
   return it == edges_.end() ? nullptr : &it->second;
 }
+bool NetFile::IsCarEdge(const Edge& e) const {
+  if (!e.function.empty()) return false;
+  for (const std::string& lane : e.lanes) {
+    const Lane* l = FindLane(lane);
+    if (l && l->passenger) return true;
+  }
+  return false;
+}
 const Lane* NetFile::FindLane(const std::string& id) const {
   const auto it = lanes_.find(id);
   return it == lanes_.end() ? nullptr : &it->second;

@@ -374,11 +374,7 @@ void SelectJunctions(const ScenarioConfig& sc, const net::NetFile& net, Scenario
   std::map<std::string, std::set<std::string>> arms;
   if (sel.min_arms > 0)
     for (const auto& [id, e] : net.edges()) {
-      if (!e.function.empty() || e.from == e.to) continue;
-      bool car = false;
-      for (const std::string& lane : e.lanes)
-        if (const net::Lane* l = net.FindLane(lane)) car = car || l->passenger;
-      if (!car) continue;
+      if (!net.IsCarEdge(e) || e.from == e.to) continue;
       arms[e.to].insert(e.from);
       arms[e.from].insert(e.to);
     }

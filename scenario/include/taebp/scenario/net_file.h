@@ -74,6 +74,8 @@ class NetFile {
   const std::vector<int>& LinksFrom(const std::string& lane) const;
   // Normal lanes with a link into `lane` (its predecessors).
   const std::vector<std::string>& Predecessors(const std::string& lane) const;
+  // A normal edge cars may use: one of its lanes lets class passenger drive.
+  bool IsCarEdge(const Edge& e) const;
   // The junction at the end of a normal edge ("" if unknown).
   std::string EdgeEnd(const std::string& edge) const;
   // The network's bounding box (convBoundary).
