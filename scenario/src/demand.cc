@@ -168,10 +168,14 @@ std::vector<Trip> DemandTrips(const net::NetFile& net, const DemandSpec& spec) {
   AppendStreams(net, f, fringe, spec.flow, 0x64656d64u, spec, &trips);
   if (spec.major_flow > 0) {
     const FringeEdges m = FindMajorRoads(net, spec.junctions);
-    if (m.entries.empty() || m.exits.empty())
+    if (m.entries.empty() || m.exits.empty()) {
+      char flow[32];
+      std::snprintf(flow, sizeof flow, "%.6g", spec.major_flow);
       throw std::invalid_argument("the network " + net.path() +
                                   " has no major road (an approach of a controlled junction with "
-                                  "a straight car link that has the right of way) for major_flow");
+                                  "a straight car link that has the right of way) for major_flow = " +
+                                  flow + " veh/h; set it to 0");
+    }
     AppendStreams(net, m, false, spec.major_flow, 0x6d616a72u, spec, &trips);
   }
   std::stable_sort(trips.begin(), trips.end(),

@@ -453,6 +453,8 @@ TEST(DemandOnMajorRoads, TripsStartOnTheMajorApproachesAtTheFlowOnTopOfTheOrigin
   spec.origins = DemandOrigins::kMinorRoads;
   EXPECT_THAT(ErrorOf<std::invalid_argument>([&] { DemandTrips(all_way, spec); }),
               HasSubstr("has no major road"));
+  EXPECT_THAT(ErrorOf<std::invalid_argument>([&] { DemandTrips(all_way, spec); }),
+              HasSubstr("for major_flow = 360 veh/h; set it to 0"));
 }
 
 }  // namespace
