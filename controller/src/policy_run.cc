@@ -238,8 +238,8 @@ class AbortGuard {
 };
 
 std::optional<persuasion::Policy> PolicyOf(const std::string& name) {
-  if (name == kSumoNative) return std::nullopt;
-  return persuasion::ParsePolicy(name);
+  if (name == SumoNative().name) return std::nullopt;
+  return ParseGamePolicy(name);
 }
 
 // SUMO's tripinfo records of the vehicles that departed after the warm-up,
@@ -371,10 +371,10 @@ double RunBareSumo(const ExperimentConfig& config, const Scenario& scenario) {
   if (!config.scenario.IsNetwork())
     throw ConfigError(
         "a bare SUMO run needs scenario.kind = 'network': the figure-8's vehicles keep "
-        "circulating only through the controller's lap re-routing (compare against "
-        "sumo_native instead)");
+        "circulating only through the controller's lap re-routing (compare against " +
+        std::string(SumoNative().name) + " instead)");
   NetworkController controller(config, std::nullopt, scenario, *scenario.topology, {});
-  sumo::Start(SumoArgs(config, scenario, kSumoNative));
+  sumo::Start(SumoArgs(config, scenario, SumoNative().name));
   try {
     controller.Start();
     const long steps = std::lround(config.scenario.duration / config.scenario.step_length);

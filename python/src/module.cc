@@ -150,7 +150,7 @@ PYBIND11_MODULE(_taebp, m) {
                       std::optional<double> assumed_trust, double s_max,
                       const std::string& likelihood, double steepness, double midpoint) {
     const taebp::persuasion::PredictedOutcome o =
-        taebp::Predict(taebp::persuasion::ParsePolicy(policy),
+        taebp::Predict(taebp::ParseGamePolicy(policy),
                        Request(prior, penalty, trust, assumed_trust, s_max, likelihood,
                                steepness, midpoint));
     py::dict out;
@@ -168,6 +168,7 @@ PYBIND11_MODULE(_taebp, m) {
   });
 
   m.def("metrics_json", [] { return taebp::MetricsJson(); });
+  m.def("policies_json", [] { return taebp::PoliciesJson(); });
 
   m.def("encounter_columns",
         [](bool beyond, bool network) { return taebp::EncounterCsvColumns(beyond, network); },

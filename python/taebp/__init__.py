@@ -48,6 +48,7 @@ from . import _taebp
 __all__ = [
     "theory", "design", "predict", "solve", "run", "sweep", "load_run", "load_sweep",
     "Table", "RunResult", "SweepResult", "to_pandas", "encounter_columns", "metrics", "metric_sections",
+    "policies",
     "ConfigError", "InvalidArgument", "OutputError", "SumoError", "BusyError", "StallError",
     "SweepError",
     "__version__",
@@ -116,9 +117,9 @@ def design(prior=0.2, penalty=3.0, trust=0.6, s_max=2.0, likelihood="linear",
 
 def predict(policy, prior=0.2, penalty=3.0, trust=0.6, assumed_trust=None, s_max=2.0,
             likelihood="linear", steepness=4.0, midpoint=1.0):
-    """Predicted rates per AV-HV encounter of ``policy`` (no_ebp, no_trust, ta_ebp,
-    full_reveal) for an HV of trust ``trust`` when the AV designs for
-    ``assumed_trust`` (default ``trust``; no_trust designs for 1).
+    """Predicted rates per AV-HV encounter of ``policy`` ({game_policies})
+    for an HV of trust ``trust`` when the AV designs for ``assumed_trust``
+    (default ``trust``; No Trust designs for 1).
 
     Returns dc_rate, collision_rate, nudge_rate, av_first_rate."""
     return _taebp.predict(str(policy), float(prior), float(penalty), float(trust),
@@ -272,6 +273,28 @@ def metrics():
     same name in summary.json's policies.<p>, RunResult.to_pandas()["policies"],
     SweepResult.results and SweepResult.aggregate."""
     return json.loads(_taebp.metrics_json())["metrics"]
+
+
+def policies():
+    """The policies, declared once in C++ (config/policies.h; ``taebp
+    policies``): a list of dicts with name, label (as tables and plots print
+    it), plays_game (False: SUMO's own logic), needs_avs, beyond_paper,
+    by_default (listed when a config gives no ``policies``), ignores (the
+    config keys, or sections, that cannot change the policy's run) and
+    summary. The names are those a config's ``policies`` and results use:
+    {all_policies}."""
+    return json.loads(_taebp.policies_json())
+
+
+def _policy_docstrings():
+    """Fills the policy lists of the docstrings from the table."""
+    rows = policies()
+    names = {
+        "all_policies": ", ".join(r["name"] for r in rows),
+        "game_policies": ", ".join(r["name"] for r in rows if r["plays_game"]),
+    }
+    for f in (predict, policies):
+        f.__doc__ = f.__doc__.format(**names)
 
 
 def metric_sections():
@@ -508,3 +531,6 @@ def sweep(config, overrides=(), out=None, jobs=None, quiet=True, shard=None):
                          % (config, len(failed), (": " + detail) if detail else "", out),
                          result, failed)
     return result
+
+
+_policy_docstrings()

@@ -1,5 +1,7 @@
 #include "taebp/report/metrics.h"
 
+#include "taebp/config/policies.h"
+
 #include "metric_facts.h"
 
 #include <nlohmann/json.hpp>
@@ -85,7 +87,7 @@ bool InScope(MetricScope s, const PolicyRun& r) {
   switch (s) {
     case MetricScope::kAll: return true;
     case MetricScope::kNetwork: return r.scenario_kind == "network";
-    case MetricScope::kBeyond: return r.beyond.on && r.policy != "sumo_native";
+    case MetricScope::kBeyond: return r.beyond.on && PlaysGame(r.policy);
   }
   return false;
 }

@@ -1,5 +1,7 @@
 #include "taebp/report/output_dir.h"
 
+#include "taebp/config/policies.h"
+
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -145,11 +147,7 @@ FolderLock::~FolderLock() {
 }
 
 bool IsPolicyFolder(const std::string& name) {
-  static const char* const kPolicies[] = {"sumo_native", "no_ebp", "no_trust", "ta_ebp",
-                                          "full_reveal"};
-  for (const char* p : kPolicies)
-    if (name == p) return true;
-  return false;
+  return FindPolicy(name) != nullptr;  // config/policies.h: every policy
 }
 
 bool IsRunFile(const std::string& name) {

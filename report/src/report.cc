@@ -1,5 +1,7 @@
 #include "taebp/report/report.h"
 
+#include "taebp/config/policies.h"
+
 #include "metric_facts.h"
 #include "taebp/report/metrics.h"
 
@@ -33,15 +35,6 @@ namespace taebp {
 namespace {
 
 using json = nlohmann::ordered_json;
-
-std::string PolicyLabel(const std::string& p) {
-  if (p == "no_ebp") return "No EBP";
-  if (p == "no_trust") return "No Trust";
-  if (p == "ta_ebp") return "TA-EBP";
-  if (p == "full_reveal") return "Full reveal";
-  return p;
-}
-
 
 // One metric's value as summary.json writes it (metrics.h): null where undefined.
 json MetricJson(const Metric& m, double v) {
@@ -512,11 +505,11 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
   for (std::size_t i = 0; i < runs.size(); ++i)
     out << std::setw(w)
         << cell(stats[i].collisions, stats[i].n,
-                runs[i].policy == "sumo_native" ? -1.0 : runs[i].theory.collision_rate);
+                !PlaysGame(runs[i].policy) ? -1.0 : runs[i].theory.collision_rate);
   out << "\n" << std::setw(w0) << "DC Rate";
   for (std::size_t i = 0; i < runs.size(); ++i)
     out << std::setw(w)
-        << cell(stats[i].dc, stats[i].n, runs[i].policy == "sumo_native" ? -1.0 : runs[i].theory.dc_rate);
+        << cell(stats[i].dc, stats[i].n, !PlaysGame(runs[i].policy) ? -1.0 : runs[i].theory.dc_rate);
   out << "\n" << std::setw(w0) << "AV-HV encounters";
   for (std::size_t i = 0; i < runs.size(); ++i) out << std::setw(w) << stats[i].n;
   const bool network = !runs.empty() && runs.front().scenario_kind == "network";
@@ -534,7 +527,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
     char buf[64];
     if (r.held == 0)
       std::snprintf(buf, sizeof buf, "%s",
-                    r.policy == "sumo_native" ? "n/a (SUMO's own logic)" : "no vehicle held");
+                    !PlaysGame(r.policy) ? "n/a (SUMO's own logic)" : "no vehicle held");
     else
       std::snprintf(buf, sizeof buf, "%.1f / %.1f", r.wait_sum / r.held, r.wait_max);
     out << std::setw(w) << buf;
@@ -584,7 +577,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       out << "\n";
     };
     row("Last hour DC rate", [](const PolicyRun& r) {
-      if (r.policy == "sumo_native") return std::string("-");
+      if (!PlaysGame(r.policy)) return std::string("-");
       const LastHourWindow win = LastHour(r);
       const Interval ci = Wilson(win.dc, win.n);
       char buf[96];
@@ -593,7 +586,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       return std::string(buf);
     });
     row("Regret / encounter", [](const PolicyRun& r) {
-      if (r.policy == "sumo_native" || r.encounters.empty()) return std::string("-");
+      if (!PlaysGame(r.policy) || r.encounters.empty()) return std::string("-");
       double regret = 0;
       for (const EncounterRecord& e : r.encounters) regret += e.beyond.regret;
       char buf[64];
@@ -601,7 +594,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       return std::string(buf);
     });
     row("Mean trust start/end", [](const PolicyRun& r) {
-      if (r.policy == "sumo_native") return std::string("-");
+      if (!PlaysGame(r.policy)) return std::string("-");
       char buf[96];
       if (r.beyond.long_run)
         std::snprintf(buf, sizeof buf, "%.3f / %.3f (long run %.3f)", r.beyond.initial_mean_trust,

@@ -516,7 +516,7 @@ void CheckAvsExist(const ExperimentConfig& config, const Scenario& s) {
   if (sc.av_share) return;  // AVs drawn per vehicle (0 is a choice)
   std::vector<std::string> needing;
   for (const std::string& p : config.policies)
-    if (p != "sumo_native") needing.push_back(p);
+    if (const PolicyInfo* info = FindPolicy(p); info && info->needs_avs) needing.push_back(p);
   if (needing.empty()) return;
   std::set<std::string> types;
   if (!VehicleTypesOf(s.route_files, &types) || !VehicleTypesOf(s.additional_files, &types))

@@ -222,7 +222,7 @@ TEST(MajorRoad, SumoCollidesExactlyWherePredictedAndRatesAgreeWithTheTheory) {
     }
     EXPECT_EQ(after_handback, 0);
     const per::PredictedOutcome th =
-        per::PredictMajorRoadOutcome(per::ParsePolicy(policy), Params(), 0.6, model);
+        per::PredictMajorRoadOutcome(ParseGamePolicy(policy), Params(), 0.6, model);
     EXPECT_GT(n, 150) << "too few encounters";
     ExpectInside(dc, n, th.dc_rate, policy + " DC rate");
     ExpectInside(collisions, n, th.collision_rate, policy + " collision rate");

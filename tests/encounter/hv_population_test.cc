@@ -4,6 +4,7 @@
 // each capability is checked against the persuasion library's closed forms,
 // its own arithmetic, and binomial bands of many simulated readings.
 #include "taebp/encounter/hv_population.h"
+#include "taebp/config/policies.h"
 
 #include "taebp/config/config.h"
 #include "taebp/encounter/design.h"
@@ -214,8 +215,8 @@ TEST(HvPopulation, LongRunTrustIsTheClosedFormFixedPoint) {
     HvPopulation pop(Config(yaml), k.policy);
     pop.Add("h", 0.6);
     const BeyondRun r = pop.Results(0.0);
-    ASSERT_TRUE(r.long_run) << per::ToString(k.policy);
-    EXPECT_NEAR(r.expected_long_run_mean, k.expected, 1e-9) << per::ToString(k.policy);
+    ASSERT_TRUE(r.long_run) << taebp::PolicyName(k.policy);
+    EXPECT_NEAR(r.expected_long_run_mean, k.expected, 1e-9) << taebp::PolicyName(k.policy);
   }
   // With forgetting the attractor depends on the initial state: where Q is
   // constant (No Trust) it is ConstantQualityEquilibrium's closed form.

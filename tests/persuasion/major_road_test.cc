@@ -4,6 +4,7 @@
 // library), the paper's worked numbers (Section V, c = 0), or a fraction worked by
 // hand from those closed forms in the comment next to it.
 #include "taebp/persuasion/major_road.h"
+#include "taebp/config/policies.h"
 
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/outcomes.h"
@@ -110,7 +111,7 @@ Rates ClosedFormRates(Policy policy, const MajorRoadParams& p, double theta) {
     default:
       break;
   }
-  ADD_FAILURE() << "no closed form for " << ToString(policy);
+  ADD_FAILURE() << "no closed form for " << taebp::PolicyName(policy);
   return {kNaN, kNaN, kNaN, kNaN};
 }
 
@@ -360,7 +361,7 @@ TEST(MajorRoadPaper, ZeroYieldCostEqualsThePaperGameEverywhere) {
           for (Policy policy : {Policy::kNoEbp, Policy::kNoTrust, Policy::kTaEbp, Policy::kFullReveal}) {
             const PredictedOutcome m = PredictMajorRoadOutcome(policy, major, theta, *model);
             const PredictedOutcome q = PredictOutcome(policy, paper, theta, *model);
-            EXPECT_EQ(m.dc_rate, q.dc_rate) << Where(major, theta) << " " << ToString(policy);
+            EXPECT_EQ(m.dc_rate, q.dc_rate) << Where(major, theta) << " " << taebp::PolicyName(policy);
             EXPECT_EQ(m.collision_rate, q.collision_rate);
             EXPECT_EQ(m.nudge_rate, q.nudge_rate);
             EXPECT_EQ(m.av_first_rate, q.av_first_rate);
@@ -488,7 +489,7 @@ TEST(MajorRoadOutcomes, FourPoliciesMatchTheClosedForms) {
         ++checked;
         const Rates want = ClosedFormRates(policy, p, theta);
         const PredictedOutcome got = PredictMajorRoadOutcome(policy, p, theta, linear);
-        const std::string where = Where(p, theta) + " " + ToString(policy);
+        const std::string where = Where(p, theta) + " " + taebp::PolicyName(policy);
         EXPECT_NEAR(got.dc_rate, want.dc, 1e-12) << where;
         EXPECT_NEAR(got.collision_rate, want.collision, 1e-12) << where;
         EXPECT_NEAR(got.nudge_rate, want.nudge, 1e-12) << where;

@@ -1,4 +1,5 @@
-// taebp: the command-line program. Subcommands: theory, solve, run, sweep, merge, snapshot.
+// taebp: the command-line program. Subcommands: theory, solve, run, sweep, merge, snapshot,
+// metrics, policies.
 #include "taebp/config/config.h"
 #include "taebp/controller/policy_run.h"
 #include "taebp/controller/network_controller.h"
@@ -289,6 +290,15 @@ int PrintMetrics(const std::string& what) {
   return 0;
 }
 
+// `taebp policies`: the policy table of config/policies.h, as docs/policies.md's
+// table, the README's list or JSON (python's taebp.policies(), tools/plot).
+int PrintPolicies(const std::string& what) {
+  if (what == "markdown") std::cout << taebp::PoliciesMarkdown();
+  else if (what == "list") std::cout << taebp::PolicyListMarkdown();
+  else std::cout << taebp::PoliciesJson() << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -305,7 +315,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   theory->add_option("--trust", th.trust, "the HV's true trust theta in [0, 1]")->capture_default_str();
   theory->add_option("--assumed-trust", th.assumed_trust,
-                     "the trust theta_hat the AV designs for (default: --trust; no_trust uses 1)");
+                     "the trust theta_hat the AV designs for (default: --trust; " +
+                         std::string(taebp::PolicyOf(taebp::PolicyKind::kNoTrust).name) +
+                         " uses 1)");
   theory->add_option("--s-max", th.s_max, "largest nudge s_max (m) of the likelihood model")
       ->capture_default_str();
   theory->add_option("--likelihood", th.likelihood, "HV likelihood model: linear or logistic")
@@ -338,11 +350,13 @@ int main(int argc, char** argv) {
   std::vector<std::string> overrides;
   bool quiet = false;
   CLI::App* run = app.add_subcommand(
-      "run", "Run every listed policy of an experiment config in SUMO and write the results");
+      "run", "Run every listed policy of an experiment config in SUMO and write the results "
+             "(policies: " + taebp::PolicyChoices() + "; `taebp policies` says what each does)");
   run->add_option("CONFIG", config_path, "experiment YAML (e.g. configs/paper.yaml)")->required();
   run->add_option("--set", overrides,
                   "override a config key, KEY=VALUE with VALUE read as YAML (repeatable), "
-                  "e.g. --set scenario.duration=600 --set policies=[ta_ebp]");
+                  "e.g. --set scenario.duration=600 --set policies=[" +
+                      std::string(taebp::PolicyOf(taebp::PolicyKind::kTaEbp).name) + "]");
   run->add_option("--out", out_dir, "output directory (default: results/<config name>)");
   run->add_flag("--quiet", quiet, "no progress on stderr");
   std::string rss_log;
@@ -362,6 +376,15 @@ int main(int argc, char** argv) {
                       "markdown: the README's table; renames: CHANGELOG.md's list; json: the "
                       "table as data")
       ->check(CLI::IsMember({"markdown", "renames", "json"}))
+      ->capture_default_str();
+  std::string policies_what = "list";
+  CLI::App* policies = app.add_subcommand(
+      "policies", "The policies: names, labels, whether they play the game and the config keys "
+                  "they do not read");
+  policies->add_option("--print", policies_what,
+                       "list: one line each (the README's list); markdown: docs/policies.md's "
+                       "table; json: the table as data")
+      ->check(CLI::IsMember({"list", "markdown", "json"}))
       ->capture_default_str();
 
   if (const std::optional<int> code = ParseCommandLine(app, argc, argv)) return *code;
@@ -383,6 +406,7 @@ int main(int argc, char** argv) {
       return RunExperimentCommand(config_path, overrides, out_dir, quiet, options);
     }
     if (*metrics) return PrintMetrics(metrics_what);
+    if (*policies) return PrintPolicies(policies_what);
     if (snapshot.Parsed()) return snapshot.Run(argc, argv);
     if (sweep_commands.Parsed()) return sweep_commands.Run();
     return 0;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "taebp/config/enums.h"
+#include "taebp/config/policies.h"
 
 #include <cstdint>
 #include <memory>
@@ -456,8 +457,6 @@ inline constexpr double kMaxCruiseSpeed = 70.0;  // m/s (252 km/h)
 inline constexpr double kMaxDuration = 1e7;      // s (~116 simulated days)
 inline constexpr double kMaxSteps = 1e9;
 
-// The baseline policy without a controller: SUMO's own junction logic.
-inline constexpr const char* kSumoNative = "sumo_native";
 
 // outputs: the time series written by runs beyond the paper (timeseries.csv,
 // hv_trust.csv), sampled every `interval` simulated seconds (>= 1: the
@@ -476,7 +475,7 @@ struct OutputConfig {
 struct ExperimentConfig {
   ScenarioConfig scenario;
   ModelConfig model;
-  std::vector<std::string> policies = {"no_ebp", "no_trust", "ta_ebp"};
+  std::vector<std::string> policies = DefaultPolicies();  // config/policies.h
   std::optional<SweepConfig> sweep;  // only `taebp sweep` uses it
   OutputConfig outputs;
 
