@@ -3,8 +3,12 @@
 // program: the theory and the LP as JSON (runner/theory.h), one experiment
 // (runner/runner.h) and the sweep engine (sweep/engine.h), so Python and the
 // command line give the same numbers and files for the same inputs.
+#include "taebp/runner/errors.h"
 #include "taebp/config/config.h"
+#include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_adapter.h"
+#include "taebp/report/interrupt.h"
+#include "taebp/report/output_dir.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/persuasion.h"
 #include "taebp/report/metrics.h"
@@ -49,23 +53,13 @@ int RunTask(const std::string& config, const std::vector<std::string>& overrides
   try {
     const taebp::ExperimentResult result = taebp::RunExperiment(config, overrides);
     taebp::WriteExperiment(result, out);
-    if (!result.stopped.reason.empty()) {  // stall_action: error; what ran is written
-      std::fprintf(stderr, "taebp: stalled: %s\n", result.stopped.message.c_str());
-      return 4;
-    }
-    return 0;
-  } catch (const taebp::ConfigError& e) {
-    std::fprintf(stderr, "taebp: config error: %s\n", e.what());
-    return 2;
-  } catch (const taebp::persuasion::InvalidArgument& e) {
-    std::fprintf(stderr, "taebp: invalid argument: %s\n", e.what());
-    return 2;
-  } catch (const taebp::SumoError& e) {
-    std::fprintf(stderr, "taebp: %s\n", e.what());
-    return 3;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "taebp: error: %s\n", e.what());
-    return 1;
+    if (!result.stopped.reason.empty())  // stall_action: error; what ran is written
+      throw taebp::StallError(result.stopped.message);
+    return taebp::kExitOk;
+  } catch (...) {  // the CLI's lines and codes (runner/errors.h)
+    const taebp::ErrorReport r = taebp::ReportOf(std::current_exception());
+    std::fprintf(stderr, "%s\n", r.line.c_str());
+    return r.exit_code;
   }
 }
 
@@ -95,13 +89,27 @@ class SignalState {
 PYBIND11_MODULE(_taebp, m) {
   m.doc() = "taebp's C++ library; use the `taebp` package, not this module";
 
-  // Python exceptions for the library's errors (same messages).
-  static py::exception<taebp::ConfigError> config_error(m, "ConfigError", PyExc_ValueError);
-  static py::exception<taebp::persuasion::InvalidArgument> invalid(m, "InvalidArgument",
-                                                                   PyExc_ValueError);
-  static py::exception<taebp::SumoError> sumo_error(m, "SumoError", PyExc_RuntimeError);
-  static py::exception<taebp::SimulationBusy> busy(m, "SimulationBusy", PyExc_RuntimeError);
-  static py::exception<taebp::OutputError> output_error(m, "OutputError", PyExc_OSError);
+  // Python exceptions for the library's errors (same messages), each with the
+  // CLI's exit code as `exit_code` (report/exit_codes.h; runner/errors.h).
+  using taebp::ErrorKind;
+  auto code = [](ErrorKind k) { return taebp::ErrorKindOf(k).exit_code; };
+  auto name = [](ErrorKind k) { return taebp::ErrorKindOf(k).python_name; };
+  static py::exception<taebp::ConfigError> config_error(m, name(ErrorKind::kConfig),
+                                                        PyExc_ValueError);
+  static py::exception<taebp::persuasion::InvalidArgument> invalid(
+      m, name(ErrorKind::kInvalidArgument), PyExc_ValueError);
+  static py::exception<taebp::SumoError> sumo_error(m, name(ErrorKind::kSumo), PyExc_RuntimeError);
+  static py::exception<taebp::SimulationBusy> busy(m, name(ErrorKind::kBusy), PyExc_RuntimeError);
+  static py::exception<taebp::OutputError> output_error(m, name(ErrorKind::kOutput), PyExc_OSError);
+  // Ctrl-C during a run: a KeyboardInterrupt, exit_code 128 + the signal.
+  static py::exception<taebp::Interrupted> interrupted(m, name(ErrorKind::kInterrupted),
+                                                       PyExc_KeyboardInterrupt);
+  config_error.attr("exit_code") = code(ErrorKind::kConfig);
+  invalid.attr("exit_code") = code(ErrorKind::kInvalidArgument);
+  sumo_error.attr("exit_code") = code(ErrorKind::kSumo);
+  busy.attr("exit_code") = code(ErrorKind::kBusy);
+  output_error.attr("exit_code") = code(ErrorKind::kOutput);
+  interrupted.attr("exit_code") = code(ErrorKind::kInterrupted);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -115,7 +123,18 @@ PYBIND11_MODULE(_taebp, m) {
       busy(e.what());
     } catch (const taebp::OutputError& e) {
       output_error(e.what());
+    } catch (const taebp::Interrupted& e) {
+      py::object error = py::reinterpret_borrow<py::object>(interrupted.ptr())(e.what());
+      error.attr("exit_code") = e.exit_code();
+      PyErr_SetObject(interrupted.ptr(), error.ptr());
     }
+  });
+  // The exit codes by kind, for the exceptions defined in Python (StallError,
+  // SweepError): {python_name: exit_code}.
+  m.def("exit_codes", [] {
+    py::dict d;
+    for (const taebp::ErrorKindInfo& k : taebp::ErrorKinds()) d[k.python_name] = k.exit_code;
+    return d;
   });
 
   m.def("version", [] { return taebp::TaebpVersion(); });

@@ -50,7 +50,7 @@ __all__ = [
     "Table", "RunResult", "SweepResult", "to_pandas", "encounter_columns", "metrics", "metric_sections",
     "policies",
     "ConfigError", "InvalidArgument", "OutputError", "SumoError", "BusyError", "StallError",
-    "SweepError",
+    "SweepError", "Interrupted", "EXIT_CODES",
     "__version__",
 ]
 
@@ -62,8 +62,12 @@ InvalidArgument = _taebp.InvalidArgument  # a parameter out of range (ValueError
 SumoError = _taebp.SumoError              # SUMO failed (RuntimeError)
 BusyError = _taebp.SimulationBusy         # a second simulation in this process (RuntimeError)
 OutputError = _taebp.OutputError          # an out= folder not usable, a sweep's, in use (OSError)
-for _e in (ConfigError, InvalidArgument, OutputError, SumoError, BusyError):
+Interrupted = _taebp.Interrupted          # Ctrl-C / SIGTERM during a run (KeyboardInterrupt)
+for _e in (ConfigError, InvalidArgument, OutputError, SumoError, BusyError, Interrupted):
     _e.__module__ = __name__
+# Every exception's `exit_code`: the code `taebp` exits with for the same error
+# (report/exit_codes.h, the README's "Exit codes").
+EXIT_CODES = dict(_taebp.exit_codes())
 
 
 class StallError(RuntimeError):
@@ -72,6 +76,8 @@ class StallError(RuntimeError):
     The experiment stopped after the stalled policy; ``result`` is the
     RunResult of the policies that ran, that one included (written to ``out``
     when given), its stall in ``summary["policies"][policy]["stalls"]``."""
+
+    exit_code = EXIT_CODES["StallError"]
 
     def __init__(self, message, result):
         super().__init__(message)
@@ -83,6 +89,8 @@ class SweepError(RuntimeError):
 
     ``result`` is the SweepResult of the tasks that did finish, ``failed`` a
     list of (point, replicate, error) as recorded in the sweep's journal."""
+
+    exit_code = EXIT_CODES["Error"]  # as `taebp sweep` with a failed task
 
     def __init__(self, message, result, failed):
         super().__init__(message)
@@ -386,9 +394,10 @@ def run(config, overrides=(), out=None, progress=False):
     "policies=[ta_ebp]"]. With ``out`` the result files are written there (as
     ``--out``; atomically); without, nothing is written. ``progress`` prints
     each policy's wall time on stderr. The GIL is released while SUMO runs.
-    Raises ConfigError, InvalidArgument, SumoError or BusyError; StallError
-    (with the result so far, written to ``out``) when a run stalled under
-    scenario.stall_action: error."""
+    Raises ConfigError, InvalidArgument, OutputError, SumoError or BusyError;
+    StallError (with the result so far, written to ``out``) when a run stalled
+    under scenario.stall_action: error; Interrupted on Ctrl-C. Each carries
+    ``exit_code``, the code ``taebp run`` exits with for the same error."""
     config, overrides = _paths(config, overrides)
     out = None if out is None else os.fspath(out)
     r = _taebp.run(config, overrides, out, bool(progress))

@@ -4,6 +4,7 @@
 // optionally spread over MPI ranks or Slurm-array shards. Finished tasks are
 // appended to DIR/journal.jsonl (one write(2) + fsync each), which makes the
 // sweep resumable; the tables are rebuilt from the journal at the end.
+#include "taebp/report/exit_codes.h"
 #include "taebp/sweep/engine.h"
 
 #include "taebp/sweep/plan.h"
@@ -63,8 +64,7 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-constexpr int kExitFailed = 1;
-constexpr int kExitInterrupted = 130;
+// report/exit_codes.h: kExitFailed (a failed or missing task), kExitInterrupted.
 
 volatile std::sig_atomic_t g_signal = 0;
 extern "C" void OnSignal(int sig) { g_signal = sig; }

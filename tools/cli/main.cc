@@ -7,6 +7,7 @@
 #include "taebp/report/output_dir.h"
 #include "taebp/report/metrics.h"
 #include "taebp/report/report.h"
+#include "taebp/runner/errors.h"
 #include "taebp/runner/runner.h"
 #include "taebp/runner/theory.h"
 #include "taebp/encounter/design.h"
@@ -40,9 +41,8 @@ using nlohmann::ordered_json;
 namespace per = taebp::persuasion;
 namespace fs = std::filesystem;
 
-constexpr int kExitConfig = 2;
-constexpr int kExitSumo = 3;
-constexpr int kExitStall = 4;  // stall_action: error stopped a run; what ran is written
+using taebp::kExitConfig;  // report/exit_codes.h: the one list of exit codes
+using taebp::kExitFailed;
 
 // ------------------------------------------------------------------ theory
 struct TheoryOptions : taebp::TheoryRequest {
@@ -118,12 +118,12 @@ int Solve(const std::string& path, bool json) {
   if (json) {
     const ordered_json j = taebp::SolveResultJson(g, pc.trust, r);
     std::cout << j.dump(2) << "\n";
-    return r.status == per::LpResult::Status::kOptimal ? 0 : 1;
+    return r.status == per::LpResult::Status::kOptimal ? 0 : kExitFailed;
   }
   std::cout << std::setprecision(8) << "status: " << per::ToString(r.status) << "\n";
   if (r.status != per::LpResult::Status::kOptimal) {
     std::cout << r.message << "\n";
-    return 1;
+    return kExitFailed;
   }
   std::cout << "trust theta: " << pc.trust << "\nsender value: " << r.sender_value
             << "\n\nscheme pi(recommend action | state):\n" << std::left << std::setw(16) << "";
@@ -224,33 +224,15 @@ int RunExperimentCommand(const std::string& config_path, const std::vector<std::
 }
 
 // Runs `body`, turning an error into its message on stderr and the exit code
-// the README documents (2 bad configuration or argument, 3 SUMO, 4 stalled
-// under stall_action: error, 1 other).
+// the README documents (report/exit_codes.h; runner/errors.h classifies).
 template <typename F>
 int ReportErrors(F&& body) {
   try {
     return body();
-  } catch (const taebp::ConfigError& e) {
-    std::cerr << "taebp: config error: " << e.what() << "\n";
-    return kExitConfig;
-  } catch (const per::InvalidArgument& e) {
-    std::cerr << "taebp: invalid argument: " << e.what() << "\n";
-    return kExitConfig;
-  } catch (const taebp::OutputError& e) {
-    std::cerr << "taebp: " << e.what() << "\n";
-    return kExitConfig;
-  } catch (const taebp::SumoError& e) {
-    std::cerr << "taebp: " << e.what() << "\n";
-    return kExitSumo;
-  } catch (const taebp::StallError& e) {
-    std::cerr << "taebp: stalled: " << e.what() << "\n";
-    return kExitStall;
-  } catch (const taebp::Interrupted& e) {
-    std::cerr << "taebp: " << e.what() << "\n";
-    return e.exit_code();
-  } catch (const std::exception& e) {
-    std::cerr << "taebp: error: " << e.what() << "\n";
-    return 1;
+  } catch (...) {
+    const taebp::ErrorReport r = taebp::ReportOf(std::current_exception());
+    std::cerr << r.line << "\n";
+    return r.exit_code;
   }
 }
 
