@@ -421,7 +421,6 @@ pid_t Launch(const Plan& plan, const Task& task, const fs::path& dir, const RunF
 // recorded and runs again next time.
 Json Collect(const Plan& plan, const Running& r, int wait_status, int rank) {
   const double wall = std::chrono::duration<double>(Clock::now() - r.start).count();
-  const Point& point = plan.points[static_cast<std::size_t>(r.task.point)];
   std::string status = "failed", error, sumo_version;
   Json metrics = Json::object();
   if (WIFSIGNALED(wait_status)) {
@@ -433,7 +432,7 @@ Json Collect(const Plan& plan, const Running& r, int wait_status, int rank) {
   } else if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0) {
     try {
       const Json s = ParseSummary(ReadText(r.dir / "summary.json"));
-      metrics = MetricsFromSummary(s, point.policies);
+      metrics = MetricsFromSummary(s, r.task.runs);  // the policies it ran
       if (s.contains("provenance")) sumo_version = s["provenance"].value("sumo_version", "");
       status = "ok";
     } catch (const std::exception& e) {
@@ -478,6 +477,10 @@ bool RunTasks(const Plan& plan, const fs::path& out, const std::vector<Task>& ta
       Running r;
       r.task = queue.front();
       queue.pop_front();
+      if (r.task.runs.empty()) {  // every policy reused: nothing to simulate
+        done(JournalEntry(plan, r.task, "ok", "", Json::object()));
+        continue;
+      }
       r.dir = TaskDir(out, r.task);
       r.start = Clock::now();
       r.pid = Launch(plan, r.task, r.dir, run);
@@ -546,7 +549,7 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
   std::vector<std::string> headers;
   for (const Task& t : plan.tasks) {
     const auto it = journal.entries.find(t.index);
-    if (it == journal.entries.end() || !IsOk(it->second)) continue;
+    if (it == journal.entries.end() || !IsOk(it->second) || t.runs.empty()) continue;
     std::ifstream in(TaskDir(out, t) / "encounters.csv", std::ios::binary);
     std::string line;
     if (in && std::getline(in, line)) headers.push_back(line);
@@ -573,7 +576,7 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
   f << ',' << task_header << '\n';
   for (const Task& t : plan.tasks) {
     const auto it = journal.entries.find(t.index);
-    if (it == journal.entries.end() || !IsOk(it->second)) continue;
+    if (it == journal.entries.end() || !IsOk(it->second) || t.runs.empty()) continue;
     const fs::path file = TaskDir(out, t) / "encounters.csv";
     std::ifstream in(file, std::ios::binary);
     std::string line;
@@ -668,7 +671,7 @@ std::vector<Task> Pending(const std::vector<Task>& scope, const Journal& j, cons
     const auto it = j.entries.find(t.index);
     if (it == j.entries.end() || !IsOk(it->second)) {
       pending.push_back(t);
-    } else if (!HasTaskOutputs(TaskDir(out, t))) {
+    } else if (!t.runs.empty() && !HasTaskOutputs(TaskDir(out, t))) {
       pending.push_back(t);
       ++*lost;
     }
@@ -968,6 +971,7 @@ int RunMerge(const MergeOptions& o) {
   for (const auto& [index, dir] : source) {
     const Task& t = plan.tasks[static_cast<std::size_t>(index)];
     const fs::path from = TaskDir(dir, t), to = TaskDir(out, t);
+    if (t.runs.empty()) continue;  // every policy reused: no folder
     if (!HasTaskOutputs(from)) {
       if (IsOk(journal.entries.at(index))) lost.push_back(from.string());
       continue;
@@ -978,7 +982,8 @@ int RunMerge(const MergeOptions& o) {
     fs::copy(from, to, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
   }
   for (const auto& [index, e] : journal.entries) {  // already in OUT: check it is there
-    if (source.count(index) || !IsOk(e)) continue;
+    if (source.count(index) || !IsOk(e) || plan.tasks[static_cast<std::size_t>(index)].runs.empty())
+      continue;
     const fs::path here = TaskDir(out, plan.tasks[static_cast<std::size_t>(index)]);
     if (!HasTaskOutputs(here)) lost.push_back(here.string());
   }
