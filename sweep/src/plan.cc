@@ -396,11 +396,14 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
       t.index = point.index * plan.replicates + r;
       t.seed = seed + static_cast<std::uint64_t>(r);
       bool beyond_left = beyond_by_config;  // the runs' subset still beyond the paper?
+      // A run: its identity and its seed.
+      auto run_key = [&t](const std::string& identity) {
+        return identity + "\nseed " + std::to_string(t.seed);
+      };
       for (const std::string& p : point.policies) {
         const auto id = identities.find(p);
-        const auto earlier = id == identities.end()
-                                 ? first_run.end()
-                                 : first_run.find(id->second + "\nseed " + std::to_string(t.seed));
+        const auto earlier =
+            id == identities.end() ? first_run.end() : first_run.find(run_key(id->second));
         if (earlier != first_run.end()) {
           t.reused_from[p] = earlier->second;
         } else {
@@ -424,7 +427,7 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
       for (const std::string& p : t.runs) {
         const auto id = identities.find(p);
         if (id != identities.end())
-          first_run.emplace(id->second + "\nseed " + std::to_string(t.seed), t.index);
+          first_run.emplace(run_key(id->second), t.index);
       }
       plan.tasks.push_back(t);
     }
