@@ -698,8 +698,8 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
     if (t.index % shard_count == shard_index) scope.push_back(t);
 
   if (o.list) {
-    std::printf("%zu points x %d replicates = %zu tasks%s\n", plan.points.size(), plan.replicates,
-                plan.tasks.size(),
+    std::printf("%zu points x %d replicates = %zu tasks, %zu policy runs (%zu reused)%s\n",
+                plan.points.size(), plan.replicates, plan.tasks.size(), plan.Runs(), plan.Reused(),
                 o.shard.empty() ? "" : (", shard " + o.shard + ": " + std::to_string(scope.size())).c_str());
     for (const Task& t : scope) {
       std::printf("%d point=%d replicate=%d seed=%llu", t.index, t.point, t.replicate,
@@ -707,6 +707,10 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
       const Point& p = plan.points[static_cast<std::size_t>(t.point)];
       for (std::size_t k = 0; k < plan.columns.size(); ++k)
         std::printf(" %s=%s", plan.columns[k].c_str(), p.values[k].c_str());
+      for (const auto& [policy, from] : t.reused_from) {  // runs it does not make again
+        const Task& f = plan.tasks[static_cast<std::size_t>(from)];
+        std::printf(" %s:reuses=%d-%d", policy.c_str(), f.point, f.replicate);
+      }
       std::printf("\n");
     }
     return 0;
