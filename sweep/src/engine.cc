@@ -690,7 +690,7 @@ bool HaveMpi() {
 }
 
 int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
-  const Plan plan = ExpandSweep(ReadConfigFile(o.config), o.config, o.overrides);
+  const Plan plan = ExpandSweep(ReadConfigFile(o.config), o.config, o.overrides, o.reuse);
   int shard_index = 0, shard_count = 1;
   ParseShard(o.shard, &shard_index, &shard_count);
   std::vector<Task> scope;  // this shard's tasks
@@ -938,7 +938,8 @@ int RunMerge(const MergeOptions& o) {
   if (replicates != first.value("replicates", 1))
     overrides.push_back("sweep.replicates=" + std::to_string(replicates));
   const std::string origin = first.value("config_path", (fs::path(o.dirs.front()) / "sweep.json").string());
-  Plan plan = ExpandSweep(first["config_text"].get<std::string>(), origin, overrides);
+  Plan plan = ExpandSweep(first["config_text"].get<std::string>(), origin, overrides,
+                          first.value("reuse", true));
   const std::string hash = first["config_hash"].get<std::string>();
   if (plan.hash != hash) {
     std::fprintf(stderr,

@@ -268,8 +268,9 @@ std::string RunIdentity(const ExperimentConfig& config, const std::string& polic
 }
 
 Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
-                 const std::vector<std::string>& overrides) {
+                 const std::vector<std::string>& overrides, bool reuse) {
   Plan plan;
+  plan.reuse = reuse;
   plan.config_text = config_text;
   plan.config_path = config_path;
   plan.overrides = overrides;
@@ -402,8 +403,9 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
       };
       for (const std::string& p : point.policies) {
         const auto id = identities.find(p);
-        const auto earlier =
-            id == identities.end() ? first_run.end() : first_run.find(run_key(id->second));
+        const auto earlier = id == identities.end() || !reuse
+                                 ? first_run.end()
+                                 : first_run.find(run_key(id->second));
         if (earlier != first_run.end()) {
           t.reused_from[p] = earlier->second;
         } else {
@@ -759,6 +761,7 @@ Json SweepHeader(const Plan& plan, const std::string& shard, const std::string& 
   // Policy runs simulated and reused (Task::runs, Task::reused_from).
   h["policy_runs"] = plan.Runs();
   h["policy_runs_reused"] = plan.Reused();
+  h["reuse"] = plan.reuse;
   h["shard"] = shard.empty() ? Json(nullptr) : Json(shard);
   h["git_revision"] = BuildGitRevision();
   h["taebp_version"] = TaebpVersion();

@@ -140,4 +140,38 @@ TEST_F(SweepCli, SumoNativeOverTenPointsThatCannotChangeItRunsSumoOnce) {
   EXPECT_EQ(a.at("policies").at("sumo_native"), b.at("policies").at("sumo_native"));
 }
 
+// The reuse changes no number: a sweep with and without it (--no-reuse) has
+// the same tables but the reused_from column, on a network where the model
+// and the assumed trust are swept (sumo_native reads neither, no_trust not
+// the assumed trust).
+TEST_F(SweepCli, ReuseChangesNoNumber) {
+  const fs::path cfg = dir_ / "net.yaml";
+  std::ofstream(cfg) << "scenario: {kind: network, grid: {columns: 2, rows: 2}, "
+                        "demand: {flow: 300}, av_share: 0.5, duration: 120, seed: 3}\n"
+                        "policies: [sumo_native, no_trust, ta_ebp]\n"
+                        "sweep:\n  replicates: 2\n  grid:\n"
+                        "    model.assumed_trust: [0.4, 0.9]\n";
+  const fs::path with = dir_ / "with", without = dir_ / "without";
+  ASSERT_EQ(Sweep(cfg, with, "--jobs 2"), 0) << last_log_;
+  ASSERT_EQ(Sweep(cfg, without, "--jobs 2 --no-reuse"), 0) << last_log_;
+  const auto h = nlohmann::json::parse(ReadFile(with / "sweep.json"));
+  EXPECT_EQ(h.at("policy_runs"), 2 * (3 + 1));  // per seed: 3 at the first point, ta_ebp again
+  EXPECT_EQ(nlohmann::json::parse(ReadFile(without / "sweep.json")).at("policy_runs"), 12);
+  // results.csv without the reused_from cells (the 8th column).
+  auto strip = [](const std::string& text) {
+    std::istringstream in(text);
+    std::string out;
+    for (std::string line; std::getline(in, line);) {
+      std::size_t at = 0;
+      for (int k = 0; k < 7; ++k) at = line.find(',', at) + 1;
+      out += line.substr(0, at) + line.substr(line.find(',', at) + 1) + "\n";
+    }
+    return out;
+  };
+  const std::string a = ReadFile(with / "results.csv"), b = ReadFile(without / "results.csv");
+  EXPECT_NE(a, b);  // reused_from is filled where reused
+  EXPECT_EQ(strip(a), strip(b));
+  EXPECT_EQ(ReadFile(with / "aggregate.csv"), ReadFile(without / "aggregate.csv"));
+}
+
 }  // namespace

@@ -56,6 +56,7 @@ struct Plan {
   std::vector<Point> points;             // Cartesian product, last axis fastest
   int replicates = 1;
   std::vector<Task> tasks;               // point-major, replicate fastest
+  bool reuse = true;                     // ExpandSweep's `reuse`
 
   // The --set overrides of a point: the user's, then the point's values.
   std::vector<std::string> PointOverrides(const Point& point) const;
@@ -70,8 +71,10 @@ struct Plan {
 // Builds the plan from the config text and the user's --set overrides. Throws
 // ConfigError naming the key for a missing `sweep:` section, a zipped value of
 // the wrong length, empty values or a key given twice.
+// `reuse` false: every task runs every policy of its point (Task::runs), to
+// measure the reuse or check it (the tables are the same but reused_from).
 Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
-                 const std::vector<std::string>& overrides);
+                 const std::vector<std::string>& overrides, bool reuse = true);
 
 // Splits a YAML flow sequence "[a, [b, c], {d: e}]" into its top-level items'
 // text. Returns false if `text` is not a flow sequence.
