@@ -1,6 +1,7 @@
 // The taebp command-line program, run as a user would: theory and solve
 // against the library, run's outputs and their determinism, bad input that
 // leaves no half-written results, and --help.
+#include "taebp/config/policies.h"
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/likelihood.h"
 #include "taebp/persuasion/lp.h"
