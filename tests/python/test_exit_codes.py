@@ -14,10 +14,11 @@ def readme_codes():
     """code -> meaning from the README's "Exit codes" table."""
     with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as f:
         text = f.read()
-    table = text[text.index("Exit codes, for every subcommand:"):]
+    table = text[text.index("Exit codes, for every subcommand"):]
     table = table[:table.index("\n\n", table.index("| code |"))]
     rows = {}
-    for line in table.splitlines()[3:]:
+    lines = [l for l in table.splitlines() if l.startswith("|")]
+    for line in lines[2:]:  # after the header and its rule
         cells = [c.strip() for c in line.strip("|").split("|")]
         for code in cells[0].split(","):
             rows[int(code)] = cells[1]
