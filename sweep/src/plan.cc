@@ -254,17 +254,26 @@ void EraseKey(Json* j, const std::string& key) {
 
 }  // namespace
 
-std::string RunIdentity(const ExperimentConfig& config, const std::string& policy) {
-  Json j = Json::parse(ToJson(config));
+namespace {
+
+// RunIdentity of `policy` from the config already as JSON (`config_json`).
+std::string IdentityOf(const Json& config_json, bool beyond, const std::string& policy) {
+  Json j = config_json;
   j.erase("policies");
   j.erase("sweep");
   if (const PolicyInfo* info = FindPolicy(policy))
     for (const std::string& key : info->ignores) EraseKey(&j, key);
   Json id;
   id["policy"] = policy;
-  id["beyond"] = config.BeyondPaper();
+  id["beyond"] = beyond;
   id["config"] = j;
   return id.dump();
+}
+
+}  // namespace
+
+std::string RunIdentity(const ExperimentConfig& config, const std::string& policy) {
+  return IdentityOf(Json::parse(ToJson(config)), config.BeyondPaper(), policy);
 }
 
 Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
@@ -377,8 +386,9 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
       ExperimentConfig c = config_template.Load(point_overrides);
       point.policies = c.policies;
       seed = c.scenario.seed;
-      for (const std::string& p : c.policies) identities[p] = RunIdentity(c, p);
       beyond = c.BeyondPaper();
+      const Json config_json = Json::parse(ToJson(c));  // once per point
+      for (const std::string& p : c.policies) identities[p] = IdentityOf(config_json, beyond, p);
       c.policies.clear();  // what else makes a run beyond the paper
       beyond_by_config = c.BeyondPaper();
     } catch (const ConfigError& e) {
