@@ -79,15 +79,22 @@ TEST(SweepReuse, PolicySpecificKeysAreReusedByThePoliciesThatIgnoreThem) {
       Yaml("[no_trust, ta_ebp]", "    model.assumed_trust: [0.3, 0.6, 0.9]\n", 1), "t.yaml", {});
   EXPECT_EQ(plan.Runs(), 1u + 3u);
   // A subset that would lose the columns beyond the paper runs them again:
-  // population_mean ignores assumed_trust, but no_trust alone would be a
-  // paper run with other columns.
+  // population_mean ignores assumed_trust, but ta_ebp alone would be a paper
+  // run with other columns; no_trust is reused.
   const Plan beyond = ExpandSweep(
+      Yaml("[no_trust, ta_ebp, population_mean]", "    model.assumed_trust: [0.3, 0.6]\n", 1),
+      "t.yaml", {});
+  ASSERT_EQ(beyond.tasks.size(), 2u);
+  const auto& second = beyond.tasks[1];
+  EXPECT_EQ(second.runs, (std::vector<std::string>{"ta_ebp", "population_mean"}));
+  EXPECT_EQ(second.reused_from.size(), 1u);
+  EXPECT_EQ(second.reused_from.count("no_trust"), 1u);
+  // Both policies ignoring the key: the second point runs nothing.
+  const Plan none = ExpandSweep(
       Yaml("[no_trust, population_mean]", "    model.assumed_trust: [0.3, 0.6]\n", 1), "t.yaml",
       {});
-  for (const auto& t : beyond.tasks) {
-    EXPECT_EQ(t.runs, (std::vector<std::string>{"no_trust", "population_mean"})) << t.point;
-    EXPECT_TRUE(t.reused_from.empty());
-  }
+  EXPECT_TRUE(none.tasks[1].runs.empty());
+  EXPECT_EQ(none.tasks[1].reused_from.size(), 2u);
 }
 
 // The acceptance: sumo_native over 10 points that cannot change it costs one
@@ -129,7 +136,9 @@ TEST_F(SweepCli, SumoNativeOverTenPointsThatCannotChangeItRunsSumoOnce) {
   EXPECT_EQ(reused, 9);
 
   // The claim behind the reuse: a fresh run at the last point (trust 1.0)
-  // gives sumo_native the same results as the run the sweep reused.
+  // gives sumo_native the same results (every metric of results.csv) as the
+  // run the sweep reused. (Not its summary's hv_trust: the HVs' drawn trust,
+  // which no sumo_native metric reads, is the source point's.)
   const fs::path fresh = dir_ / "fresh";
   ASSERT_EQ(Taebp("run " + Quote(cfg.string()) + " --set model.trust=1.0 --set sweep=~ --out " +
                   Quote(fresh.string()) + " --quiet"),
@@ -137,7 +146,13 @@ TEST_F(SweepCli, SumoNativeOverTenPointsThatCannotChangeItRunsSumoOnce) {
       << last_log_;
   const auto a = nlohmann::json::parse(ReadFile(out / "tasks/0-0/summary.json"));
   const auto b = nlohmann::json::parse(ReadFile(fresh / "summary.json"));
-  EXPECT_EQ(a.at("policies").at("sumo_native"), b.at("policies").at("sumo_native"));
+  for (const std::string& metric : taebp::sweep::MetricColumns()) {
+    const auto& pa = a.at("policies").at("sumo_native");
+    const auto& pb = b.at("policies").at("sumo_native");
+    EXPECT_EQ(pa.contains(metric), pb.contains(metric)) << metric;
+    if (pa.contains(metric) && pb.contains(metric)) EXPECT_EQ(pa[metric], pb[metric]) << metric;
+  }
+  EXPECT_NE(a["policies"]["sumo_native"]["hv_trust"], b["policies"]["sumo_native"]["hv_trust"]);
 }
 
 // The reuse changes no number: a sweep with and without it (--no-reuse) has
