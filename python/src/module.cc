@@ -63,6 +63,16 @@ int RunTask(const std::string& config, const std::vector<std::string>& overrides
   }
 }
 
+// predict()'s `policy`: a game policy of the table; another name is an
+// InvalidArgument (a function argument, not a config), with the table's message.
+taebp::persuasion::Policy GamePolicyArgument(const std::string& name) {
+  try {
+    return taebp::ParseGamePolicy(name);
+  } catch (const taebp::ConfigError& e) {
+    throw taebp::persuasion::InvalidArgument(e.what());
+  }
+}
+
 // The sweep engine installs its own SIGINT/SIGTERM handlers and blocks
 // SIGCHLD; Python's are put back afterwards (Ctrl-C raises KeyboardInterrupt
 // again).
@@ -169,7 +179,7 @@ PYBIND11_MODULE(_taebp, m) {
                       std::optional<double> assumed_trust, double s_max,
                       const std::string& likelihood, double steepness, double midpoint) {
     const taebp::persuasion::PredictedOutcome o =
-        taebp::Predict(taebp::ParseGamePolicy(policy),
+        taebp::Predict(GamePolicyArgument(policy),
                        Request(prior, penalty, trust, assumed_trust, s_max, likelihood,
                                steepness, midpoint));
     py::dict out;

@@ -43,9 +43,9 @@ def test_every_game_policy_predicts(name):
 
 
 def test_predict_names_the_choices_for_a_policy_without_a_game():
-    with pytest.raises(taebp.ConfigError, match="plays no game.*ta_ebp_learned"):
+    with pytest.raises(taebp.InvalidArgument, match="plays no game.*ta_ebp_learned"):
         taebp.predict("sumo_native")
-    with pytest.raises(taebp.ConfigError, match="'bogus' is unknown"):
+    with pytest.raises(taebp.InvalidArgument, match="'bogus' is unknown"):
         taebp.predict("bogus")
 
 
