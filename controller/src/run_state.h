@@ -25,7 +25,10 @@ namespace taebp::control {
 // Speed modes (bits: 1 safe speed, 2 max accel, 4 max decel, 8 right of way,
 // 16 red light, 32 ignore foes already in the junction).
 constexpr int kModeDefault = 31;   // SUMO's own rules (stop signs included)
-constexpr int kModeReleased = 55;  // the controller decided the junction; keep car-following
+// A move of the game (VehicleCommands::GameMove): SUMO's own rules, with the
+// right of way of its partner alone disregarded (SetIgnoredFoes): reckless
+// toward the other vehicle of the game, not toward third vehicles.
+constexpr int kModeGameMove = kModeDefault;
 constexpr int kModeCreep = 0;      // exact commanded speeds during a nudge
 constexpr int kModeUnblocked = 63; // SUMO's rules, foes already in the junction disregarded
 // Lane-change modes: a held vehicle stays in its lane (SUMO would otherwise

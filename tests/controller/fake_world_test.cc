@@ -133,6 +133,11 @@ class FakeWorld : public SumoWorld {
   void SetSpeedMode(const std::string& v, int mode) override {
     commands.push_back("mode " + v + " " + std::to_string(mode));
   }
+  void SetIgnoredFoes(const std::string& v, const std::vector<std::string>& foes) override {
+    std::string ids;
+    for (const std::string& f : foes) ids += " " + f;
+    commands.push_back("ignore " + v + ids);
+  }
   void SetLaneChangeMode(const std::string& v, int mode) override {
     lane_change_modes[v] = mode;
   }
