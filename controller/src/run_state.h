@@ -25,10 +25,14 @@ namespace taebp::control {
 // Speed modes (bits: 1 safe speed, 2 max accel, 4 max decel, 8 right of way,
 // 16 red light, 32 ignore foes already in the junction).
 constexpr int kModeDefault = 31;   // SUMO's own rules (stop signs included)
-// A move of the game (VehicleCommands::GameMove): SUMO's own rules, with the
-// right of way of its partner alone disregarded (SetIgnoredFoes): reckless
-// toward the other vehicle of the game, not toward third vehicles.
-constexpr int kModeGameMove = kModeDefault;
+// A move of the game (VehicleCommands::GameMove): SUMO's right of way at its
+// link (gap acceptance toward the major road) with its partner's alone
+// disregarded (SetIgnoredFoes), and, once inside, foes already in the
+// junction disregarded as before (the controller's WayClear checked them; with
+// bit 32 off, SUMO's crossing-point following makes the second of the two
+// brake for the first inside the junction: measured, No Trust's both-proceed
+// pairs then collided in 4 of 57 and the two-way grid stalled).
+constexpr int kModeGameMove = 63;
 constexpr int kModeCreep = 0;      // exact commanded speeds during a nudge
 constexpr int kModeUnblocked = 63; // SUMO's rules, foes already in the junction disregarded
 // Lane-change modes: a held vehicle stays in its lane (SUMO would otherwise

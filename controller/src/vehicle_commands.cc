@@ -98,11 +98,13 @@ void VehicleCommands::CountWait(JunctionState& j, const Vehicle& v) {
   }
 }
 
-// A move of the game: reckless toward its partner alone. SUMO's rules stay in
-// force toward every third vehicle (its right of way at the junction, its gap
-// acceptance at a two-way stop, foes already inside); only the partner's right
-// of way is disregarded (junctionModel.ignoreIDs), so "both proceed" collides
-// as the game's premise has it and a third vehicle is never run into.
+// A move of the game: reckless toward its partner alone. SUMO's right of way
+// at its link stays in force toward every third vehicle (its gap acceptance
+// at a two-way stop: it enters only where SUMO would let a minor vehicle in);
+// only the partner's is disregarded (junctionModel.ignoreIDs), and, once
+// inside, the foes already in the junction (kModeGameMove; the controller's
+// WayClear checked them before the release), so "both proceed" collides as
+// the game's premise has it and a third vehicle is not run into.
 void VehicleCommands::GameMove(Vehicle& v, int partner) {
   s_.sumo.SetSpeedMode(v.id, kModeGameMove);
   s_.sumo.SetIgnoredFoes(v.id, {s_.vehicles[partner].id});
