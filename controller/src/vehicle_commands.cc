@@ -98,15 +98,18 @@ void VehicleCommands::CountWait(JunctionState& j, const Vehicle& v) {
   }
 }
 
-// A move of the game: reckless toward its partner alone. SUMO's right of way
-// at its link stays in force toward every third vehicle (its gap acceptance
-// at a two-way stop: it enters only where SUMO would let a minor vehicle in);
-// only the partner's is disregarded (junctionModel.ignoreIDs), and, once
-// inside, the foes already in the junction (kModeGameMove; the controller's
-// WayClear checked them before the release), so "both proceed" collides as
-// the game's premise has it and a third vehicle is not run into.
-void VehicleCommands::GameMove(Vehicle& v, int partner) {
-  s_.sumo.SetSpeedMode(v.id, kModeGameMove);
+// A move of the game: reckless toward its partner alone. At a two-way stop
+// SUMO's right of way at its link stays in force toward every third vehicle
+// (its gap acceptance: it enters only where SUMO would let a minor vehicle
+// in, kModeGameMove); only the partner's is disregarded
+// (junctionModel.ignoreIDs), and, once inside, the foes already in the
+// junction (the controller's WayClear checked them before the release), so
+// "both proceed" collides as the game's premise has it and a third vehicle is
+// not run into. At an all-way stop every third vehicle is held at its line:
+// right of way off (kModeReleased, run_state.h).
+void VehicleCommands::GameMove(Vehicle& v, int partner, const JunctionState& j) {
+  s_.sumo.SetSpeedMode(v.id, j.logic->spec().rule == junction::Rule::kTwoWay ? kModeGameMove
+                                                                            : kModeReleased);
   s_.sumo.SetIgnoredFoes(v.id, {s_.vehicles[partner].id});
   v.ignoring = true;
 }
@@ -124,7 +127,7 @@ void VehicleCommands::StopIgnoring(Vehicle& v) {
 void VehicleCommands::Cruise(JunctionState& j, int h, int movement, double speed, int partner) {
   Vehicle& v = s_.vehicles[h];
   v.movement = movement;
-  GameMove(v, partner);
+  GameMove(v, partner, j);
   s_.sumo.SetLaneChangeMode(v.id, kLaneChangeHeld);
   s_.sumo.SetSpeed(v.id, speed);
   v.major_hv = true;
@@ -173,7 +176,7 @@ void VehicleCommands::Release(JunctionState& j, int h, int partner) {
   const bool reckless = partner >= 0;
   auto rules = [&] {
     if (reckless) {
-      GameMove(v, partner);
+      GameMove(v, partner, j);
     } else {
       s_.sumo.SetSpeedMode(v.id, kModeDefault);
       StopIgnoring(v);

@@ -43,7 +43,7 @@ class VehicleCommands {
   void Hold(JunctionState& j, int h);
   void CountWait(JunctionState& j, const Vehicle& v);
   void Release(JunctionState& j, int h, int partner);
-  void GameMove(Vehicle& v, int partner);
+  void GameMove(Vehicle& v, int partner, const JunctionState& j);
   void StopIgnoring(Vehicle& v);
   void HandBack(JunctionState& j, int h);
   void Unblock(int h);

@@ -305,9 +305,10 @@ TEST_F(FakeJunction, TheGameIsExecutedInTheWorldAndBothAreHandedBackInThePapersO
   Step(*c);
   EXPECT_THAT(world_.CommandsFor("h2"), ElementsAre("speed h2 0")) << "held for the encounter";
   // The reckless HV goes with SUMO's right of way off; the AV waits.
-  // A move of the game: SUMO's rules, the AV's right of way alone disregarded.
+  // A move of the game at an all-way stop (every third vehicle held): right
+  // of way off (mode 55), the AV named as its partner.
   EXPECT_THAT(world_.CommandsFor("h1"),
-              ElementsAre("speed h1 0", "mode h1 63", "ignore h1 [a1]", "speed h1 -1"));
+              ElementsAre("speed h1 0", "mode h1 55", "ignore h1 [a1]", "speed h1 -1"));
   EXPECT_THAT(world_.CommandsFor("a1"), ElementsAre("speed a1 0"));
   // The HV enters the junction: the AV is handed back to SUMO's rules (SUMO
   // makes it yield to the HV at their crossing point); both are on their way,
@@ -322,7 +323,7 @@ TEST_F(FakeJunction, TheGameIsExecutedInTheWorldAndBothAreHandedBackInThePapersO
   world_.Move("h1", "CN_0", 6.0, 5.0);
   Step(*c);
   EXPECT_THAT(world_.CommandsFor("h1"),
-              ElementsAre("speed h1 0", "mode h1 63", "ignore h1 [a1]", "speed h1 -1",
+              ElementsAre("speed h1 0", "mode h1 55", "ignore h1 [a1]", "speed h1 -1",
                           "ignore h1 []", "mode h1 31"));
   // The AV leaves; the encounter is recorded.
   world_.Move("a1", "CE_0", 6.0, 5.0);
