@@ -25,19 +25,13 @@ namespace taebp::control {
 // Speed modes (bits: 1 safe speed, 2 max accel, 4 max decel, 8 right of way,
 // 16 red light, 32 ignore foes already in the junction).
 constexpr int kModeDefault = 31;   // SUMO's own rules (stop signs included)
-// A move of the game (VehicleCommands::GameMove) disregards its partner's
-// right of way (SetIgnoredFoes) and, once inside, the foes already in the
-// junction (the controller's WayClear checked them; with bit 32 off, SUMO's
-// crossing-point following makes the second of the two brake for the first
-// inside the junction: measured, No Trust's both-proceed pairs then collided
-// in 4 of 57 and the two-way grid stalled). At a two-way stop, where the
-// major road is never held, it keeps SUMO's right of way at its link toward
-// every third vehicle (gap acceptance): kModeGameMove. At an all-way stop the
-// controller holds every third vehicle at its line, so none is left to yield
-// to, and SUMO's stop sign would make the released move halt again at its
-// line (measured: the figure-8's entries 0.6 s later): kModeReleased.
-constexpr int kModeGameMove = 63;
-constexpr int kModeReleased = 55;  // all-way stops: the controller decided the junction; keep car-following
+// A move of the game (VehicleCommands::GameMove): right of way off, its
+// partner named (SetIgnoredFoes). Issue 30 item 1 is open: keeping SUMO's
+// right of way at the link toward third vehicles at two-way stops (mode 63 or
+// 31 + the partner ignored) was measured and not kept (docs/encounter-rules.md:
+// the grid stalled, both-proceed pairs stopped colliding, game moves still hit
+// third vehicles).
+constexpr int kModeReleased = 55;  // the controller decided the junction; keep car-following
 constexpr int kModeCreep = 0;      // exact commanded speeds during a nudge
 constexpr int kModeUnblocked = 63; // SUMO's rules, foes already in the junction disregarded
 // Lane-change modes: a held vehicle stays in its lane (SUMO would otherwise

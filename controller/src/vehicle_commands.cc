@@ -98,18 +98,13 @@ void VehicleCommands::CountWait(JunctionState& j, const Vehicle& v) {
   }
 }
 
-// A move of the game: reckless toward its partner alone. At a two-way stop
-// SUMO's right of way at its link stays in force toward every third vehicle
-// (its gap acceptance: it enters only where SUMO would let a minor vehicle
-// in, kModeGameMove); only the partner's is disregarded
-// (junctionModel.ignoreIDs), and, once inside, the foes already in the
-// junction (the controller's WayClear checked them before the release), so
-// "both proceed" collides as the game's premise has it and a third vehicle is
-// not run into. At an all-way stop every third vehicle is held at its line:
-// right of way off (kModeReleased, run_state.h).
+// A move of the game: SUMO's right of way off (kModeReleased), its partner
+// named to SUMO as the vehicle it disregards (junctionModel.ignoreIDs, no
+// effect under mode 55; the hook for keeping SUMO's right of way toward
+// third vehicles, run_state.h and docs/encounter-rules.md).
 void VehicleCommands::GameMove(Vehicle& v, int partner, const JunctionState& j) {
-  s_.sumo.SetSpeedMode(v.id, j.logic->spec().rule == junction::Rule::kTwoWay ? kModeGameMove
-                                                                            : kModeReleased);
+  (void)j;
+  s_.sumo.SetSpeedMode(v.id, kModeReleased);
   s_.sumo.SetIgnoredFoes(v.id, {s_.vehicles[partner].id});
   v.ignoring = true;
 }
