@@ -2,7 +2,7 @@
 // geometry), each episode counted once: an encounter's AV and HV colliding is
 // that encounter's collision (its junction's logic records it); any other is
 // counted in other_collisions, and in other_collisions_game_move when one of
-// the two was making a move of the game (its partner's right of way disregarded).
+// the two was released by the game with SUMO's right of way off.
 #pragma once
 
 #include "run_state.h"

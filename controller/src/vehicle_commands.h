@@ -4,10 +4,9 @@
 // - the nudge: the AV creeps the drawn distance under speed mode 0 with
 //   exact commanded speeds (CreepSpeed), and once it stands again the HV
 //   reads the displacement SUMO reports (the logic's NudgeDone);
-// - Release: an encounter vehicle drives on, disregarding its partner's
-//   right of way alone (a move of the game: GameMove, SUMO's rules toward
-//   every third vehicle) or under SUMO's own rules (a careful move: mode 31);
-//   watched until it has left the
+// - Release: an encounter vehicle drives on, with SUMO's right of way off
+//   (a move of the game: GameMove, speed mode 55, car-following kept) or under
+//   SUMO's own rules (a careful move: mode 31); watched until it has left the
 //   junction (UpdateCrossing: the logic learns when it has entered the
 //   junction and when it has left it), then SUMO's again;
 // - HandBack: a third vehicle held for an encounter is SUMO's again;

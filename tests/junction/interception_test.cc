@@ -251,9 +251,9 @@ TEST(Interception, BothWaitingAreHeldNudgeWhenStandingAndClearThenTheGame) {
   EXPECT_FALSE(r.logic.Busy());
 }
 
-// A move of the game disregards the right of way of its partner alone
-// (VehicleCommands::GameMove keeps SUMO's rules toward every third vehicle):
-// each release names the other vehicle of the game.
+// Each release of a move of the game names the other vehicle of the game
+// (VehicleCommands::GameMove hands it to SUMO as the vehicle the move
+// disregards: docs/encounter-rules.md).
 TEST(Interception, EveryMoveOfTheGameNamesItsPartnerAlone) {
   for (const bool go : {true, false}) {
     SCOPED_TRACE(go ? "the AV goes" : "the AV waits");

@@ -144,7 +144,7 @@ TEST(MajorRoadInterception, FormsOnlyAtATwoWayStopWithTheOptionOnWhenTheModelSay
   ASSERT_EQ(c.size(), 3u);
   EXPECT_DOUBLE_EQ(c[1].speed, 12.0);
   EXPECT_EQ(c[1].movement, kWs);
-  EXPECT_EQ(c[1].partner, kAv) << "the cruising HV disregards the AV's right of way alone";
+  EXPECT_EQ(c[1].partner, kAv) << "the cruising HV names the AV as its partner";
   EXPECT_DOUBLE_EQ(c[2].distance, 1.6);
   EXPECT_DOUBLE_EQ(c[2].duration, 2.0);
   EXPECT_TRUE(logic.Busy());
@@ -173,7 +173,7 @@ TEST(MajorRoadInterception, TheMovesOfEachIntentAndResponse) {
     std::vector<Cmd> expected;
     if (k.go) {
       expected.push_back({Kind::kRelease, kAv});
-      EXPECT_EQ(at.front().partner, kHv) << "the AV that goes disregards the HV's right of way alone";
+      EXPECT_EQ(at.front().partner, kHv) << "the AV that goes names the HV as its partner";
     }
     if (k.dc) expected.push_back({Kind::kYield, kHv});
     EXPECT_EQ(Simple(at), expected);

@@ -35,8 +35,7 @@
 //   nudged into its path), lets the AV nudge as drawn from its committed
 //   scheme, and the HV reads the displacement SUMO reports.
 //   Then, as the paper has it (EncounterSequence): an AV that goes and an HV that drives
-//   recklessly are released disregarding each other's right of way alone
-//   (Command::partner; SUMO's rules toward every third vehicle; they collide if both
+//   recklessly are released with SUMO's right of way off (they collide if both
 //   go: SUMO's collision check says whether they do); so is a careful move
 //   while its partner still stands yielding in the junction or at its line (an
 //   HV driving if clear past a still AV that may have nudged into the
@@ -78,7 +77,7 @@
 //   junction's conflict geometry, the premise "both proceed collides"). The
 //   AV is held and nudges as drawn; the signal lasts as long as the scheme's
 //   nudge whatever the draw (a still AV stands that long), and the HV keeps
-//   its speed meanwhile disregarding the AV's right of way (kCruise: it does not
+//   its speed meanwhile with SUMO's right of way off (kCruise: it does not
 //   brake for the nudged AV). Then the HV reads SUMO's displacement: DR, it
 //   keeps its speed through the junction; DC, it brakes at the comfortable
 //   deceleration after its reaction time (kYield) and is handed back to
@@ -236,11 +235,11 @@ struct Command {
   enum class Kind {
     kHold,        // keep it where it is (setSpeed 0)
     kStartNudge,  // the AV: creep `distance` m (0: stay), then report NudgeDone
-    kRelease,     // drive through disregarding `partner`'s right of way alone (the game's go / DR)
+    kRelease,     // drive through with SUMO's right of way off (the game's go / DR)
     kHandBack,    // SUMO's own rules again (a careful release, a held third vehicle)
     kUnblock,     // a vehicle SUMO keeps waiting inside the junction for a vehicle of the
                   // game may pass it (Environment::Unblockable) until it has left the junction
-    kCruise,      // a major-road HV: keep `speed` disregarding `partner`'s right of way (the signal, DR)
+    kCruise,      // a major-road HV: keep `speed` with SUMO's right of way off (the signal, DR)
     kYield,       // a major-road HV (DC): brake at `speed` m/s^2 from `delay` s on
   };
   Kind kind = Kind::kHold;
@@ -250,8 +249,8 @@ struct Command {
   double delay = 0;     // kYield: reaction time
   double duration = 0;  // kStartNudge: the signal lasts at least this long (a still AV too)
   int movement = -1;    // kCruise: the HV's movement
-  int partner = -1;     // kRelease, kCruise: the other vehicle of the game, the only one
-                        // whose right of way the move disregards
+  int partner = -1;     // kRelease, kCruise: the other vehicle of the game (named to SUMO as
+                        // the vehicle the move disregards: docs/encounter-rules.md)
   bool in_encounter = false;  // a release or hand-back of an encounter vehicle: report Cleared
 };
 
