@@ -79,19 +79,30 @@ class View:
         self.x, self.ys, self.by = x, ys, by
         col = lambda k: [r.get(k) for r in sweep.rows]  # noqa: E731
         self.keys = {k: tidy.Key(k, col(k)) for k in sweep.keys}
-        others = [k for k in sweep.keys if k not in (x, by)]
-        combos = list(itertools.product(*[self.keys[k].cells for k in others]))
+        # Keys zipped with x on one sweep axis move with it: not a style.
+        zipped = set()
+        for axis in (sweep.info.get("axes", []) if isinstance(sweep.info, dict) else []):
+            if x in axis.get("keys", []):
+                zipped |= set(axis["keys"])
+        others = [k for k in sweep.keys if k not in (x, by) and k not in zipped]
+        combos = self._present(others)
         if by is None and len(combos) > len(STYLES):
             # Too many for line styles: the key with most values as panels.
             by = max(others, key=lambda k: len(self.keys[k].cells))
             self.by = by
             others = [k for k in others if k != by]
-            combos = list(itertools.product(*[self.keys[k].cells for k in others]))
+            combos = self._present(others)
         if len(combos) > len(STYLES):
             raise cannot(sweep, "swept keys %s give %d line styles (at most %d): choose --x and "
                          "--by" % (", ".join(others), len(combos), len(STYLES)))
         self.others, self.combos = others, combos
         self.facets = self.keys[by].cells if by else [None]
+
+    def _present(self, keys):
+        """The combinations of the keys' values that some row has, in sweep order."""
+        combos = list(itertools.product(*[self.keys[k].cells for k in keys]))
+        seen = {tuple(r.get(k) for k in keys) for r in self.sweep.rows}
+        return [c for c in combos if c in seen]
 
     def file_name(self):
         return "sweep_%s.png" % self.x
@@ -144,9 +155,11 @@ class View:
                     if not pts:
                         continue
                     pts.sort()
-                    dodge = 0.0
-                    if not xkey.numeric:
-                        dodge = (p_i - (len(policies) - 1) / 2) * 0.06
+                    # Policies side by side, so that equal values (0) stay visible.
+                    span = 1.0
+                    if xkey.numeric and len(xkey.values) > 1:
+                        span = float(max(xkey.values) - min(xkey.values)) * 0.1
+                    dodge = (p_i - (len(policies) - 1) / 2) * 0.06 * span
                     xs = [p[0] + dodge for p in pts]
                     ys = [p[1] for p in pts]
                     err = [[max(0.0, p[1] - p[2]) if p[2] is not None else 0.0 for p in pts],
@@ -225,8 +238,6 @@ class View:
         ctx = sweep.context()
         reps = sweep.info.get("replicates") if isinstance(sweep.info, dict) else None
         title = "Against %s%s" % (self.x, (": " + ctx) if ctx else "")
-        if reps:
-            title += " (intervals over %d seed%s)" % (reps, "" if reps == 1 else "s")
         fig.suptitle(title, fontsize=10)
         bottom = min(0.35, (0.2 + 0.22 * legend_rows) / fig.get_figheight())
         fig.tight_layout(rect=(0, bottom, 1, 1 - 0.35 / fig.get_figheight()))
