@@ -231,7 +231,9 @@ class View:
         if stall_seen:
             handles.append(Line2D([], [], **STALL_RING))
             labels.append("a seed stalled (k/n)")
-        ncol = min(len(labels), 4 if len(labels) > 6 else len(labels)) or 1
+        # As many entries a row as fit the figure's width (about 7 characters an inch).
+        longest = max([len(l) for l in labels] + [1])
+        ncol = max(1, min(len(labels), int(fig.get_figwidth() * 7.5 / (longest + 6))))
         legend_rows = int(math.ceil(len(labels) / ncol))
         fig.legend(handles, labels, loc="lower center", ncol=ncol, frameon=False, fontsize=8)
         self.description["legend"] = labels
