@@ -263,13 +263,13 @@ def _from_frames(problem):
     out = dict(problem)
     for key in ("receiver_utility", "sender_utility"):
         v = out.get(key)
-        if hasattr(v, "index") and hasattr(v, "columns"):
+        if hasattr(v, "iloc") and hasattr(v, "columns"):
             framed = True
             out.setdefault("states", [str(s) for s in v.index])
             out.setdefault("actions", [str(a) for a in v.columns])
             out[key] = v.to_numpy().tolist()
     p = out.get("prior")
-    if hasattr(p, "index") and not hasattr(p, "columns"):
+    if hasattr(p, "iloc") and not hasattr(p, "columns"):
         framed = True
         out.setdefault("states", [str(s) for s in p.index])
         out["prior"] = p.to_numpy().tolist()

@@ -119,7 +119,7 @@ def test_distributions_are_described_exactly():
     assert d.describe("{dist: beta, alpha: 12, beta: 8}") == (
         "beta", 0.6, math.sqrt(12 * 8 / (20 ** 2 * 21)))
     assert d.describe({"dist": "uniform", "low": 0.2, "high": 0.8}) == (
-        "uniform", 0.5, 0.6 / math.sqrt(12))
+        "uniform", 0.5, (0.8 - 0.2) / math.sqrt(12))
     kind, mean, sd = d.describe("{dist: discrete, values: [0.2, 0.8], weights: [1, 3]}")
     assert kind == "discrete" and abs(mean - 0.65) < 1e-12 and abs(sd - math.sqrt(0.0675)) < 1e-12
     assert d.describe(0.6) == ("fixed", 0.6, 0.0)

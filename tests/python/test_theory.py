@@ -72,7 +72,7 @@ def test_theory_errors_are_exceptions_with_the_cli_message_in_the_configs_names(
     assert code == 2
     with pytest.raises(taebp.InvalidArgument) as e:
         taebp.theory(trust=1.5)
-    assert str(e.value).endswith(message.replace("--trust theta", "trust theta"))
+    assert str(e.value).endswith(message.replace("--trust theta", "trust"))
     assert "trust=1.5" in str(e.value) and "--" not in str(e.value)
     assert isinstance(e.value, ValueError)
     message, _ = cli_error("theory", "--prior", 1.2)
