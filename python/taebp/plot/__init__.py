@@ -48,7 +48,7 @@ def parser(binary):
         + ", ".join(presets.PRESETS) + "), and for every other swept key KEY the standard "
         "panels in sweep_KEY.png: " + ", ".join(view.STANDARD) + " (those with data), one "
         "line per policy, the other swept keys as line styles or panel columns, 95 % "
-        "intervals over the seeds, theory dotted, stalled runs ringed. --x/--y/--by draw one "
+        "intervals over the seeds, theory a bar at the point, stalled runs ringed. --x/--y/--by draw one "
         "view instead.")
     epilog = textwrap.fill(epilog, 79) + (
         "\n\nMetrics (--y; aggregate.csv's columns, `taebp metrics`):\n" + metric_list(binary) +

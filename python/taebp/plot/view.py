@@ -1,7 +1,7 @@
 """The generic view of any sweep: x = a swept key, y = metrics (one panel
 each), one line per policy (its colour), the other swept keys as line styles
 (up to four combinations) or as panel columns (--by), intervals from the
-replicates, theory dotted where the policy has one, stalled runs ringed.
+replicates, theory a bar at the point where the policy has one, stalled runs ringed.
 A key's values that are numbers make a numeric axis; others (a trust
 distribution) are categories labelled by what they are. describe() gives
 what a figure holds (axes, lines, point counts) for --describe."""
@@ -169,8 +169,10 @@ class View:
                     th = [(x, p[4]) for x, p in zip(xs, pts) if p[4] is not None]
                     if th:
                         theory_seen = True
-                        ax.plot([t[0] for t in th], [t[1] for t in th], ls=":", marker="_", ms=10,
-                                color=colour, lw=1.2, alpha=0.9)
+                        # Theory: a bar across each point (no line: line styles
+                        # belong to the other swept keys).
+                        ax.plot([t[0] for t in th], [t[1] for t in th], ls="none", marker="_",
+                                ms=16, mew=2.2, color=colour, alpha=0.75)
                     for x, p in zip(xs, pts):
                         if p[5] > 0:
                             stall_seen = True
@@ -223,8 +225,8 @@ class View:
                 handles.append(Line2D([], [], color="black", ls=STYLES[s_i], lw=1.4))
                 labels.append(self.combo_label(combo))
         if theory_seen:
-            handles.append(Line2D([], [], color="black", ls=":", marker="_", ms=10, lw=1.2))
-            labels.append("theory")
+            handles.append(Line2D([], [], color="black", ls="none", marker="_", ms=16, mew=2.2))
+            labels.append("theory (bar at the point)")
         if any(p.get("offered_line") for p in self.description["panels"]):
             handles.append(Line2D([], [], color="black", ls=":", lw=1))
             labels.append("served = offered")
@@ -238,7 +240,6 @@ class View:
         fig.legend(handles, labels, loc="lower center", ncol=ncol, frameon=False, fontsize=8)
         self.description["legend"] = labels
         ctx = sweep.context()
-        reps = sweep.info.get("replicates") if isinstance(sweep.info, dict) else None
         title = "Against %s%s" % (self.x, (": " + ctx) if ctx else "")
         fig.suptitle(title, fontsize=10)
         bottom = min(0.35, (0.2 + 0.22 * legend_rows) / fig.get_figheight())
