@@ -4,24 +4,33 @@ The same library as the ``taebp`` program, so the same inputs give the same
 numbers and files:
 
     >>> import taebp
-    >>> taebp.theory(prior=0.2, penalty=3, trust=0.6)["s_star"]
+    >>> taebp.theory(prior_go=0.2, collision_penalty=3, trust=0.6)["s_star"]
     1.641025641025641
-    >>> r = taebp.run("configs/paper.yaml", overrides=["scenario.duration=600"])
+    >>> grid = taebp.theory(prior_go=np.linspace(0.05, 0.5, 46)[:, None],
+    ...                     collision_penalty=np.linspace(0.5, 5, 46))  # a DataFrame
+    >>> r = taebp.run("configs/paper.yaml", overrides={"scenario.duration": 600})
     >>> r.summary["policies"]["ta_ebp"]["dc_rate"]
     >>> print(r.table)                       # the Table I printout
     >>> df = r.encounters.to_pandas()        # needs python3-pandas
-    >>> s = taebp.sweep("configs/sweep_trust.yaml", out="results/sweep_trust", jobs=2)
-    >>> s.aggregate.to_pandas()
+    >>> s = taebp.sweep({"scenario": {...}, "policies": ["ta_ebp"]}, out="results/mine",
+    ...                 grid={"model.trust": [{"dist": "beta", "alpha": 12, "beta": 8}, 0.6]})
+    >>> s.aggregate.to_pandas()              # model.trust, model.trust.dist/.mean/.sd, ...
 
-Functions
+Functions (arguments under the config's names; numbers give a dict, arrays or
+lists a DataFrame, one row per point)
     theory(...)   the TA-EBP design and predicted outcomes (``taebp theory --json``)
     design(...)   the TA-EBP design for an assumed trust
     predict(...)  one policy's predicted DC / collision / nudge rates
-    solve(problem)  the trust-aware LP for a finite game (``taebp solve --json``)
-    run(config, overrides=(), out=None)  every policy of a config in SUMO
-    sweep(config, overrides=(), out=None, jobs=None)  a study with the sweep engine
-    load_run(dir), load_sweep(dir)  results already written
+    solve(problem)  the trust-aware LP for a finite game (``taebp solve --json``;
+                  DataFrames in, DataFrames out)
+    run(config, overrides=(), out=None)  every policy of a config in SUMO (a
+                  path or a dict; overrides a dict or KEY=VALUE strings)
+    sweep(config, overrides=(), out=None, jobs=None, quiet=True, shard=None,
+          grid=None, replicates=None)  a study with the sweep engine
+    load_run(dir), load_sweep(dir)  results already written (taebp.results)
+    policies()    every policy a config may list
     stats.wilson(k, n, z)  the Wilson interval the outputs report (taebp.stats)
+    dists         swept distributions: their mean, sd and label
 
 Errors are exceptions with the program's messages: ConfigError and
 InvalidArgument (both ValueError), OutputError (OSError: an out= folder that
