@@ -77,6 +77,24 @@ int g_lock_fd = -1;     // the output folder's lock: closed in forked workers
 const std::vector<std::string> kSweepFiles = {"sweep.json",    "journal.jsonl", "results.csv",
                                               "aggregate.csv", "encounters.csv"};
 
+// "no space left on device in DIR" when a file of a task's size cannot be
+// written into `dir` (a full disk or quota), else "".
+std::string NoSpaceIn(const fs::path& dir) {
+  const fs::path probe = dir / (".taebp-space-probe." + std::to_string(::getpid()));
+  std::string why;
+  try {
+    WriteSynced(probe.string(), std::string(256 * 1024, '\0'));
+  } catch (const std::exception& e) {
+    const std::string message = e.what();
+    for (const int err : {ENOSPC, EDQUOT})
+      if (why.empty() && message.find(std::strerror(err)) != std::string::npos)
+        why = std::string(std::strerror(err)) + " in " + dir.string();
+  }
+  std::error_code ec;
+  fs::remove(probe, ec);
+  return why;
+}
+
 // SIGCHLD blocked and waited for (WaitForChild); SIGINT/SIGTERM/SIGHUP are
 // the InterruptGuard's (interrupt.h), which puts the mask back.
 void BlockChildSignal() {
@@ -793,7 +811,19 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
   const InterruptGuard interrupts;  // the handlers and mask as they were, after
   BlockChildSignal();
   Progress progress(show, static_cast<int>(scope.size()), already_ok);
+  std::string disk_full;  // why the sweep stopped for want of space ("" = it did not)
   auto record = [&](const Json& e) {  // rank 0
+    // A task failed on a full disk: the sweep stops (README) rather than run
+    // and fail every remaining task; the task is not recorded (a resume redoes it).
+    if (!IsOk(e)) {
+      const std::string why = NoSpaceIn(out);
+      if (!why.empty()) {
+        if (disk_full.empty())
+          disk_full = why + " (task " + std::to_string(e.value("point", -1)) + "-" +
+                      std::to_string(e.value("replicate", -1)) + ": " + e.value("error", "") + ")";
+        return;
+      }
+    }
     journal_file->Append(Dump(e));
     AddEntry(&journal, plan, e);
     progress.Finished(IsOk(e));
@@ -812,7 +842,7 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
           else if (tag == kTagDone) ++ranks_done;
         }
         progress.Update();
-        return false;
+        return !disk_full.empty();
       };
       completed = RunTasks(plan, out, mine, jobs, 0, worker, record, poll);
       // Gather the other ranks' results until each reports done.
@@ -852,6 +882,14 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
     throw;
   }
 
+  if (!disk_full.empty()) {
+    std::fprintf(stderr,
+                 "taebp sweep: stopped: %s; every finished task is kept: free some space, then "
+                 "the same command resumes the sweep\n",
+                 disk_full.c_str());
+    WriteOutputs(out, plan, journal, header);  // may fail for the same reason, naming it
+    return kExitFailed;
+  }
   // Rank 0: the final tables from the journal.
   WriteOutputs(out, plan, journal, header);
   progress.Update(true);
