@@ -379,7 +379,10 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
       StripGeneratedComment(dir / name);
       run.sumo_output_files.emplace_back(policy + "/" + name, (dir / name).string());
     }
-    if (config.scenario.outputs.ssm) run.ssm = ReadSsm(dir / "ssm.xml", config.scenario, scenario);
+    if (config.scenario.outputs.ssm) {
+      run.ssm = ReadSsm(dir / "ssm.xml", config.scenario, scenario);
+      run.ssm.device_warnings = warned.ssm;
+    }
   }
   if (scenario.scratch && scenario.kind == ScenarioKind::kNetwork) {
     ReadTripinfo(TripinfoPath(scenario, policy), config.scenario, &run.network);

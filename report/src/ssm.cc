@@ -269,6 +269,11 @@ std::vector<Metric> SsmMetricRows() {
      nullptr, "crossings_all", nullptr,
      "PET conflicts at the controlled junctions per 1,000 vehicles through them",
      ConflictsPer1000<kPet>},
+    {"ssm_device_warnings", T::kCount, "", kPolicyLevel, S::kSsm, Pool::kSum, nullptr, nullptr,
+     nullptr,
+     "the SSM device's warnings, apart from sumo_warnings (a collision it saw; 'Cannot compute "
+     "SSM ... at junction J': crossings there go unmeasured)",
+     [](const MetricFacts& f) { return static_cast<double>(f.run->ssm.device_warnings); }},
     {"ssm_ttc_min", T::kReal, "s", kPJ, S::kSsm, Pool::kMean, nullptr, nullptr, nullptr,
      "least time to collision of the TTC conflicts (the worst; empty without one)",
      [](const MetricFacts& f) { return Tally(f).ttc_min; }},

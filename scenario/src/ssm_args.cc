@@ -21,4 +21,10 @@ std::vector<std::string> SsmSumoArgs(const SsmConfig& ssm, const std::string& fi
           "--device.ssm.file",        file};
 }
 
+std::string SsmAbortHint() {
+  return "SUMO 1.15's SSM device (scenario.outputs.ssm) aborts when two vehicles that collided "
+         "leave their conflict area in the same step (MSDevice_SSM.cpp:1870, assertion in "
+         "updatePassedEncounter; docs/ssm.md): run this seed without scenario.outputs.ssm";
+}
+
 }  // namespace taebp

@@ -57,6 +57,9 @@ struct SsmRun {
   SsmTally at_junctions;                    // those at a controlled junction
   std::map<std::string, SsmTally> junction; // by controlled junction id
   long records = 0;                         // <conflict> records SUMO wrote (all times)
+  // The device's warnings (a collision it saw; "Cannot compute SSM due to bad
+  // internal lane geometry at junction J": crossings there go unmeasured).
+  long device_warnings = 0;
 };
 
 // Reads SUMO's SSM output `path`. Throws std::runtime_error naming the file

@@ -15,4 +15,8 @@ namespace taebp {
 // when they are left out).
 std::vector<std::string> SsmSumoArgs(const SsmConfig& ssm, const std::string& file);
 
+// What is known to make SUMO 1.15 abort with the SSM device on (for the
+// message when it does; Scenario::abort_hint).
+std::string SsmAbortHint();
+
 }  // namespace taebp
