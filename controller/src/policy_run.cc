@@ -123,6 +123,12 @@ void StripGeneratedComment(const fs::path& file) {
   fs::rename(tmp, file);
 }
 
+// The file SUMO's SSM device writes, copied to ssm.xml once the policy's
+// simulation is closed: SUMO 1.15 keeps the names of the SSM files it created
+// across simulations in one process and reopens (empties) them when the next
+// one ends, so the policies run before the last would keep an empty file.
+constexpr const char* kSsmSumoFile = ".ssm-sumo.xml";
+
 std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario& scenario,
                                   const std::string& policy) {
   const ScenarioConfig& sc = config.scenario;
@@ -157,7 +163,7 @@ std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario
     if (o.fcd) args.insert(args.end(), {"--fcd-output", (dir / "fcd.xml").string()});
     if (o.queue) args.insert(args.end(), {"--queue-output", (dir / "queue.xml").string()});
     if (o.ssm) {  // under every policy, sumo_native included
-      const std::vector<std::string> ssm = SsmSumoArgs(*o.ssm, (dir / "ssm.xml").string());
+      const std::vector<std::string> ssm = SsmSumoArgs(*o.ssm, (dir / kSsmSumoFile).string());
       args.insert(args.end(), ssm.begin(), ssm.end());
     }
     if (o.edgedata || o.lanedata) {
@@ -369,6 +375,10 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     // SUMO's outputs of this policy (their files, as SUMO closed them).
     std::error_code ec;
     const fs::path dir = PolicyOutputDir(scenario, policy);
+    if (config.scenario.outputs.ssm &&
+        !fs::copy_file(dir / kSsmSumoFile, dir / "ssm.xml", fs::copy_options::overwrite_existing, ec))
+      throw SumoError("SUMO wrote no SSM output for policy " + policy + " (" +
+                      (dir / kSsmSumoFile).string() + ": " + ec.message() + ")");
     std::vector<std::string> names;
     for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
       const std::string name = e.path().filename().string();
