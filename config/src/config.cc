@@ -151,6 +151,11 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   const ScenarioConfig& s = scenario;
   if (s.avs < 0) c.Fail("scenario.avs = " + std::to_string(s.avs) + " must be >= 0");
   if (s.hvs < 0) c.Fail("scenario.hvs = " + std::to_string(s.hvs) + " must be >= 0");
+  for (const auto& [key, n] : {std::pair<const char*, int>{"scenario.avs", s.avs}, {"scenario.hvs", s.hvs}})
+    if (c.ok() && n > kMaxVehicles)
+      c.Fail(std::string(key) + " = " + std::to_string(n) + " is above " +
+             std::to_string(kMaxVehicles) +
+             " (SUMO inserts them all in its first step, which cannot be interrupted)");
   if (s.avs >= 0 && s.hvs >= 0 && s.avs + s.hvs == 0)
     c.Fail("scenario.avs + scenario.hvs = 0: the scenario needs at least one vehicle");
   c.Positive("scenario.cruise_speed", s.cruise_speed);
@@ -242,6 +247,25 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     if (g.lanes < 1 || g.lanes > 4)
       c.Fail("scenario.grid.lanes = " + std::to_string(g.lanes) + " must be in 1..4");
     c.Positive("scenario.grid.speed", g.speed);
+  }
+  if (s.outputs.ssm) {
+    const SsmConfig& ssm = *s.outputs.ssm;
+    std::string known;
+    for (const std::string& m : SsmMeasures()) known += (known.empty() ? "" : ", ") + m;
+    if (ssm.measures.empty())
+      c.Fail("scenario.outputs.ssm.measures is empty: list at least one of " + known);
+    std::set<std::string> seen;
+    for (const std::string& m : ssm.measures) {
+      if (std::find(SsmMeasures().begin(), SsmMeasures().end(), m) == SsmMeasures().end())
+        c.Fail("scenario.outputs.ssm.measures: '" + m +
+               "' is not a conflict measure of SUMO 1.15's SSM device (known: " + known + ")");
+      if (!seen.insert(m).second)
+        c.Fail("scenario.outputs.ssm.measures: '" + m + "' is listed twice");
+    }
+    c.Positive("scenario.outputs.ssm.thresholds.TTC", ssm.thresholds.ttc);
+    c.Positive("scenario.outputs.ssm.thresholds.DRAC", ssm.thresholds.drac);
+    c.Positive("scenario.outputs.ssm.thresholds.PET", ssm.thresholds.pet);
+    c.NonNegative("scenario.outputs.ssm.junction_radius", ssm.junction_radius);
   }
   if (s.demand) {
     const DemandConfig& d = *s.demand;

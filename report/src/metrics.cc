@@ -88,6 +88,7 @@ bool InScope(MetricScope s, const PolicyRun& r) {
     case MetricScope::kAll: return true;
     case MetricScope::kNetwork: return r.scenario_kind == "network";
     case MetricScope::kBeyond: return r.beyond.on && PlaysGame(r.policy);
+    case MetricScope::kSsm: return r.ssm.on;
   }
   return false;
 }
@@ -145,6 +146,10 @@ const std::vector<Metric>& RunMetrics() {
     {"collision_rate", T::kReal, "", kPJ, S::kAll, Pool::kRate, "collisions", "encounters",
      "collision_rate_ci95", "collisions per encounter",
      [](const MetricFacts& f) { return Rate(f.s.collisions, f.s.n); }},
+    {"collisions_total", T::kCount, "", kP, S::kAll, Pool::kSum, nullptr, nullptr, nullptr,
+     "every collision a move of the game took part in: the encounters' AV-HV collisions plus "
+     "other_collisions_game_move (the headline beside collision_rate)",
+     [](const MetricFacts& f) { return D(f.s.collisions + f.run->other_collisions_game_move); }},
     {"dc", T::kCount, "", kPJ, S::kAll, Pool::kSum, nullptr, nullptr, nullptr,
      "encounters in which the HV chose Drive if Clear",
      [](const MetricFacts& f) { return D(f.s.dc); }},
@@ -487,7 +492,13 @@ const std::vector<Metric>& RunMetrics() {
      [](const MetricFacts& f) { return LastHourMean(f, f.last_hour.oracle_dc); }},
   };
   // clang-format on
-  return table;
+  // SUMO's surrogate safety measures (ssm.cc), last.
+  static const std::vector<Metric> all = [] {
+    std::vector<Metric> t = table;
+    for (const Metric& m : SsmMetricRows()) t.push_back(m);
+    return t;
+  }();
+  return all;
 }
 
 const Metric* FindMetric(const std::string& name) {
@@ -574,6 +585,7 @@ const char* ToString(MetricScope s) {
     case MetricScope::kAll: return "";
     case MetricScope::kNetwork: return "network";
     case MetricScope::kBeyond: return "beyond";
+    case MetricScope::kSsm: return "ssm";
   }
   return "?";
 }

@@ -4,8 +4,8 @@
 #include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/persuasion.h"
-#include "taebp/report/interrupt.h"
-#include "taebp/report/output_dir.h"
+#include "taebp/rundir/interrupt.h"
+#include "taebp/rundir/output_dir.h"
 #include "taebp/runner/runner.h"
 
 namespace taebp {

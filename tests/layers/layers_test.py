@@ -15,18 +15,22 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 ALLOWED = {
     "persuasion": {"persuasion"},
     "config": {"config", "persuasion"},
+    "rundir": {"rundir", "config"},  # config: the policy table only
     "report": {"report", "config", "persuasion"},  # config: the policy table only
     "encounter": {"encounter", "persuasion", "config", "report"},
     "junction": {"junction", "encounter", "persuasion"},
     "scenario": {"scenario", "config", "persuasion"},
-    "controller": {"controller", "junction", "encounter", "scenario", "report", "config",
-                   "persuasion"},
-    "runner": {"runner", "controller", "encounter", "scenario", "report", "config", "persuasion"},
-    "sweep": {"sweep", "runner", "controller", "scenario", "report", "config", "persuasion"},
+    "controller": {"controller", "junction", "encounter", "scenario", "report", "rundir",
+                   "config", "persuasion"},
+    "runner": {"runner", "controller", "encounter", "scenario", "report", "rundir", "config",
+               "persuasion"},
+    "sweep": {"sweep", "runner", "controller", "scenario", "report", "rundir", "config",
+              "persuasion"},
 }
 # A layer that may include only some headers of another (report/ reads the
 # policy table of config/, not the config).
-ONLY = {("report", "config"): {"taebp/config/policies.h"}}
+ONLY = {("report", "config"): {"taebp/config/policies.h"},
+        ("rundir", "config"): {"taebp/config/policies.h"}}
 SUMO_ADAPTER = {"controller/src/sumo_adapter.cc", "controller/src/sumo_adapter_libtraci.cc"}
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]')
 

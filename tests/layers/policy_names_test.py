@@ -13,7 +13,7 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 TABLE = "config/src/policies.cc"
 SOURCES = ["persuasion", "config", "report", "encounter", "junction", "scenario", "controller",
-           "runner", "sweep", "tools", "python", "bench", "fuzz", "sumo_net"]
+           "runner", "sweep", "rundir", "tools", "python", "bench", "fuzz", "sumo_net"]
 # (file, name): a literal that spells a policy name but is not one.
 EXEMPT = {("config/include/taebp/config/enums.h", "population_mean")}
 ROW = re.compile(r'\{PolicyKind::k\w+,\s*"(\w+)"')

@@ -1,8 +1,6 @@
-"""The policy table from Python: taebp.policies() is `taebp policies`, the
+"""The policy table from Python: taebp.policy_table() is `taebp policies`, the
 docstrings that list policies list the table's, every game policy predicts,
 and tools/plot colours and labels every policy of the table."""
-import importlib.machinery
-import importlib.util
 import os
 import re
 
@@ -13,7 +11,7 @@ from conftest import ROOT, cli_json
 
 
 def test_policies_is_the_cli_table():
-    rows = taebp.policies()
+    rows = taebp.policy_table()
     assert rows == cli_json("policies", "--print", "json")
     names = [r["name"] for r in rows]
     assert len(names) == len(set(names)) == 7
@@ -24,11 +22,12 @@ def test_policies_is_the_cli_table():
 
 
 def test_docstrings_list_the_tables_policies():
-    rows = taebp.policies()
+    rows = taebp.policy_table()
     games = [r["name"] for r in rows if r["plays_game"]]
-    listed = re.search(r"``policy`` \(([^)]*)\)", taebp.predict.__doc__).group(1)
-    assert listed.split(", ") == games
-    assert ", ".join(r["name"] for r in rows) in taebp.policies.__doc__
+    listed = re.search(r"``policy`` \(([^:]*):", taebp.predict.__doc__).group(1)
+    assert re.sub(r"\s+", " ", listed).split(", ") == games
+    assert ", ".join(r["name"] for r in rows) in taebp.policy_table.__doc__
+    assert taebp.policies() == [r["name"] for r in rows]
     # theory()'s policies: the ones its docstring names, all in the table.
     named = re.search(r"policies\.<([^>]*)>", taebp.theory.__doc__).group(1)
     named = [n.strip() for n in re.sub(r"\s+", " ", named).split("|")]
@@ -36,7 +35,7 @@ def test_docstrings_list_the_tables_policies():
     assert set(named) <= set(games)
 
 
-@pytest.mark.parametrize("name", [r["name"] for r in taebp.policies() if r["plays_game"]])
+@pytest.mark.parametrize("name", [r["name"] for r in taebp.policy_table() if r["plays_game"]])
 def test_every_game_policy_predicts(name):
     p = taebp.predict(name, trust=0.6)
     assert 0.0 <= p["dc_rate"] <= 1.0
@@ -49,18 +48,9 @@ def test_predict_names_the_choices_for_a_policy_without_a_game():
         taebp.predict("bogus")
 
 
-def load_plot():
-    path = os.path.join(ROOT, "tools", "plot")
-    loader = importlib.machinery.SourceFileLoader("taebp_plot", path)
-    spec = importlib.util.spec_from_loader("taebp_plot", loader)
-    module = importlib.util.module_from_spec(spec)
-    loader.exec_module(module)
-    return module
-
-
 def test_plot_colours_and_labels_every_policy():
-    plot = load_plot()
-    rows = taebp.policies()
+    from taebp.plot import common as plot
+    rows = taebp.policy_table()
     assert set(plot.POLICY_COLOUR) == {r["name"] for r in rows}
     plot.load_policy_labels(os.environ.get("TAEBP_CLI") or os.path.join(ROOT, "build", "taebp"))
     for i, r in enumerate(rows):
