@@ -150,7 +150,9 @@ TEST_F(SweepCli, SumoNativeOverTenPointsThatCannotChangeItRunsSumoOnce) {
     const auto& pa = a.at("policies").at("sumo_native");
     const auto& pb = b.at("policies").at("sumo_native");
     EXPECT_EQ(pa.contains(metric), pb.contains(metric)) << metric;
-    if (pa.contains(metric) && pb.contains(metric)) EXPECT_EQ(pa[metric], pb[metric]) << metric;
+    if (pa.contains(metric) && pb.contains(metric)) {
+      EXPECT_EQ(pa[metric], pb[metric]) << metric;
+    }
   }
   EXPECT_NE(a["policies"]["sumo_native"]["hv_trust"], b["policies"]["sumo_native"]["hv_trust"]);
 }
