@@ -228,7 +228,22 @@ class Table:
     def to_pandas(self):
         """A pandas.DataFrame of the table (needs python3-pandas)."""
         pd = _pandas()
-        return pd.DataFrame.from_records(self.rows, columns=self.columns)
+        return _real_columns_float(pd.DataFrame.from_records(self.rows, columns=self.columns))
+
+
+def _real_columns_float(frame):
+    """The frame with every real metric's column (rates, their intervals,
+    means) as float: an empty cell (an undefined value, e.g. sumo_native's
+    collision_rate) is NaN even where no row has a value."""
+    real = set()
+    for m in metrics():
+        if m["type"] == "real":
+            real.update(m["columns"])
+            real.update(m["aggregate_columns"])
+    for c in frame.columns:
+        if c in real:
+            frame[c] = frame[c].astype(float)
+    return frame
 
 
 def _pandas():
@@ -338,7 +353,7 @@ class RunResult:
             rows.append(flat)
         out = {"encounters": self.encounters.to_pandas(),
                "junctions": self.junctions.to_pandas(),
-               "policies": pd.DataFrame(rows)}
+               "policies": _real_columns_float(pd.DataFrame(rows))}
         for name in ("timeseries", "hv_trust"):
             if getattr(self, name) is not None:
                 out[name] = getattr(self, name).to_pandas()

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <cerrno>
 #include <cstring>
@@ -63,18 +64,22 @@ std::string JsonCell(const json& v) {
   return CsvCell(v.get<std::string>());
 }
 
+constexpr double kNoPer = std::numeric_limits<double>::quiet_NaN();
+
 // Every metric of `level` in scope for the run, in table order, with a rate's
 // 95 % interval as NAME_lo / NAME_hi.
 void PutMetrics(const MetricFacts& f, MetricLevel level, json* out) {
   for (const Metric& m : RunMetrics()) {
     if (!(m.levels & level) || !InScope(m.scope, *f.run)) continue;
-    (*out)[m.name] = MetricJson(m, m.value(f));
+    const double per = m.per ? FindMetric(m.per)->value(f) : kNoPer;
+    // Undefined (no encounter, no game, ...): null, with its interval.
+    const bool undefined = MetricUndefined(m, f.run->policy, per);
+    (*out)[m.name] = undefined ? json(nullptr) : MetricJson(m, m.value(f));
     if (m.pool == Pool::kRate) {
       const long k = std::lround(FindMetric(m.count)->value(f));
-      const long n = std::lround(FindMetric(m.per)->value(f));
-      const Interval ci = Wilson(k, n);
-      (*out)[std::string(m.name) + "_lo"] = ci.low;
-      (*out)[std::string(m.name) + "_hi"] = ci.high;
+      const Interval ci = Wilson(k, std::lround(per));
+      (*out)[std::string(m.name) + "_lo"] = undefined ? json(nullptr) : json(ci.low);
+      (*out)[std::string(m.name) + "_hi"] = undefined ? json(nullptr) : json(ci.high);
     }
   }
 }
@@ -512,11 +517,11 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
   for (std::size_t i = 0; i < runs.size(); ++i)
     out << std::setw(w)
         << cell(stats[i].collisions, stats[i].n,
-                runs[i].policy == "sumo_native" ? -1.0 : runs[i].theory.collision_rate);
+                !PlaysGame(runs[i].policy) ? -1.0 : runs[i].theory.collision_rate);
   out << "\n" << std::setw(w0) << "DC Rate";
   for (std::size_t i = 0; i < runs.size(); ++i)
     out << std::setw(w)
-        << cell(stats[i].dc, stats[i].n, runs[i].policy == "sumo_native" ? -1.0 : runs[i].theory.dc_rate);
+        << cell(stats[i].dc, stats[i].n, !PlaysGame(runs[i].policy) ? -1.0 : runs[i].theory.dc_rate);
   out << "\n" << std::setw(w0) << "AV-HV encounters";
   for (std::size_t i = 0; i < runs.size(); ++i) out << std::setw(w) << stats[i].n;
   const bool network = !runs.empty() && runs.front().scenario_kind == "network";
@@ -534,7 +539,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
     char buf[64];
     if (r.held == 0)
       std::snprintf(buf, sizeof buf, "%s",
-                    r.policy == "sumo_native" ? "n/a (SUMO's own logic)" : "no vehicle held");
+                    !PlaysGame(r.policy) ? "n/a (SUMO's own logic)" : "no vehicle held");
     else
       std::snprintf(buf, sizeof buf, "%.1f / %.1f", r.wait_sum / r.held, r.wait_max);
     out << std::setw(w) << buf;
@@ -584,7 +589,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       out << "\n";
     };
     row("Last hour DC rate", [](const PolicyRun& r) {
-      if (r.policy == "sumo_native") return std::string("-");
+      if (!PlaysGame(r.policy)) return std::string("-");
       const LastHourWindow win = LastHour(r);
       const Interval ci = Wilson(win.dc, win.n);
       char buf[96];
@@ -593,7 +598,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       return std::string(buf);
     });
     row("Regret / encounter", [](const PolicyRun& r) {
-      if (r.policy == "sumo_native" || r.encounters.empty()) return std::string("-");
+      if (!PlaysGame(r.policy) || r.encounters.empty()) return std::string("-");
       double regret = 0;
       for (const EncounterRecord& e : r.encounters) regret += e.beyond.regret;
       char buf[64];
@@ -601,7 +606,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       return std::string(buf);
     });
     row("Mean trust start/end", [](const PolicyRun& r) {
-      if (r.policy == "sumo_native") return std::string("-");
+      if (!PlaysGame(r.policy)) return std::string("-");
       char buf[96];
       if (r.beyond.long_run)
         std::snprintf(buf, sizeof buf, "%.3f / %.3f (long run %.3f)", r.beyond.initial_mean_trust,

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -202,6 +203,26 @@ bool NetFile::IsCarEdge(const Edge& e) const {
     if (l && l->passenger) return true;
   }
   return false;
+}
+std::map<std::string, std::set<std::string>> NetFile::CarNeighbours() const {
+  std::map<std::string, std::set<std::string>> neighbours;
+  for (const auto& [id, e] : edges_) {
+    if (!IsCarEdge(e) || e.from == e.to) continue;
+    neighbours[e.from].insert(e.to);
+    neighbours[e.to].insert(e.from);
+  }
+  return neighbours;
+}
+
+std::vector<std::string> NetFile::FringeJunctions() const {
+  const std::map<std::string, std::set<std::string>> neighbours = CarNeighbours();
+  std::vector<std::string> out;
+  for (const auto& [id, j] : junctions_) {
+    const auto it = neighbours.find(id);
+    const bool one = it != neighbours.end() && it->second.size() == 1;
+    if (one || j.type == "dead_end") out.push_back(id);
+  }
+  return out;
 }
 const Lane* NetFile::FindLane(const std::string& id) const {
   const auto it = lanes_.find(id);
