@@ -107,8 +107,7 @@ std::string ExplainSumoError(const std::string& message, const std::string& poli
   if (type_unknown)
     fix = "define the vehicle type '" + type + "' (a <vType> in a route file or in "
           "scenario.additional) or give the vehicle a type that is defined";
-  else if (message.find("route") != std::string::npos ||
-           message.find("connect") != std::string::npos)
+  else if (std::regex_search(message, std::regex("route|connect", std::regex::icase)))
     fix = "randomTrips.py --validate or duarouter repair such routes";
   // Before the command line SUMO's start failures end with.
   const std::size_t cmd = message.find("; the command was: ");

@@ -219,7 +219,11 @@ std::vector<std::string> NetFile::FringeJunctions() const {
   std::vector<std::string> out;
   for (const auto& [id, j] : junctions_) {
     const auto it = neighbours.find(id);
-    const bool one = it != neighbours.end() && it->second.size() == 1;
+    bool one = it != neighbours.end() && it->second.size() == 1;
+    // A loop's far end (the figure-8's E and W) has one neighbour too, but
+    // traffic goes on through it; at a dead end it can only turn around.
+    for (int l : j.links)
+      if (l >= 0 && links_[static_cast<std::size_t>(l)].dir != 't') one = false;
     if (one || j.type == "dead_end") out.push_back(id);
   }
   return out;

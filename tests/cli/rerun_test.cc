@@ -60,7 +60,7 @@ class RerunFolder : public ::testing::Test {
     // netgenerate types the grid's dead ends priority_stop like the rest.
     const std::string cmd =
         "netgenerate --grid --grid.number 3 --grid.length 120 --grid.attach-length 100 "
-        "--default-junction-type priority_stop --no-turnarounds true --tls.guess false "
+        "--default-junction-type priority_stop --tls.guess false "
         "--xml-validation never --output-file " +
         (inputs_ / "town.net.xml").string() + " > " + (inputs_ / "netgenerate.log").string() +
         " 2>&1";
@@ -71,7 +71,7 @@ class RerunFolder : public ::testing::Test {
                "  network: town.net.xml\n"
                "  demand: {flow: 300}\n"
                "  av_share: 0.5\n"
-               "  duration: 400\n"
+               "  duration: 240\n"
                "  warmup: 0\n"
                "  stall_action: record\n"
                "  seed: 7\n"

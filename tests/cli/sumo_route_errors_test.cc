@@ -45,8 +45,9 @@ TEST(SumoRouteErrors, AVehicleWithoutAValidRouteNamesItsFileAndTheFix) {
                             "B1top1\"/></vehicle>\n</routes>\n");
   const CliResult r = RunWithRoutes(routes, dir.path() / "out");
   EXPECT_EQ(r.exit_code, kExitSumo) << r.Describe();
-  EXPECT_THAT(r.err, HasSubstr("Vehicle '16' has no valid route. (policy ta_ebp; vehicle '16' "
-                               "is defined in " + routes +
+  EXPECT_THAT(r.err, HasSubstr("taebp: SUMO step failed: Vehicle '16' has no valid route."))
+      << r.Describe();
+  EXPECT_THAT(r.err, HasSubstr("(policy ta_ebp; vehicle '16' is defined in " + routes +
                                "; randomTrips.py --validate or duarouter repair such routes)"))
       << r.Describe();
 }

@@ -81,8 +81,10 @@ class NetFile {
   // edges lead to or come from (a junction without a car edge is absent).
   std::map<std::string, std::set<std::string>> CarNeighbours() const;
   // The network's fringe for cars: the junctions whose car edges (in or out)
-  // lead to exactly one other junction (a dead end by topology, whatever type
-  // netgenerate or netconvert gave it), and those typed dead_end. Sorted.
+  // lead to exactly one other junction and where a vehicle can only turn
+  // around (a dead end by topology, whatever type netgenerate or netconvert
+  // gave it: netgenerate types a grid's dead ends with its turnarounds
+  // --default-junction-type), and those typed dead_end. Sorted.
   std::vector<std::string> FringeJunctions() const;
   // The junction at the end of a normal edge ("" if unknown).
   std::string EdgeEnd(const std::string& edge) const;
