@@ -427,8 +427,9 @@ TEST(MetricTable, APolicyWithoutAGameHasNoRatesOrTheory) {
     const std::vector<std::string> cells = SplitCsvLine(results[l]);
     const bool native = std::find(cells.begin(), cells.end(), "sumo_native") != cells.end();
     for (std::size_t i = 0; i < rh.size(); ++i)
-      if (rh[i] == "collision_rate_hi" || rh[i] == "theory_dc_rate")
+      if (rh[i] == "collision_rate_hi" || rh[i] == "theory_dc_rate") {
         EXPECT_EQ(cells[i] == "", native) << rh[i] << ": " << results[l];
+      }
   }
 }
 
