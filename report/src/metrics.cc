@@ -83,6 +83,13 @@ MetricFacts JunctionFacts(const PolicyRun& r, const JunctionRun& j) {
   return f;
 }
 
+bool PlaysGame(const std::string& policy) { return policy != "sumo_native"; }
+
+bool MetricUndefined(const Metric& m, const std::string& policy, double per) {
+  if (m.pool == Pool::kPrediction) return !PlaysGame(policy);
+  return m.per != nullptr && per == 0;
+}
+
 bool InScope(MetricScope s, const PolicyRun& r) {
   switch (s) {
     case MetricScope::kAll: return true;
@@ -623,6 +630,7 @@ std::string MetricsMarkdown() {
     if (m.per && (m.pool == Pool::kRate || m.pool == Pool::kWeighted ||
                   (m.pool == Pool::kMean)))
       meaning += std::string("; empty where `") + m.per + "` is 0";
+    if (m.pool == Pool::kPrediction) meaning += "; empty for sumo_native (it plays no game)";
     out << "| " << name << " | " << m.unit << " | " << where << " | " << Pooled(m) << " | "
         << meaning << " |\n";
   }

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 
@@ -52,18 +53,22 @@ std::string JsonCell(const json& v) {
   return CsvCell(v.get<std::string>());
 }
 
+constexpr double kNoPer = std::numeric_limits<double>::quiet_NaN();
+
 // Every metric of `level` in scope for the run, in table order, with a rate's
 // 95 % interval as NAME_lo / NAME_hi.
 void PutMetrics(const MetricFacts& f, MetricLevel level, json* out) {
   for (const Metric& m : RunMetrics()) {
     if (!(m.levels & level) || !InScope(m.scope, *f.run)) continue;
-    (*out)[m.name] = MetricJson(m, m.value(f));
+    const double per = m.per ? FindMetric(m.per)->value(f) : kNoPer;
+    // Undefined (no encounter, no game, ...): null, with its interval.
+    const bool undefined = MetricUndefined(m, f.run->policy, per);
+    (*out)[m.name] = undefined ? json(nullptr) : MetricJson(m, m.value(f));
     if (m.pool == Pool::kRate) {
       const long k = std::lround(FindMetric(m.count)->value(f));
-      const long n = std::lround(FindMetric(m.per)->value(f));
-      const Interval ci = Wilson(k, n);
-      (*out)[std::string(m.name) + "_lo"] = ci.low;
-      (*out)[std::string(m.name) + "_hi"] = ci.high;
+      const Interval ci = Wilson(k, std::lround(per));
+      (*out)[std::string(m.name) + "_lo"] = undefined ? json(nullptr) : json(ci.low);
+      (*out)[std::string(m.name) + "_hi"] = undefined ? json(nullptr) : json(ci.high);
     }
   }
 }

@@ -147,6 +147,9 @@ ExperimentResult RunExperiment(const std::string& config_path,
       break;
     }
   }
+  // Its inputs by absolute paths: config.yaml (and summary.json's
+  // provenance.config) rerun and find the network from any directory.
+  result.config = WithAbsoluteInputs(result.config, config_dir);
   Provenance& prov = result.provenance;
   prov.config_path = config_path;
   prov.config_json = ToJson(config);

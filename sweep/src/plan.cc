@@ -86,10 +86,13 @@ void ForEachRow(const Plan& plan, const Journal& journal, F&& emit) {
         m = &e["policies"][policy];
       for (const Metric& metric : RunMetrics()) {
         if (!(metric.levels & kPolicyLevel)) continue;
-        // Undefined where what it is per (encounters, held, ...) is 0: empty.
-        const bool undefined = m && metric.per && metric.pool != Pool::kPrediction &&
-                               m->contains(metric.per) && (*m)[metric.per].is_number() &&
-                               (*m)[metric.per].get<double>() == 0;
+        // Undefined where what it is per (encounters, held, ...) is 0, or a
+        // prediction of a policy without a game: empty (metrics.h).
+        const bool undefined =
+            m && MetricUndefined(metric, policy,
+                                 metric.per && m->contains(metric.per)
+                                     ? Number((*m)[metric.per])
+                                     : std::nan(""));
         for (const std::string& col : MetricColumns(metric, false)) {
           if (!m || !m->contains(col) || undefined)
             metrics[col] = nullptr;
