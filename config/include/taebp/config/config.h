@@ -133,7 +133,7 @@ struct OutputsConfig {
 };
 
 // scenario.major_road (network scenarios; unset: off): the major-road
-// encounter of persuasion/MAJOR_ROAD.md at two-way stops (priority_stop). An
+// encounter of docs/beyond/major-road.md at two-way stops (priority_stop). An
 // AV waiting at a minor road's stop line and an HV approaching on a
 // conflicting major movement (right of way, not stopping) play the paper's
 // game at the effective penalty r_eff = 2 (r - c) / (2 + c), when
