@@ -13,6 +13,7 @@
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/lp.h"
 #include "taebp/persuasion/outcomes.h"
+#include "config_cmd.h"
 #include "gui_cmd.h"
 #include "sweep_cmd.h"
 
@@ -359,10 +360,12 @@ int main(int argc, char** argv) {
   CLI::App* metrics = app.add_subcommand(
       "metrics", "The result metrics: names, units, meaning and how sweeps pool them");
   metrics->add_option("--print", metrics_what,
-                      "markdown: the README's table; renames: CHANGELOG.md's list; json: the "
+                      "markdown: the manual's table (docs/metrics.md); renames: CHANGELOG.md's list; json: the "
                       "table as data")
       ->check(CLI::IsMember({"markdown", "renames", "json"}))
       ->capture_default_str();
+
+  taebp::cli::ConfigCommand config_command(app);  // config --reference
 
   if (const std::optional<int> code = ParseCommandLine(app, argc, argv)) return *code;
   return ReportErrors([&] {
@@ -383,6 +386,7 @@ int main(int argc, char** argv) {
       return RunExperimentCommand(config_path, overrides, out_dir, quiet, options);
     }
     if (*metrics) return PrintMetrics(metrics_what);
+    if (config_command.Parsed()) return config_command.Run();
     if (snapshot.Parsed()) return snapshot.Run(argc, argv);
     if (sweep_commands.Parsed()) return sweep_commands.Run();
     return 0;

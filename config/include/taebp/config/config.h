@@ -309,6 +309,9 @@ struct TrustSpec {
   bool IsValid(const std::string& key, std::string* why) const;
   std::string ToString() const;  // compact, for tables and file names
 };
+// The keys of a `model.trust` distribution map besides `dist` (the loader
+// accepts these and no others; the generated reference lists them).
+std::vector<std::string> TrustDistKeys(TrustDist dist);
 
 // model.trust_dynamics: each HV's trust is a Beta(alpha, beta) state whose
 // mean it uses, updated after every AV-HV encounter it is in (Guo & Yang;
