@@ -121,7 +121,9 @@ TEST(ConfigReference, DefaultsAreTheLoadersDefaults) {
     if (k.optional || under_optional) {
       optional.insert(k.key);
       EXPECT_TRUE(k.optional || under_optional) << k.key;
-      if (k.optional) EXPECT_EQ(k.default_value, "unset") << k.key;
+      if (k.optional) {
+        EXPECT_EQ(k.default_value, "unset") << k.key;
+      }
       continue;
     }
     if (k.section || k.default_value.empty() || k.key.find(".trust.") != std::string::npos) continue;
@@ -144,9 +146,12 @@ TEST(ConfigReference, DefaultsAreTheLoadersDefaults) {
 
 TEST(ConfigReference, ChoicesAreTheOptionsNames) {
   for (const ConfigKey& k : ExperimentConfigReference()) {
-    if (k.key == "scenario.stall_action") EXPECT_THAT(k.choices, ::testing::ElementsAre("error", "record"));
-    if (k.key == "model.trust.dist")
+    if (k.key == "scenario.stall_action") {
+      EXPECT_THAT(k.choices, ::testing::ElementsAre("error", "record"));
+    }
+    if (k.key == "model.trust.dist") {
       EXPECT_THAT(k.choices, ::testing::ElementsAre("uniform", "beta", "discrete"));
+    }
     if (k.type == "one of") {
       EXPECT_FALSE(k.choices.empty()) << k.key;
       // Every choice is accepted by the loader (trust maps need their keys).
