@@ -54,5 +54,5 @@ set +e
 code=$?
 set -e
 [[ $code -eq 1 ]] || { cat "$work/stale3.out"; fail "a figure on no page passed (exit $code)"; }
-grep -q "STALE  stop distance 1.7: its text is on no page" "$work/stale3.out" || fail "a missing figure is not named"
+grep -q "STALE  stop distance 1.7[^,]*: its text is on no page" "$work/stale3.out" || fail "a missing figure is not named"
 echo "readme-check: the shipped pages pass; a changed number, a changed table cell and a missing figure fail ($page)"
