@@ -163,11 +163,14 @@ TEST(ConfigReference, ChoicesAreTheOptionsNames) {
   }
 }
 
-TEST(ConfigReference, MarkdownHasARowPerKeyAndJsonEveryKey) {
+TEST(ConfigReference, MarkdownAndJsonHaveEveryKeyWithItsMeaning) {
   const std::string md = ConfigReferenceMarkdown();
   const std::string json = ConfigReferenceJson();
   for (const ConfigKey& k : ExperimentConfigReference()) {
-    EXPECT_THAT(md, HasSubstr("| `" + k.key + "` | " + k.type + " |")) << k.key;
+    const bool heading = (k.section && k.type == "section") || k.key.find('.') == std::string::npos;
+    EXPECT_THAT(md, HasSubstr(heading ? " `" + k.key + "`\n\n" + k.meaning
+                                      : "\n`" + k.key + "`\n:   " + k.meaning))
+        << k.key;
     EXPECT_THAT(json, HasSubstr("\"key\": \"" + k.key + "\"")) << k.key;
   }
 }
