@@ -104,6 +104,16 @@ double TrustSpec::Quantile(double q) const {
   return value;
 }
 
+std::vector<std::string> TrustDistKeys(TrustDist dist) {
+  switch (dist) {
+    case TrustDist::kUniform: return {"low", "high"};
+    case TrustDist::kBeta: return {"alpha", "beta"};
+    case TrustDist::kDiscrete: return {"values", "weights"};
+    case TrustDist::kFixed: break;
+  }
+  return {};
+}
+
 bool TrustSpec::IsValid(const std::string& key, std::string* why) const {
   Checker c(why);
   if (dist == TrustDist::kFixed) {

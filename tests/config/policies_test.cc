@@ -120,16 +120,16 @@ TEST(Policies, WhatEachPolicyReads) {
   EXPECT_FALSE(PolicyReads(PolicyOf(PolicyKind::kTaEbpLearned), "model.trust_knowledge"));
 }
 
-TEST(Policies, ReadmeListIsGeneratedFromTheTable) {
-  EXPECT_EQ(Block("README.md", "policies"), PolicyListMarkdown())
-      << "run tools/refresh-metric-docs";
+TEST(Policies, CliPageListIsGeneratedFromTheTable) {
+  EXPECT_EQ(Block("docs/cli.md", "policies"), PolicyListMarkdown())
+      << "run tools/refresh-docs";
   for (const PolicyInfo& p : Policies())
     EXPECT_THAT(PolicyListMarkdown(), HasSubstr(std::string("`") + p.name + "`"));
 }
 
 TEST(Policies, DocsTableIsGeneratedFromTheTable) {
   EXPECT_EQ(Block("docs/policies.md", "policies-table"), PoliciesMarkdown())
-      << "run tools/refresh-metric-docs";
+      << "run tools/refresh-docs";
 }
 
 }  // namespace

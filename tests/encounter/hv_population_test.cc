@@ -201,7 +201,7 @@ TEST(HvPopulation, DynamicTrustUpdatesFromWhatTheHvSaw) {
 }
 
 TEST(HvPopulation, LongRunTrustIsTheClosedFormFixedPoint) {
-  // Paper point, w_s = w_f, rho = 0 (persuasion/BEYOND.md): TA-EBP tracking
+  // Paper point, w_s = w_f, rho = 0 (docs/beyond/derivations.md): TA-EBP tracking
   // trust settles where theta^2 + 0.8 theta - 1.2 = 0; No Trust where its
   // constant quality Q = 1/2 puts it (w_s Q / (w_s Q + w_f (1 - Q)) = 1/2);
   // full revelation never raises a false alarm: trust goes to 1.

@@ -1,4 +1,4 @@
-// The major-road encounter (persuasion/MAJOR_ROAD.md): the AV at the minor
+// The major-road encounter (docs/beyond/major-road.md): the AV at the minor
 // road's stop line, the HV approaching on the major road with the right of way.
 // Every expected value is a closed form written out below (independently of the
 // library), the paper's worked numbers (Section V, c = 0), or a fraction worked by
@@ -56,7 +56,7 @@ std::string Where(const MajorRoadParams& p, double theta = kNaN) {
          ", c = " + std::to_string(p.yield_cost) + ", theta = " + std::to_string(theta);
 }
 
-// ------------------------------------------------ the closed forms (MAJOR_ROAD.md)
+// ------------------------------------------------ the closed forms (docs/beyond/major-road.md)
 
 // p* = (2 + c) / (2 + r).
 double PStar(const MajorRoadParams& p) {
@@ -93,7 +93,7 @@ double TaebpDcRate(const MajorRoadParams& p, double theta) {
 struct Rates {
   double dc, collision, nudge, av_first;
 };
-// The four policies for the linear likelihood, lambda < p* (MAJOR_ROAD.md, "Rates").
+// The four policies for the linear likelihood, lambda < p* (docs/beyond/major-road.md, "Rates").
 Rates ClosedFormRates(Policy policy, const MajorRoadParams& p, double theta) {
   const double lambda = p.prior_go;
   const double ts = ThetaStar(p);
@@ -525,7 +525,7 @@ TEST(MajorRoadOutcomes, AbovePStarNoEbpYieldsFromThePrior) {
 }
 
 // ------------------------------------------------------------------ invariants
-// Each one is proved in MAJOR_ROAD.md ("Comparative statics").
+// Each one is proved in docs/beyond/major-road.md ("Comparative statics").
 
 TEST(MajorRoadInvariants, TaebpNeverCollides) {
   const LinearLikelihood linear(2.0);

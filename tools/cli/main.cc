@@ -15,6 +15,7 @@
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/lp.h"
 #include "taebp/persuasion/outcomes.h"
+#include "config_cmd.h"
 #include "gui_cmd.h"
 #include "sweep_cmd.h"
 
@@ -356,7 +357,7 @@ int main(int argc, char** argv) {
   CLI::App* metrics = app.add_subcommand(
       "metrics", "The result metrics: names, units, meaning and how sweeps pool them");
   metrics->add_option("--print", metrics_what,
-                      "markdown: the README's table; renames: CHANGELOG.md's list; json: the "
+                      "markdown: the manual's table (docs/metrics.md); renames: CHANGELOG.md's list; json: the "
                       "table as data")
       ->check(CLI::IsMember({"markdown", "renames", "json"}))
       ->capture_default_str();
@@ -369,6 +370,8 @@ int main(int argc, char** argv) {
                        "table; json: the table as data")
       ->check(CLI::IsMember({"list", "markdown", "json"}))
       ->capture_default_str();
+
+  taebp::cli::ConfigCommand config_command(app);  // config --reference
 
   if (const std::optional<int> code = ParseCommandLine(app, argc, argv)) return *code;
   return ReportErrors([&] {
@@ -390,6 +393,7 @@ int main(int argc, char** argv) {
     }
     if (*metrics) return PrintMetrics(metrics_what);
     if (*policies) return PrintPolicies(policies_what);
+    if (config_command.Parsed()) return config_command.Run();
     if (snapshot.Parsed()) return snapshot.Run(argc, argv);
     if (sweep_commands.Parsed()) return sweep_commands.Run();
     return 0;

@@ -182,7 +182,7 @@ struct OutputsConfig {
 };
 
 // scenario.major_road (network scenarios; unset: off): the major-road
-// encounter of persuasion/MAJOR_ROAD.md at two-way stops (priority_stop). An
+// encounter of docs/beyond/major-road.md at two-way stops (priority_stop). An
 // AV waiting at a minor road's stop line and an HV approaching on a
 // conflicting major movement (right of way, not stopping) play the paper's
 // game at the effective penalty r_eff = 2 (r - c) / (2 + c), when
@@ -358,6 +358,9 @@ struct TrustSpec {
   bool IsValid(const std::string& key, std::string* why) const;
   std::string ToString() const;  // compact, for tables and file names
 };
+// The keys of a `model.trust` distribution map besides `dist` (the loader
+// accepts these and no others; the generated reference lists them).
+std::vector<std::string> TrustDistKeys(TrustDist dist);
 
 // model.trust_dynamics: each HV's trust is a Beta(alpha, beta) state whose
 // mean it uses, updated after every AV-HV encounter it is in (Guo & Yang;

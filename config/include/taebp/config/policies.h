@@ -66,7 +66,7 @@ std::vector<std::string> DefaultPolicies();
 const PolicyInfo& SumoNative();
 
 // docs/policies.md's table and the README's policy list, generated from the
-// table (tools/refresh-metric-docs writes them; tests compare).
+// table (tools/refresh-docs writes them; tests compare).
 std::string PoliciesMarkdown();
 std::string PolicyListMarkdown();
 // The table as a JSON array of rows (`taebp policies --print json`, Python's
