@@ -83,8 +83,6 @@ MetricFacts JunctionFacts(const PolicyRun& r, const JunctionRun& j) {
   return f;
 }
 
-bool PlaysGame(const std::string& policy) { return policy != "sumo_native"; }
-
 bool MetricUndefined(const Metric& m, const std::string& policy, double per) {
   if (m.pool == Pool::kPrediction) return !PlaysGame(policy);
   return m.per != nullptr && per == 0;

@@ -13,6 +13,8 @@
 // RunSections(); summary.json holds nothing else per policy.
 #pragma once
 
+#include "taebp/config/policies.h"
+
 #include <string>
 #include <vector>
 
@@ -73,9 +75,8 @@ struct Metric {
 // The table, in output order.
 const std::vector<Metric>& RunMetrics();
 
-// Whether a policy plays the paper's game (every policy but sumo_native,
-// SUMO's own junction logic). Only these have a theory (kPrediction).
-bool PlaysGame(const std::string& policy);
+// Whether a policy plays the paper's game: taebp::PlaysGame of the policy
+// table (config/policies.h). Only these have a theory (kPrediction).
 // Whether metric `m` is undefined (null, an empty cell) for a run of `policy`
 // in which what it is per (`m.per`) counted `per`: a rate or mean over no
 // encounter (no nudge, no held vehicle, ...), or a prediction of a policy that
