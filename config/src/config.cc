@@ -358,13 +358,23 @@ bool ExperimentConfig::IsValid(std::string* why) const {
            Num(2.0 / (2.0 + m.collision_penalty)) +
            ": every HV drives if clear without persuasion, so ta_ebp_learned has nothing to "
            "learn");
+  if (m.experience) {
+    c.Model("model.experience.", ToModel(*m.experience));
+    if (m.trust_dynamics || m.noise || m.learning || s.major_road)
+      c.Fail("model.experience is modelled alone: not with model.trust_dynamics, model.noise, "
+             "model.learning or scenario.major_road (their theories assume an HV whose reading "
+             "of a nudge never changes)");
+    for (const std::string& p : policies)
+      if (p == "population_mean" || p == "ta_ebp_learned")
+        c.Fail("policies: '" + p + "' is not modelled with model.experience (use ta_ebp)");
+  }
   if (!(std::isfinite(outputs.interval) && outputs.interval >= 1.0))
     c.Fail("outputs.interval = " + Num(outputs.interval) +
            " must be >= 1 s (the time series are sampled once a simulated second)");
 
   if (policies.empty())
     c.Fail("policies is empty: list at least one of sumo_native, no_ebp, no_trust, ta_ebp, "
-           "full_reveal, population_mean, ta_ebp_learned");
+           "full_reveal, population_mean, ta_ebp_learned, always_nudge");
   std::set<std::string> seen;
   for (const std::string& p : policies) {
     if (p != kSumoNative) {
@@ -373,7 +383,7 @@ bool ExperimentConfig::IsValid(std::string* why) const {
       } catch (const persuasion::InvalidArgument&) {
         c.Fail("policies: '" + p +
                "' is not one of sumo_native, no_ebp, no_trust, ta_ebp, full_reveal, "
-               "population_mean, ta_ebp_learned");
+               "population_mean, ta_ebp_learned, always_nudge");
       }
     }
     if (!seen.insert(p).second) c.Fail("policies: '" + p + "' is listed twice");
@@ -392,9 +402,9 @@ bool ExperimentConfig::IsValid(std::string* why) const {
 }
 
 bool ExperimentConfig::BeyondPaper() const {
-  if (model.trust_dynamics || model.noise || model.learning) return true;
+  if (model.trust_dynamics || model.noise || model.learning || model.experience) return true;
   for (const std::string& p : policies)
-    if (p == "population_mean" || p == "ta_ebp_learned") return true;
+    if (p == "population_mean" || p == "ta_ebp_learned" || p == "always_nudge") return true;
   return false;
 }
 

@@ -22,6 +22,8 @@ const char* ToString(Policy policy) {
       return "population_mean";
     case Policy::kTaEbpLearned:
       return "ta_ebp_learned";
+    case Policy::kAlwaysNudge:
+      return "always_nudge";
   }
   return "unknown";
 }
@@ -29,7 +31,8 @@ const char* ToString(Policy policy) {
 const std::vector<Policy>& AllPolicies() {
   static const std::vector<Policy> all = {Policy::kNoEbp,      Policy::kNoTrust,
                                           Policy::kTaEbp,      Policy::kFullReveal,
-                                          Policy::kPopulationMean, Policy::kTaEbpLearned};
+                                          Policy::kPopulationMean, Policy::kTaEbpLearned,
+                                          Policy::kAlwaysNudge};
   return all;
 }
 
@@ -39,7 +42,7 @@ Policy ParsePolicy(const std::string& name) {
   }
   throw InvalidArgument("policy '" + name +
                         "' is unknown (expected no_ebp, no_trust, ta_ebp, full_reveal, "
-                        "population_mean or ta_ebp_learned)");
+                        "population_mean, ta_ebp_learned or always_nudge)");
 }
 
 namespace {
@@ -75,6 +78,12 @@ CommittedScheme CommitScheme(Policy policy, const AvHvParams& params, double the
     case Policy::kPopulationMean:  // theta_hat: the population's mean trust
     case Policy::kTaEbpLearned:    // theta_hat: the learned lower bound
       return FromDesign(DesignTaebp(params, theta_hat, model));
+    case Policy::kAlwaysNudge: {
+      // The same s* in every encounter: the nudge carries no information.
+      CommittedScheme scheme = FromDesign(DesignTaebp(params, theta_hat, model));
+      if (scheme.av_may_go) scheme.b = 1.0;
+      return scheme;
+    }
     case Policy::kFullReveal: {
       // Nudge s_max iff Go: pi(s_max|Go) = 1, pi(s_max|Stop) = 0.
       CommittedScheme scheme;
