@@ -90,6 +90,7 @@ void CheckAOneOrNoSignal(const CommittedScheme& s, const char* who) {
 ExperienceLongRun LongRunUnderExperience(const CommittedScheme& scheme, const AvHvParams& params,
                                          double theta, const LikelihoodModel& model) {
   params.Validate();
+  if (Nudges(scheme)) model.PiGo(scheme.nudge);  // the nudge is a signal of this model
   internal::CheckTrust(theta);
   CheckAOneOrNoSignal(scheme, "LongRunUnderExperience");
   const double lambda = params.prior_go;
@@ -131,22 +132,36 @@ const char* ToString(ExperiencedDesign::Mode mode) {
   return "unknown";
 }
 
+namespace {
+
+// The HV's decision at the nudge level from its intuitive posterior q there
+// and its counts: the one rule behind DesignForExperience and the mean field.
+bool DcAt(const AvHvParams& params, double theta, double q, const SignalCounts& c, double k) {
+  return HvDrivesIfClear(params,
+                         (1.0 - theta) * params.prior_go + theta * ExperiencedPosterior(q, c, k));
+}
+// Would a false alarm now (nudge, then Stop) leave the nudge persuasive?
+bool FalseAlarmAffordable(const AvHvParams& params, double theta, double q, const SignalCounts& c,
+                          double k) {
+  return DcAt(params, theta, q, SignalCounts{c.readings + 1, c.went}, k);
+}
+
+}  // namespace
+
 ExperiencedDesign DesignForExperience(const CommittedScheme& paper, const AvHvParams& params,
                                       double theta, const LikelihoodModel& model,
                                       double strength,
                                       const std::function<SignalCounts(double)>& counts_at) {
+  internal::CheckTrust(theta);
   ExperiencedDesign out;
   if (!paper.av_may_go || !Nudges(paper)) return out;  // the paper's fallback: yield
   const double s = paper.nudge;
   const SignalCounts c = counts_at(s);
-  auto dc = [&](const CommittedScheme& sc, double at, const SignalCounts& k) {
-    return HvDrivesIfClear(params, ExperiencedBelief(sc, params, theta, model, at, k, strength));
-  };
-  if (dc(paper, s, c)) {
-    const SignalCounts false_alarm{c.readings + 1, c.went};
+  const double q = HvPosteriorGo(paper, params, 1.0, model, s);
+  if (DcAt(params, theta, q, c, strength)) {
     out.scheme = paper;
     out.mode = ExperiencedDesign::Mode::kPaper;
-    if (!dc(paper, s, false_alarm)) {
+    if (!FalseAlarmAffordable(params, theta, q, c, strength)) {
       out.scheme.b = 0.0;
       out.mode = ExperiencedDesign::Mode::kGuard;
     }
@@ -157,7 +172,8 @@ ExperiencedDesign DesignForExperience(const CommittedScheme& paper, const AvHvPa
   strong.nudge = model.SMax();
   strong.a = 1.0;
   strong.b = 0.0;
-  if (dc(strong, strong.nudge, counts_at(strong.nudge))) {
+  const double q_max = HvPosteriorGo(strong, params, 1.0, model, strong.nudge);
+  if (DcAt(params, theta, q_max, counts_at(strong.nudge), strength)) {
     out.scheme = strong;
     out.mode = ExperiencedDesign::Mode::kStronger;
   }
@@ -228,16 +244,18 @@ void ExperiencePath::Step() {
       const long g = lo_[n] + static_cast<long>(i);
       const SignalCounts c{static_cast<long>(n), g};
       CommittedScheme sc = scheme_;
+      const bool dc_now = nudges && DcAt(params_, theta_, q_nudge_, c, strength_);
       bool yield = false;
-      if (guarded_) {
-        const ExperiencedDesign d = DesignForExperience(
-            scheme_, params_, theta_, *model_, strength_,
-            [&](double s) { return s == scheme_.nudge ? c : SignalCounts{}; });
-        // kStronger's level is not tracked: the invariant keeps it unused
-        // from n = 0 (tested); counted as a yield if it ever happens.
-        yield = d.mode == ExperiencedDesign::Mode::kYield ||
-                d.mode == ExperiencedDesign::Mode::kStronger;
-        sc = d.scheme;
+      if (guarded_ && nudges && sc.av_may_go) {
+        // DesignForExperience with these counts at s* and none elsewhere:
+        // not persuaded now -> s_max or yield (s_max's level is not tracked;
+        // the invariant keeps both unused from n = 0, tested; counted as a
+        // yield if they ever happen); else b unless a false alarm breaks it.
+        if (!dc_now) {
+          yield = true;
+        } else if (!FalseAlarmAffordable(params_, theta_, q_nudge_, c, strength_)) {
+          sc.b = 0.0;
+        }
       }
       if (yield || !nudges) {
         // No nudge: the still response; the AV goes on Go iff it may.
@@ -248,9 +266,7 @@ void ExperiencePath::Step() {
         add(n, g, p);
         continue;
       }
-      const double belief = (1.0 - theta_) * lambda +
-                            theta_ * ExperiencedPosterior(q_nudge_, c, strength_);
-      const double dc_nudge = HvDrivesIfClear(params_, belief) ? 1.0 : 0.0;
+      const double dc_nudge = dc_now ? 1.0 : 0.0;
       const double may_go = sc.av_may_go ? 1.0 : 0.0;
       const double go_nudge = lambda * sc.a, go_still = lambda * (1.0 - sc.a);
       const double stop_nudge = (1.0 - lambda) * sc.b, stop_still = (1.0 - lambda) * (1.0 - sc.b);

@@ -145,7 +145,7 @@ TEST(ExperienceFixedPoints, AlwaysNudgeNoTrustFullRevealNoEbp) {
 // k q + g >= q_thr (k + t), q_thr = (p* - (1 - theta) lambda) / theta.
 TEST(ExperiencePath, AlwaysNudgeIsABinomialTail) {
   const LinearLikelihood model(2.0);
-  const double k = 10.0, s = 2.0;  // q(s_max) = 1: a high start
+  const double k = 10.5, s = 2.0;  // q(s_max) = 1: a high start; 8 t - 73.5 never / 15
   ExperiencePath path(AlwaysNudge(s), kPaper, kTheta, model, k, /*guarded=*/false);
   const double q_thr = (0.4 - 0.4 * 0.2) / 0.6;
   for (long t : {0L, 1L, 5L, 10L, 17L, 30L, 60L, 120L}) {
@@ -157,7 +157,7 @@ TEST(ExperiencePath, AlwaysNudgeIsABinomialTail) {
     const PredictedOutcome o = path.At(t);
     EXPECT_NEAR(o.dc_rate, tail, 1e-12) << t;
     EXPECT_NEAR(o.collision_rate, 0.2 * (1.0 - tail), 1e-12) << t;
-    EXPECT_DOUBLE_EQ(o.nudge_rate, 1.0);
+    EXPECT_NEAR(o.nudge_rate, 1.0, 1e-12);  // the DP drops states below 1e-15
   }
   EXPECT_DOUBLE_EQ(path.At(0).dc_rate, 1.0);  // the intuitive model is persuaded
   EXPECT_LT(path.At(200).dc_rate, 1e-6);      // and unlearns it
@@ -185,7 +185,7 @@ TEST(ExperiencePath, PaperTaebpIsAZeroMeanWalkAroundPStar) {
     EXPECT_NEAR(o.collision_rate, 0.2 * (1.0 - p_dc), 1e-10) << t;
   }
   // Half the nudges read as DR in the long run: the arcsine law's mean.
-  const PredictedOutcome late = path.At(3000);
+  const PredictedOutcome late = path.At(1000);
   EXPECT_NEAR(late.dc_rate, nu / 2, 0.01);
   EXPECT_NEAR(late.collision_rate, 0.1, 0.01);
 }
@@ -232,7 +232,7 @@ TEST(ExperiencePath, GuardedTaebpNeverCollidesAndRecoversThePaperRate) {
     ExperiencePath path(paper, kPaper, kTheta, model, k, true);
     EXPECT_NEAR(path.At(0).dc_rate, 0.2, 1e-15);  // guard at n = 0
     double last = 0.0;
-    for (long t = 0; t <= 2000; ++t) {
+    for (long t = 0; t <= 1000; ++t) {
       const PredictedOutcome o = path.At(t);
       ASSERT_EQ(o.collision_rate, 0.0) << t;
       ASSERT_LE(o.dc_rate, target + 1e-12) << t;
@@ -241,7 +241,7 @@ TEST(ExperiencePath, GuardedTaebpNeverCollidesAndRecoversThePaperRate) {
         last = o.dc_rate;
       }
     }
-    EXPECT_GT(path.At(2000).dc_rate, target - 0.02) << k;
+    EXPECT_GT(path.At(1000).dc_rate, target - 0.02) << k;
   }
 }
 

@@ -38,11 +38,16 @@ namespace taebp::persuasion {
 // for: population_mean (the mean trust of the HV population, one design for
 // every HV) and ta_ebp_learned (a safe lower bound of the HV's trust learned
 // from its responses; trust_learning.h). For both, CommitScheme is TA-EBP's
-// design for the theta_hat the caller passes.
-enum class Policy { kNoEbp, kNoTrust, kTaEbp, kFullReveal, kPopulationMean, kTaEbpLearned };
+// design for the theta_hat the caller passes. always_nudge (issue 29, the
+// deterministic strategy of the paper's Section I): nudges TA-EBP's s* for
+// theta_hat in every encounter whatever its intent (a = b = 1) and goes on its
+// Go intent, believing the nudge persuades, as No Trust's AV does.
+enum class Policy {
+  kNoEbp, kNoTrust, kTaEbp, kFullReveal, kPopulationMean, kTaEbpLearned, kAlwaysNudge
+};
 const char* ToString(Policy policy);
 // Accepts "no_ebp", "no_trust", "ta_ebp", "full_reveal", "population_mean",
-// "ta_ebp_learned"; throws otherwise.
+// "ta_ebp_learned", "always_nudge"; throws otherwise.
 Policy ParsePolicy(const std::string& name);
 // The names above, in that order (messages, validation).
 const std::vector<Policy>& AllPolicies();
