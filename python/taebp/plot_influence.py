@@ -27,8 +27,19 @@ import os
 import sys
 from collections import defaultdict
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from taebp.stats import Z999, wilson  # noqa: E402  (the one Wilson interval)
+
+def _stats():
+    """stats.py by its path (the one Wilson interval; runs without the built module)."""
+    import importlib.util
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "stats.py")
+    spec = importlib.util.spec_from_file_location("taebp_stats", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+_S = _stats()
+Z999, wilson = _S.Z999, _S.wilson
 
 COLORS = {"always_nudge": "#d62728", "no_trust": "#ff7f0e", "ta_ebp": "#1f77b4",
           "full_reveal": "#2ca02c", "no_ebp": "#7f7f7f"}
@@ -84,7 +95,7 @@ def load(run_dirs):
             for i, r in enumerate(rows[:FIRST]):
                 t = out[lab]["first"][i]
                 t[0] += 1
-                t[1] += int(r["hv_dc"])
+                t[1] += r["hv_action"] == "DC"
                 t[2] += float(r["theory_dc"])
     return out
 
@@ -96,21 +107,20 @@ def rows_of_table(data):
              "|---|---|---|---|---|---|---|---|---|"]
     for lab, e in data.items():
         bins = sorted(e["bins"].items())
-        end = bins[-1][0][1]
+        per_hour = max(1, round(3600 / (bins[0][0][1] - bins[0][0][0])))
 
-        def pool(lo, hi):
+        def pool(chosen):
             n = dc = co = tdc = tco = 0
-            for (a, b), acc in bins:
-                if a >= lo and b <= hi:
-                    n += acc[0]; dc += acc[1]; co += acc[2]; tdc += acc[3]; tco += acc[4]
+            for _, acc in chosen:
+                n += acc[0]; dc += acc[1]; co += acc[2]; tdc += acc[3]; tco += acc[4]
             return n, dc, co, tdc, tco
 
         def fmt(k, n):
             lo, hi = wilson(k, n)
             return "%.3f [%.3f, %.3f]" % (k / n if n else float("nan"), lo, hi)
 
-        f = pool(0, 3600)
-        l = pool(end - 3600, end)
+        f = pool(bins[:per_hour])  # the first hour's intervals
+        l = pool(bins[-per_hour:])  # the last hour's
         lr_dc, lr_co = e["long_run"]
         inside = []
         for k, want in ((l[1], lr_dc), (l[2], lr_co)):
@@ -165,7 +175,7 @@ def main(argv):
     axes[0].set_ylabel("share of AV-HV encounters")
     axes[2].set_xlabel("the HV's encounter number (1 = its first)")
     for ax in axes:
-        ax.set_ylim(-0.02, 1.02 if ax is axes[2] else 0.45)
+        ax.set_ylim(-0.02, 1.02 if ax is axes[2] else 0.5)
         ax.grid(alpha=0.3)
     from matplotlib.lines import Line2D
     handles = [Line2D([], [], color=c, ls=ls, marker=m, label=lab) for lab, (c, ls, m) in styles.items()]
@@ -175,7 +185,7 @@ def main(argv):
     fig.legend(handles=handles, loc="lower center", ncol=4, fontsize=9, frameon=False)
     n_runs = max(e["runs"] for e in data.values())
     fig.suptitle("HVs who learn what a nudge meant (figure-8, 8 AVs + 8 HVs, lambda = 0.2, r = 3, "
-                 "theta = 0.6, k = 20; %d seeds)" % n_runs)
+                 "theta = 0.6, k = 20; up to %d seeds per policy)" % n_runs)
     fig.tight_layout(rect=(0, 0.1, 1, 0.95))
     fig.savefig(png, dpi=110)
     print("wrote", png)
