@@ -16,6 +16,15 @@ AvDraw EncounterGame::Draw(int av, int hv) {
                 params_.prior_go, rng_);
 }
 
+// Whether a meeting is the game must not depend on the policy being run, or
+// the policies would be compared on different meetings: every rule of the
+// game's geometry takes the AV where the largest nudge any policy may command
+// leaves it, the likelihood's s_max (no design nudges farther: the nudge that
+// persuades an HV of trust theta* is s_max, Theorem 2), and the major-road
+// signal lasts as long as that nudge's creep under every policy (a shorter
+// nudge, or none, stands the rest of it). docs/encounter-rules.md.
+double EncounterGame::LargestNudge() const { return s_.cfg.model.likelihood.s_max; }
+
 namespace {
 
 // How long the AV's creep of `distance` m takes in SUMO (VehicleCommands'
@@ -54,6 +63,46 @@ junction::Mover Cruising(junction::Mover m, double front, double v) {
   return m;
 }
 
+Premise FromPrediction(junction::BothProceed p) {
+  switch (p) {
+    case junction::BothProceed::kCollide: return Premise::kHolds;
+    case junction::BothProceed::kClear: return Premise::kNoCollision;
+    case junction::BothProceed::kUncertain: return Premise::kUncertainMerge;
+  }
+  return Premise::kNoCollision;
+}
+
+// The Go positions any policy may start from, past where the AV stands:
+// 0 to `largest` every kNudgeGrid m (the bodies' own resolution) and
+// `largest` itself.
+constexpr double kNudgeGrid = 0.25;  // m
+std::vector<double> GoPositions(double largest) {
+  std::vector<double> out;
+  for (int k = 0; k * kNudgeGrid < largest; ++k) out.push_back(k * kNudgeGrid);
+  out.push_back(largest);
+  return out;
+}
+
+// The premise for every policy: "AV goes, HV keeps its way" collides from
+// every Go position (`av` with front at `av_line` + s), and the HV keeping
+// its way passes the AV standing at every one of them. The worst verdict
+// over the positions: a merge (unpredictable), else no collision, else the
+// nudge in the HV's way, else it holds.
+Premise PremiseForEveryPolicy(junction::Mover av, double av_line, const junction::Mover& hv,
+                              double largest, double dt) {
+  bool uncertain = false, clear = false, in_way = false;
+  for (double s : GoPositions(largest)) {
+    av.front = av_line + s;
+    const Premise p = FromPrediction(junction::PredictBothProceed(av, hv, dt));
+    uncertain = uncertain || p == Premise::kUncertainMerge;
+    clear = clear || p == Premise::kNoCollision;
+    in_way = in_way || !junction::PassedWay(hv, av, -1.0, 0.0);
+  }
+  if (uncertain) return Premise::kUncertainMerge;
+  if (clear) return Premise::kNoCollision;
+  return in_way ? Premise::kNudgeInHvWay : Premise::kHolds;
+}
+
 }  // namespace
 
 // The major-road approach (persuasion/MAJOR_ROAD.md, "When is an approach the
@@ -86,10 +135,11 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
     MajorGeometry g;
     g.av_movement = av_movement;
     g.hv_movement = at.movement;
-    const double signal = s_.major_population->GoSignal(h.id);
+    const double signal = LargestNudge();
     g.signal = NudgeSeconds(s_, signal);
     g.av = Sized(info.movements[av_movement].mover, a);
-    g.av.front = g.av.entry - a.line_gap + signal;
+    g.line = g.av.entry - a.line_gap;
+    g.av.front = g.line + signal;
     g.hv = Sized(info.movements[at.movement].mover, h);
     g.hv.front = 0;
     g.hv_zone = junction::ZoneOnPath(g.hv, g.av);
@@ -108,8 +158,12 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
   ap.comfortable_deceleration = s_.sc.major_road->comfortable_decel;
   ap.reaction_time = s_.sc.major_road->reaction_time;
   ap.hv_occupancy_length = g.hv_zone.last - g.hv_zone.first;
+  // Every policy's AV (LargestNudge): it enters the zone at the earliest
+  // from the largest nudge, and leaves it at the latest from its line.
+  junction::Mover from_line = g.av;
+  from_line.front = g.line;
   ap.av_enter_time = junction::TimeToReach(g.av, g.av_zone.first, s_.dt);
-  ap.av_clear_time = junction::TimeToReach(g.av, g.av_zone.last + 0.25, s_.dt);
+  ap.av_clear_time = junction::TimeToReach(from_line, g.av_zone.last + 0.25, s_.dt);
   if (!ap.IsValid(nullptr)) return {Kind::kNever, 0};
   const persuasion::ApproachWindow w = persuasion::ClassifyMajorRoadApproach(ap);
   // encounter_pairs: all (checking the prediction against SUMO): approaches
@@ -148,16 +202,10 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
   // ends on the AV's exit lane) is not predictable: SUMO's car following
   // makes the HV brake for the AV ahead of it on the merging lanes whatever
   // its speed mode (checked: predicted collisions SUMO did not have).
+  // From every Go position a policy may command (PremiseForEveryPolicy).
   const junction::Mover hv_dec = Cruising(g.hv, front_decision, v);
-  Premise premise = Premise::kNoCollision;
-  switch (junction::PredictBothProceed(g.av, hv_dec, s_.dt)) {
-    case junction::BothProceed::kCollide: premise = Premise::kHolds; break;
-    case junction::BothProceed::kClear: premise = Premise::kNoCollision; break;
-    case junction::BothProceed::kUncertain: premise = Premise::kUncertainMerge; break;
-  }
+  Premise premise = PremiseForEveryPolicy(g.av, g.line, hv_dec, LargestNudge(), s_.dt);
   if (info.movements[av_movement].to_lane == hm.to_lane) premise = Premise::kUncertainMerge;
-  if (premise == Premise::kHolds && !junction::PassedWay(hv_dec, g.av, -1.0, 0.0))
-    premise = Premise::kNudgeInHvWay;
   if (premise != Premise::kHolds && (!all || premise == Premise::kUncertainMerge)) {
     if (s_.measuring()) {
       JunctionRun& run = s_.junctions[a.junction].run;
@@ -195,13 +243,16 @@ Premise EncounterGame::MajorPremiseNow(int av, int hv) const {
 // The paper's game needs "AV goes, HV drives recklessly" to be a collision
 // and "AV waits" not to be one: predicted on the two movements' geometry
 // from where the two vehicles would start, each with its own SUMO type's
-// size and acceleration, the AV from its Go signal (s* ahead of where it is
-// held when its scheme nudges on Go). Not the game: both proceeding would not
-// collide (meetings_not_game); or the prediction cannot be trusted
-// (meetings_unpredictable): a merge whose outcome depends on SUMO's car
-// following, or an AV standing nudged by s* in the way of the HV driving
-// recklessly (waiting would not keep it safe). The figure-8's crossing is
-// always the game.
+// size and acceleration. Whether the meeting is the game does not depend on
+// the policy (LargestNudge): it must hold from every Go position a policy
+// may command, 0 to s_max past where the AV is held. Not the game: both
+// proceeding would not collide (meetings_not_game); or the prediction cannot
+// be trusted (meetings_unpredictable): a merge whose outcome depends on
+// SUMO's car following, or an AV standing nudged in the way of the HV
+// driving recklessly (waiting would not keep it safe). The record's premise
+// (what SUMO's collision check is held to) is the one from this policy's own
+// Go signal (s* ahead of where it is held when its scheme nudges on Go). The
+// figure-8's crossing is always the game.
 bool EncounterGame::Game(int av, int hv, int av_movement, int hv_movement) {
   if (figure8::IsFigure8(s_)) return true;
   const Vehicle& a = s_.vehicles[av];
@@ -215,24 +266,22 @@ bool EncounterGame::Game(int av, int hv, int av_movement, int hv_movement) {
     m->accel = v->accel;
     m->max_speed = v->max_speed;
   }
-  const double signal = s_.population->GoSignal(h.id);
-  ma.front = ma.entry - a.line_gap + signal;
   mh.front = mh.entry - h.line_gap;
-  Premise premise = Premise::kNoCollision;
-  switch (junction::PredictBothProceed(ma, mh, s_.dt)) {
-    case junction::BothProceed::kCollide: premise = Premise::kHolds; break;
-    case junction::BothProceed::kClear: premise = Premise::kNoCollision; break;
-    case junction::BothProceed::kUncertain: premise = Premise::kUncertainMerge; break;
-  }
+  const double line = ma.entry - a.line_gap;
+  const Premise rule = PremiseForEveryPolicy(ma, line, mh, LargestNudge(), s_.dt);
+  // The record: from this policy's Go signal.
+  const double signal = s_.population->GoSignal(h.id);
+  ma.front = line + signal;
+  Premise premise = FromPrediction(junction::PredictBothProceed(ma, mh, s_.dt));
   // The HV driving recklessly from its line must not touch the AV standing
-  // where the largest nudge of its scheme leaves it.
+  // where its scheme's largest nudge leaves it.
   if (premise == Premise::kHolds && signal > 0 && !junction::PassedWay(mh, ma, -1.0, 0.0))
     premise = Premise::kNudgeInHvWay;
   verdicts_[{av, hv}] = premise;
-  if (premise == Premise::kHolds || s_.sc.encounter_pairs == EncounterPairs::kAll) return true;
+  if (rule == Premise::kHolds || s_.sc.encounter_pairs == EncounterPairs::kAll) return true;
   if (s_.measuring()) {
     JunctionRun& run = s_.junctions[a.junction].run;
-    ++(premise == Premise::kNoCollision ? run.meetings_not_game : run.meetings_unpredictable);
+    ++(rule == Premise::kNoCollision ? run.meetings_not_game : run.meetings_unpredictable);
   }
   return false;
 }

@@ -38,7 +38,9 @@ class EncounterGame : public junction::EncounterModel {
   VehicleCommands* commands_ = nullptr;  // the HV's colour once it decided
   persuasion::AvHvParams params_;
   std::mt19937_64 rng_;
-  std::map<std::pair<int, int>, Premise> verdicts_;  // (AV, HV) met: does the game's premise hold
+  std::map<std::pair<int, int>, Premise> verdicts_;
+  // The nudge the game's rules assume for every policy (the likelihood's s_max).
+  double LargestNudge() const;  // (AV, HV) met: does the game's premise hold
   // Major-road encounters running, (AV, HV): their game is the major population's.
   std::set<std::pair<int, int>> major_;
   HvPopulation& PopulationOf(int av, int hv) const {
@@ -48,8 +50,9 @@ class EncounterGame : public junction::EncounterModel {
   // per pair (the geometry does not change while the AV waits).
   struct MajorGeometry {
     int av_movement = -1, hv_movement = -1;
-    double signal = 0;
-    junction::Mover av, hv;  // av: where it goes from (its Go signal); hv: from its path's start
+    double signal = 0;  // s: the largest nudge's creep (every policy's signal lasts that long)
+    double line = 0;    // the AV's front on its path where it stands at its line
+    junction::Mover av, hv;  // av: at the largest nudge (LargestNudge); hv: from its path's start
     junction::ConflictZone hv_zone, av_zone;
   };
   std::map<std::pair<int, int>, MajorGeometry> major_geometry_;

@@ -25,6 +25,12 @@ namespace taebp::control {
 // Speed modes (bits: 1 safe speed, 2 max accel, 4 max decel, 8 right of way,
 // 16 red light, 32 ignore foes already in the junction).
 constexpr int kModeDefault = 31;   // SUMO's own rules (stop signs included)
+// A move of the game (VehicleCommands::GameMove): right of way off, its
+// partner named (SetIgnoredFoes). Issue 30 item 1 is open: keeping SUMO's
+// right of way at the link toward third vehicles at two-way stops (mode 63 or
+// 31 + the partner ignored) was measured and not kept (docs/encounter-rules.md:
+// the grid stalled, both-proceed pairs stopped colliding, game moves still hit
+// third vehicles).
 constexpr int kModeReleased = 55;  // the controller decided the junction; keep car-following
 constexpr int kModeCreep = 0;      // exact commanded speeds during a nudge
 constexpr int kModeUnblocked = 63; // SUMO's rules, foes already in the junction disregarded

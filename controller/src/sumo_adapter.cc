@@ -176,6 +176,9 @@ void SetLaneChangeMode(const std::string& veh, int mode) {
   TAEBP_SUMO_CALL(SetLaneChangeMode(veh, mode));
 }
 void SetSpeed(const std::string& veh, double speed) { TAEBP_SUMO_CALL(SetSpeed(veh, speed)); }
+void SetIgnoredFoes(const std::string& veh, const std::vector<std::string>& foes) {
+  TAEBP_SUMO_CALL(SetIgnoredFoes(veh, foes));
+}
 void SetColor(const std::string& veh, int r, int g, int b) {
   TAEBP_SUMO_CALL(SetColor(veh, r, g, b));
 }

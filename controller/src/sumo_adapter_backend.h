@@ -43,6 +43,7 @@ void AddVehicle(const std::string& id, const std::string& route, const std::stri
 void SetSpeedMode(const std::string& veh, int mode);
 void SetLaneChangeMode(const std::string& veh, int mode);
 void SetSpeed(const std::string& veh, double speed);
+void SetIgnoredFoes(const std::string& veh, const std::vector<std::string>& foes);
 void SetColor(const std::string& veh, int r, int g, int b);
 double Distance(const std::string& veh);
 double Speed(const std::string& veh);

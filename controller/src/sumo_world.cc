@@ -41,6 +41,9 @@ class AdapterWorld final : public SumoWorld {
 
   void SetSpeed(const std::string& veh, double speed) override { sumo::SetSpeed(veh, speed); }
   void SetSpeedMode(const std::string& veh, int mode) override { sumo::SetSpeedMode(veh, mode); }
+  void SetIgnoredFoes(const std::string& veh, const std::vector<std::string>& foes) override {
+    sumo::SetIgnoredFoes(veh, foes);
+  }
   void SetLaneChangeMode(const std::string& veh, int mode) override {
     sumo::SetLaneChangeMode(veh, mode);
   }

@@ -22,17 +22,17 @@ void VehicleCommands::Execute(JunctionState& j, const Command& c) {
       StartNudge(c.vehicle, c.distance, c.duration);
       break;
     case Command::Kind::kCruise:
-      Cruise(j, c.vehicle, c.movement, c.speed);
+      Cruise(j, c.vehicle, c.movement, c.speed, c.partner);
       break;
     case Command::Kind::kYield:
       Yield(c.vehicle, c.speed, c.delay);
       break;
     case Command::Kind::kRelease:
-      Release(j, c.vehicle, true);
+      Release(j, c.vehicle, c.partner);
       break;
     case Command::Kind::kHandBack:
       if (c.in_encounter) {
-        Release(j, c.vehicle, false);
+        Release(j, c.vehicle, -1);
       } else {
         HandBack(j, c.vehicle);
       }
@@ -98,13 +98,31 @@ void VehicleCommands::CountWait(JunctionState& j, const Vehicle& v) {
   }
 }
 
-// A major-road HV of an encounter: it keeps `speed` with SUMO's right of way
-// off (it does not brake for the AV nudged into the junction), in its lane,
-// watched until it has left the junction.
-void VehicleCommands::Cruise(JunctionState& j, int h, int movement, double speed) {
+// A move of the game: SUMO's right of way off (kModeReleased), its partner
+// named to SUMO as the vehicle it disregards (junctionModel.ignoreIDs, no
+// effect under mode 55; the hook for keeping SUMO's right of way toward
+// third vehicles, run_state.h and docs/encounter-rules.md).
+void VehicleCommands::GameMove(Vehicle& v, int partner, const JunctionState& j) {
+  (void)j;
+  s_.sumo.SetSpeedMode(v.id, kModeReleased);
+  s_.sumo.SetIgnoredFoes(v.id, {s_.vehicles[partner].id});
+  v.ignoring = true;
+}
+
+void VehicleCommands::StopIgnoring(Vehicle& v) {
+  if (!v.ignoring) return;
+  v.ignoring = false;
+  if (v.alive) s_.sumo.SetIgnoredFoes(v.id, {});
+}
+
+// A major-road HV of an encounter: it keeps `speed` disregarding the AV's
+// right of way (it does not brake for the AV nudged into the junction; a
+// move of the game: GameMove), in its lane, watched until it has left the
+// junction.
+void VehicleCommands::Cruise(JunctionState& j, int h, int movement, double speed, int partner) {
   Vehicle& v = s_.vehicles[h];
   v.movement = movement;
-  s_.sumo.SetSpeedMode(v.id, kModeReleased);
+  GameMove(v, partner, j);
   s_.sumo.SetLaneChangeMode(v.id, kLaneChangeHeld);
   s_.sumo.SetSpeed(v.id, speed);
   v.major_hv = true;
@@ -146,18 +164,29 @@ void VehicleCommands::UpdateYields() {
   for (int h : s_.yielding) YieldStep(s_.vehicles[h]);
 }
 
-void VehicleCommands::Release(JunctionState& j, int h, bool reckless) {
+// `partner` >= 0: a move of the game (GameMove); else a careful move under
+// SUMO's own rules.
+void VehicleCommands::Release(JunctionState& j, int h, int partner) {
   Vehicle& v = s_.vehicles[h];
+  const bool reckless = partner >= 0;
+  auto rules = [&] {
+    if (reckless) {
+      GameMove(v, partner, j);
+    } else {
+      s_.sumo.SetSpeedMode(v.id, kModeDefault);
+      StopIgnoring(v);
+    }
+  };
   if (v.major_hv) {  // already watched (kCruise): its own speed again, right of way as said
     StopYield(h);
-    s_.sumo.SetSpeedMode(v.id, reckless ? kModeReleased : kModeDefault);
+    rules();
     s_.sumo.SetLaneChangeMode(v.id, kLaneChangeDefault);
     s_.sumo.SetSpeed(v.id, -1);
     v.commanded_speed = false;
     v.reckless = reckless;
     return;
   }
-  s_.sumo.SetSpeedMode(v.id, reckless ? kModeReleased : kModeDefault);
+  rules();
   s_.sumo.SetLaneChangeMode(v.id, kLaneChangeDefault);
   s_.sumo.SetSpeed(v.id, -1);
   CountWait(j, v);
@@ -186,6 +215,7 @@ void VehicleCommands::Clear(int h) {
   const bool major_hv = v.major_hv, commanded_speed = v.commanded_speed;
   StopYield(h);
   v.major_hv = v.commanded_speed = false;
+  StopIgnoring(v);
   if (!v.alive) return;
   if (v.reckless) s_.sumo.SetSpeedMode(v.id, kModeDefault);
   if (major_hv) s_.sumo.SetLaneChangeMode(v.id, kLaneChangeDefault);

@@ -5,8 +5,8 @@
 //   exact commanded speeds (CreepSpeed), and once it stands again the HV
 //   reads the displacement SUMO reports (the logic's NudgeDone);
 // - Release: an encounter vehicle drives on, with SUMO's right of way off
-//   (a move of the game: speed mode 55, car-following kept) or under SUMO's
-//   own rules (a careful move: mode 31); watched until it has left the
+//   (a move of the game: GameMove, speed mode 55, car-following kept) or under
+//   SUMO's own rules (a careful move: mode 31); watched until it has left the
 //   junction (UpdateCrossing: the logic learns when it has entered the
 //   junction and when it has left it), then SUMO's again;
 // - HandBack: a third vehicle held for an encounter is SUMO's again;
@@ -41,11 +41,13 @@ class VehicleCommands {
  private:
   void Hold(JunctionState& j, int h);
   void CountWait(JunctionState& j, const Vehicle& v);
-  void Release(JunctionState& j, int h, bool reckless);
+  void Release(JunctionState& j, int h, int partner);
+  void GameMove(Vehicle& v, int partner, const JunctionState& j);
+  void StopIgnoring(Vehicle& v);
   void HandBack(JunctionState& j, int h);
   void Unblock(int h);
   void StartNudge(int h, double distance, double duration);
-  void Cruise(JunctionState& j, int h, int movement, double speed);
+  void Cruise(JunctionState& j, int h, int movement, double speed, int partner);
   void Yield(int h, double decel, double delay);
   void StopYield(int h);
   void YieldStep(Vehicle& v);

@@ -242,6 +242,7 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
       Command c{game ? Command::Kind::kRelease : Command::Kind::kHandBack,
                 rel.av ? e.out.av : e.out.hv};
       c.in_encounter = true;
+      c.partner = rel.av ? e.out.hv : e.out.av;
       out.push_back(c);
       last_activity_ = now;
     }
@@ -313,6 +314,7 @@ void Interception::FormMajor(double now, const std::vector<AtLine>& at_line,
       Command cruise{Command::Kind::kCruise, hv->vehicle};
       cruise.speed = hv->speed;
       cruise.movement = hv->movement;
+      cruise.partner = av->vehicle;
       out->push_back(cruise);
       encounter_->out.draw = model.Draw(av->vehicle, hv->vehicle);
       Command nudge{Command::Kind::kStartNudge, av->vehicle};
@@ -339,6 +341,7 @@ void Interception::StepMajor(double now, Environment& env, std::vector<Command>*
   auto move = [&](Command::Kind kind, int vehicle) {
     Command c{kind, vehicle};
     c.in_encounter = true;
+    c.partner = vehicle == av ? hv : av;
     out->push_back(c);
     last_activity_ = now;
   };

@@ -41,6 +41,30 @@ taebp::TheoryRequest Request(double prior, double penalty, double trust,
   return r;
 }
 
+// The theory's defaults under the config's names (model.prior_go, ...): a
+// default TheoryRequest's fields, so taebp.theory() retypes none of them.
+py::dict TheoryDefaults() {
+  const taebp::TheoryRequest r;
+  py::dict d;
+  d["prior_go"] = r.prior;
+  d["collision_penalty"] = r.penalty;
+  d["trust"] = r.trust;
+  d["s_max"] = r.s_max;
+  d["likelihood"] = r.likelihood;
+  d["steepness"] = r.steepness;
+  d["midpoint"] = r.midpoint;
+  return d;
+}
+
+// Every policy a config may list: SUMO's own logic, then the game's
+// (persuasion::AllPolicies, in its order).
+std::vector<std::string> PolicyNames() {
+  std::vector<std::string> names = {"sumo_native"};
+  for (const taebp::persuasion::Policy p : taebp::persuasion::AllPolicies())
+    names.emplace_back(taebp::persuasion::ToString(p));
+  return names;
+}
+
 // A sweep task in a forked worker: `taebp run CONFIG --set ... --out DIR
 // --quiet` as the program's sweep runs it, with the same messages on stderr
 // (the engine records a failed task's last stderr line) and exit codes.
@@ -168,6 +192,11 @@ PYBIND11_MODULE(_taebp, m) {
   });
 
   m.def("metrics_json", [] { return taebp::MetricsJson(); });
+
+  // Notebook-facing tables (taebp.theory's defaults, the policy list):
+  // read here, never retyped in Python.
+  m.def("theory_defaults", &TheoryDefaults);
+  m.def("policy_names", &PolicyNames);
 
   m.def("encounter_columns",
         [](bool beyond, bool network) { return taebp::EncounterCsvColumns(beyond, network); },

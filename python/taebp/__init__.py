@@ -4,24 +4,33 @@ The same library as the ``taebp`` program, so the same inputs give the same
 numbers and files:
 
     >>> import taebp
-    >>> taebp.theory(prior=0.2, penalty=3, trust=0.6)["s_star"]
+    >>> taebp.theory(prior_go=0.2, collision_penalty=3, trust=0.6)["s_star"]
     1.641025641025641
-    >>> r = taebp.run("configs/paper.yaml", overrides=["scenario.duration=600"])
+    >>> grid = taebp.theory(prior_go=np.linspace(0.05, 0.5, 46)[:, None],
+    ...                     collision_penalty=np.linspace(0.5, 5, 46))  # a DataFrame
+    >>> r = taebp.run("configs/paper.yaml", overrides={"scenario.duration": 600})
     >>> r.summary["policies"]["ta_ebp"]["dc_rate"]
     >>> print(r.table)                       # the Table I printout
     >>> df = r.encounters.to_pandas()        # needs python3-pandas
-    >>> s = taebp.sweep("configs/sweep_trust.yaml", out="results/sweep_trust", jobs=2)
-    >>> s.aggregate.to_pandas()
+    >>> s = taebp.sweep({"scenario": {...}, "policies": ["ta_ebp"]}, out="results/mine",
+    ...                 grid={"model.trust": [{"dist": "beta", "alpha": 12, "beta": 8}, 0.6]})
+    >>> s.aggregate.to_pandas()              # model.trust, model.trust.dist/.mean/.sd, ...
 
-Functions
+Functions (arguments under the config's names; numbers give a dict, arrays or
+lists a DataFrame, one row per point)
     theory(...)   the TA-EBP design and predicted outcomes (``taebp theory --json``)
     design(...)   the TA-EBP design for an assumed trust
     predict(...)  one policy's predicted DC / collision / nudge rates
-    solve(problem)  the trust-aware LP for a finite game (``taebp solve --json``)
-    run(config, overrides=(), out=None)  every policy of a config in SUMO
-    sweep(config, overrides=(), out=None, jobs=None)  a study with the sweep engine
-    load_run(dir), load_sweep(dir)  results already written
+    solve(problem)  the trust-aware LP for a finite game (``taebp solve --json``;
+                  DataFrames in, DataFrames out)
+    run(config, overrides=(), out=None)  every policy of a config in SUMO (a
+                  path or a dict; overrides a dict or KEY=VALUE strings)
+    sweep(config, overrides=(), out=None, jobs=None, quiet=True, shard=None,
+          grid=None, replicates=None)  a study with the sweep engine
+    load_run(dir), load_sweep(dir)  results already written (taebp.results)
+    policies()    every policy a config may list
     stats.wilson(k, n, z)  the Wilson interval the outputs report (taebp.stats)
+    dists         swept distributions: their mean, sd and label
 
 Errors are exceptions with the program's messages: ConfigError and
 InvalidArgument (both ValueError), OutputError (OSError: an out= folder that
@@ -37,19 +46,20 @@ experiments in parallel with sweep(..., jobs=N) (forked workers) or with
 multiprocessing (each worker process runs its own).
 """
 
-import csv
-import io
+import hashlib
 import json
 import os
-import re
 
 from . import _taebp
+from . import dists, stats
+from .results import (RunResult, SweepResult, Table, _flatten, _pandas, load_run, load_sweep,
+                      set_metric_types, to_pandas)
 
 __all__ = [
     "theory", "design", "predict", "solve", "run", "sweep", "load_run", "load_sweep",
     "Table", "RunResult", "SweepResult", "to_pandas", "encounter_columns", "metrics", "metric_sections",
     "ConfigError", "InvalidArgument", "OutputError", "SumoError", "BusyError", "StallError",
-    "SweepError",
+    "SweepError", "stats", "dists", "policies",
     "__version__",
 ]
 
@@ -90,40 +100,157 @@ class SweepError(RuntimeError):
 
 
 # ------------------------------------------------------------------ theory
-def theory(prior=0.2, penalty=3.0, trust=0.6, assumed_trust=None, s_max=2.0,
-           likelihood="linear", steepness=4.0, midpoint=1.0):
+# The arguments' defaults: the C++ request's (runner/theory.h TheoryRequest),
+# under the config's names (model.prior_go, model.collision_penalty, ...).
+_DEFAULTS = dict(_taebp.theory_defaults())
+# Old keyword names (taebp < 0.3), accepted with a DeprecationWarning.
+_OLD_NAMES = {"prior": "prior_go", "penalty": "collision_penalty"}
+# The C++ messages name the program's options; Python names the arguments.
+_OPTION_NAMES = [("--trust theta", "trust"), ("--trust", "trust"), ("--prior", "prior_go"),
+                 ("--penalty", "collision_penalty"), ("--assumed-trust", "assumed_trust"),
+                 ("--s-max", "s_max"), ("prior lambda", "prior_go lambda"),
+                 ("penalty r", "collision_penalty r")]
+_NUMERIC = ("prior_go", "collision_penalty", "trust", "assumed_trust", "s_max", "steepness",
+            "midpoint")
+
+
+def _arguments(function, given, old):
+    for name, value in old.items():
+        if name not in _OLD_NAMES:
+            raise TypeError("%s() got an unexpected keyword argument %r (arguments: %s)"
+                            % (function, name, ", ".join(list(given))))
+        import warnings
+        warnings.warn("%s(%s=...) is deprecated: use %s=... (the config's name)"
+                      % (function, name, _OLD_NAMES[name]), DeprecationWarning, stacklevel=3)
+        given[_OLD_NAMES[name]] = value
+    return given
+
+
+def _is_many(v):
+    return not isinstance(v, (str, bytes)) and (hasattr(v, "__len__") or hasattr(v, "shape")) \
+        and getattr(v, "ndim", 1) != 0
+
+
+def _points(args):
+    """The arguments broadcast (numpy rules) to one dict per point, and
+    whether any argument was an array or a list."""
+    import numpy as np
+    many = {k: v for k, v in args.items() if _is_many(v)}
+    if not many:
+        return [args], False
+    shape = np.broadcast_shapes(*[np.shape(v) for v in many.values()])
+    cols = {k: np.broadcast_to(np.asarray(v, dtype=object), shape).ravel()
+            for k, v in many.items()}
+    n = int(np.prod(shape)) if shape else 1
+    return [{k: (cols[k][i] if k in cols else v) for k, v in args.items()} for i in range(n)], True
+
+
+def _call(function, point, call):
+    try:
+        return call()
+    except InvalidArgument as e:
+        message = str(e)
+        for option, name in _OPTION_NAMES:
+            message = message.replace(option, name)
+        shown = ", ".join("%s=%r" % (k, v) for k, v in point.items() if v is not None)
+        raise InvalidArgument("%s(%s): %s" % (function, shown, message)) from None
+
+
+def _request(p):
+    return (float(p["prior_go"]), float(p["collision_penalty"]), float(p["trust"]),
+            None if p["assumed_trust"] is None or p["assumed_trust"] != p["assumed_trust"]
+            else float(p["assumed_trust"]),
+            float(p["s_max"]), str(p["likelihood"]), float(p["steepness"]),
+            float(p["midpoint"]))
+
+
+def _frame(points, rows):
+    pd = _pandas()
+    out = []
+    for p, r in zip(points, rows):
+        flat = {}
+        _flatten("", r, flat)
+        out.append(dict(p, **{k: v for k, v in flat.items() if k not in p}))
+    return pd.DataFrame(out)
+
+
+def theory(prior_go=_DEFAULTS["prior_go"], collision_penalty=_DEFAULTS["collision_penalty"],
+           trust=_DEFAULTS["trust"], assumed_trust=None, s_max=_DEFAULTS["s_max"],
+           likelihood=_DEFAULTS["likelihood"], steepness=_DEFAULTS["steepness"],
+           midpoint=_DEFAULTS["midpoint"], **old):
     """The TA-EBP design and predicted outcomes: the object ``taebp theory --json`` prints.
 
-    Keys: prior_go, collision_penalty, trust, assumed_trust, likelihood, s_max,
-    p_star, theta_star, persuadable, s_star, a, b, p_nudge, dc_rate,
-    collision_rate (the TA-EBP design's), and policies.<no_ebp | no_trust |
-    ta_ebp | full_reveal>.{dc_rate, collision_rate, nudge_rate}.
-    ``assumed_trust`` is the trust the AV designs for (default: ``trust``)."""
-    return json.loads(_taebp.theory_json(
-        float(prior), float(penalty), float(trust),
-        None if assumed_trust is None else float(assumed_trust), float(s_max),
-        str(likelihood), float(steepness), float(midpoint)))
+    Arguments have the config's names (model.prior_go, model.collision_penalty,
+    model.trust, model.assumed_trust, model.likelihood.{type, s_max,
+    steepness, midpoint}); their defaults are the C++ request's
+    (runner/theory.h). Numbers give a dict with keys prior_go,
+    collision_penalty, trust, assumed_trust, likelihood, s_max, p_star,
+    theta_star, persuadable, s_star, a, b, p_nudge, dc_rate, collision_rate
+    (the TA-EBP design's), and policies.<no_ebp | no_trust | ta_ebp |
+    full_reveal>.{dc_rate, collision_rate, nudge_rate}. Arrays or lists
+    broadcast (numpy rules) and give a pandas DataFrame, one row per point,
+    the inputs then those keys flattened (``policies.ta_ebp.dc_rate``):
+
+        >>> taebp.theory(prior_go=np.linspace(0.05, 0.5, 46)[:, None],
+        ...              collision_penalty=np.linspace(0.5, 5, 46)[None, :])
+
+    ``assumed_trust`` is the trust the AV designs for (default: ``trust``).
+    ``prior=`` and ``penalty=`` (the old names) still work, with a
+    DeprecationWarning."""
+    args = _arguments("theory", dict(prior_go=prior_go, collision_penalty=collision_penalty,
+                                     trust=trust, assumed_trust=assumed_trust, s_max=s_max,
+                                     likelihood=likelihood, steepness=steepness,
+                                     midpoint=midpoint), old)
+    points, many = _points(args)
+    rows = [_call("theory", p, lambda p=p: json.loads(_taebp.theory_json(*_request(p))))
+            for p in points]
+    return _frame(points, rows) if many else rows[0]
 
 
-def design(prior=0.2, penalty=3.0, trust=0.6, s_max=2.0, likelihood="linear",
-           steepness=4.0, midpoint=1.0):
+def design(prior_go=_DEFAULTS["prior_go"], collision_penalty=_DEFAULTS["collision_penalty"],
+           trust=_DEFAULTS["trust"], s_max=_DEFAULTS["s_max"], likelihood=_DEFAULTS["likelihood"],
+           steepness=_DEFAULTS["steepness"], midpoint=_DEFAULTS["midpoint"], **old):
     """The TA-EBP design for an AV that assumes trust ``trust`` (paper Sec. IV-C).
 
-    Returns persuadable, theta_star, p_star, s_star, a, b, p_nudge."""
-    return _taebp.design(float(prior), float(penalty), float(trust), float(s_max),
-                         str(likelihood), float(steepness), float(midpoint))
+    Returns persuadable, theta_star, p_star, s_star, a, b, p_nudge (a dict;
+    a DataFrame, one row per point, when an argument is an array or list).
+    Arguments as theory()."""
+    args = _arguments("design", dict(prior_go=prior_go, collision_penalty=collision_penalty,
+                                     trust=trust, assumed_trust=None, s_max=s_max,
+                                     likelihood=likelihood, steepness=steepness,
+                                     midpoint=midpoint), old)
+    points, many = _points(args)
+    rows = []
+    for p in points:
+        r = _request(p)
+        rows.append(_call("design", p, lambda r=r: dict(_taebp.design(*(r[:3] + r[4:])))))
+    for p in points:
+        p.pop("assumed_trust")
+    return _frame(points, rows) if many else rows[0]
 
 
-def predict(policy, prior=0.2, penalty=3.0, trust=0.6, assumed_trust=None, s_max=2.0,
-            likelihood="linear", steepness=4.0, midpoint=1.0):
-    """Predicted rates per AV-HV encounter of ``policy`` (no_ebp, no_trust, ta_ebp,
-    full_reveal) for an HV of trust ``trust`` when the AV designs for
-    ``assumed_trust`` (default ``trust``; no_trust designs for 1).
+def predict(policy, prior_go=_DEFAULTS["prior_go"],
+            collision_penalty=_DEFAULTS["collision_penalty"], trust=_DEFAULTS["trust"],
+            assumed_trust=None, s_max=_DEFAULTS["s_max"], likelihood=_DEFAULTS["likelihood"],
+            steepness=_DEFAULTS["steepness"], midpoint=_DEFAULTS["midpoint"], **old):
+    """Predicted rates per AV-HV encounter of ``policy`` (no_ebp, no_trust,
+    ta_ebp, full_reveal, population_mean, ta_ebp_learned: the game's
+    policies; sumo_native plays none) for an HV of trust ``trust`` when the
+    AV designs for ``assumed_trust`` (default ``trust``; no_trust designs
+    for 1).
 
-    Returns dc_rate, collision_rate, nudge_rate, av_first_rate."""
-    return _taebp.predict(str(policy), float(prior), float(penalty), float(trust),
-                          None if assumed_trust is None else float(assumed_trust),
-                          float(s_max), str(likelihood), float(steepness), float(midpoint))
+    Returns dc_rate, collision_rate, nudge_rate, av_first_rate (a dict; a
+    DataFrame, one row per point, when an argument, ``policy`` included, is
+    an array or list). Arguments as theory()."""
+    args = _arguments("predict", dict(policy=policy, prior_go=prior_go,
+                                      collision_penalty=collision_penalty, trust=trust,
+                                      assumed_trust=assumed_trust, s_max=s_max,
+                                      likelihood=likelihood, steepness=steepness,
+                                      midpoint=midpoint), old)
+    points, many = _points(args)
+    rows = [_call("predict", p, lambda p=p: dict(_taebp.predict(str(p["policy"]), *_request(p))))
+            for p in points]
+    return _frame(points, rows) if many else rows[0]
 
 
 def _plain(value):
@@ -137,15 +264,59 @@ def _plain(value):
     return value
 
 
-def solve(problem):
+def _from_frames(problem):
+    """A problem whose utilities are pandas DataFrames (index = states,
+    columns = actions) and whose prior is a Series (or list) -> the plain
+    dict the LP reads; True when a frame was given."""
+    framed = False
+    out = dict(problem)
+    for key in ("receiver_utility", "sender_utility"):
+        v = out.get(key)
+        if hasattr(v, "iloc") and hasattr(v, "columns"):
+            framed = True
+            out.setdefault("states", [str(s) for s in v.index])
+            out.setdefault("actions", [str(a) for a in v.columns])
+            out[key] = v.to_numpy().tolist()
+    p = out.get("prior")
+    if hasattr(p, "iloc") and not hasattr(p, "columns"):
+        framed = True
+        out.setdefault("states", [str(s) for s in p.index])
+        out["prior"] = p.to_numpy().tolist()
+    return out, framed
+
+
+def _to_frames(result):
+    pd = _pandas()
+    states, actions = result.get("states", []), result.get("actions", [])
+    if result.get("scheme") is not None:
+        result["scheme"] = pd.DataFrame(result["scheme"], index=pd.Index(states, name="state"),
+                                        columns=pd.Index(actions, name="recommended"))
+    if result.get("posteriors") is not None:
+        rows = [r if r is not None else [float("nan")] * len(states) for r in result["posteriors"]]
+        result["posteriors"] = pd.DataFrame(rows, index=pd.Index(actions, name="recommended"),
+                                            columns=pd.Index(states, name="state"))
+    if result.get("signal_probability") is not None:
+        result["signal_probability"] = pd.Series(result["signal_probability"],
+                                                 index=pd.Index(actions, name="recommended"))
+    return result
+
+
+def solve(problem, frames=None):
     """The optimal trust-aware scheme of a finite game: the object ``taebp solve --json`` prints.
 
     ``problem`` is a dict with states, actions, prior, receiver_utility,
-    sender_utility (rows = states; lists or numpy arrays) and trust, or the
-    path of a problem YAML file. Returns status, sender_value, states, actions,
-    trust, scheme (rows = states), signal_probability, posteriors (one row per
-    recommended action; None where an action is never recommended) and, when
-    the LP is not optimal, message. Raises ConfigError for a malformed problem."""
+    sender_utility (rows = states; lists, numpy arrays, or pandas DataFrames
+    with the states as index and the actions as columns, which then also
+    name states and actions; prior a list or a Series) and trust, or the
+    path of a problem YAML file. Returns status, sender_value, states,
+    actions, trust, scheme (rows = states), signal_probability, posteriors
+    (one row per recommended action; None where an action is never
+    recommended) and, when the LP is not optimal, message. With DataFrames
+    in (or ``frames=True``) scheme is a DataFrame (states x recommended
+    actions), posteriors one (recommended actions x states; NaN for an
+    action never recommended) and signal_probability a Series. Raises
+    ConfigError for a malformed problem."""
+    framed = False
     if isinstance(problem, (str, os.PathLike)):
         path = os.fspath(problem)
         why = _taebp.not_a_file(path)  # a FIFO would block the read for good
@@ -158,98 +329,15 @@ def solve(problem):
             raise ConfigError(path + ": cannot open the file (does it exist?)") from None
         origin = path
     elif isinstance(problem, dict):
-        text = json.dumps(_plain(problem))
+        plain, framed = _from_frames(problem)
+        text = json.dumps(_plain(plain))
         origin = "problem"
     else:
         raise TypeError("solve(problem): a dict or the path of a problem YAML file, not %s"
                         % type(problem).__name__)
     out, _optimal = _taebp.solve_json(text, origin)
-    return json.loads(out)
-
-
-# ------------------------------------------------------------------ tables
-_INT = re.compile(r"^[+-]?\d+$")
-
-
-def _convert(cells):
-    """A column's cells with one type: int, float, bool, else str; '' -> None."""
-    present = [c for c in cells if c != ""]
-    if present and all(_INT.match(c) for c in present):
-        return [int(c) if c != "" else None for c in cells]
-    try:
-        values = [float(c) if c != "" else None for c in cells]
-        return values
-    except ValueError:
-        pass
-    if present and all(c in ("true", "false") for c in present):
-        return [(c == "true") if c != "" else None for c in cells]
-    return [c if c != "" else None for c in cells]
-
-
-class Table:
-    """A CSV output as columns and typed rows (ints, floats, bools, strings;
-    None for an empty cell). ``rows`` is a list of tuples in column order;
-    iterating gives one dict per row; ``table[name]`` a column as a list."""
-
-    def __init__(self, columns, rows, name=""):
-        self.columns = list(columns)
-        self.rows = rows
-        self.name = name
-
-    @classmethod
-    def from_csv(cls, text, name=""):
-        reader = csv.reader(io.StringIO(text))
-        try:
-            columns = next(reader)
-        except StopIteration:
-            return cls([], [], name)
-        raw = list(reader)
-        if not raw:
-            return cls(columns, [], name)
-        converted = [_convert([r[i] if i < len(r) else "" for r in raw])
-                     for i in range(len(columns))]
-        return cls(columns, list(zip(*converted)), name)
-
-    def __len__(self):
-        return len(self.rows)
-
-    def __iter__(self):
-        for r in self.rows:
-            yield dict(zip(self.columns, r))
-
-    def __getitem__(self, column):
-        i = self.columns.index(column)
-        return [r[i] for r in self.rows]
-
-    def __repr__(self):
-        return "<taebp.Table %s: %d rows x %d columns>" % (self.name or "", len(self.rows),
-                                                           len(self.columns))
-
-    def to_pandas(self):
-        """A pandas.DataFrame of the table (needs python3-pandas)."""
-        pd = _pandas()
-        return pd.DataFrame.from_records(self.rows, columns=self.columns)
-
-
-def _pandas():
-    try:
-        import pandas
-    except ImportError:
-        raise ImportError("pandas is not installed for this Python: install the Debian "
-                          "package python3-pandas (tools/setup.sh does)") from None
-    return pandas
-
-
-def to_pandas(obj):
-    """pandas DataFrames of a result: a Table -> one DataFrame; a RunResult ->
-    {"encounters", "policies"}; a SweepResult -> {"results", "aggregate",
-    "encounters"}."""
-    if isinstance(obj, Table):
-        return obj.to_pandas()
-    if isinstance(obj, (RunResult, SweepResult)):
-        return obj.to_pandas()
-    raise TypeError("to_pandas: a taebp Table, RunResult or SweepResult, not %s"
-                    % type(obj).__name__)
+    result = json.loads(out)
+    return _to_frames(result) if (frames if frames is not None else framed) else result
 
 
 def encounter_columns(beyond=False, network=False):
@@ -281,196 +369,84 @@ def metric_sections():
     return json.loads(_taebp.metrics_json())["sections"]
 
 
-def _flatten(prefix, value, out):
-    if isinstance(value, dict):
-        for k, v in value.items():
-            _flatten(prefix + "." + k if prefix else k, v, out)
-    else:
-        out[prefix] = value
-
-
-# ------------------------------------------------------------------ experiments
-class RunResult:
-    """What ``taebp run`` writes, as data.
-
-    summary     summary.json as a dict (policies.<name>.{...}, provenance)
-    encounters  encounters.csv as a Table (one row per AV-HV encounter)
-    junctions   junctions.csv as a Table (one row per controlled junction and
-                policy: crossings, waits, queues, encounters, rates)
-    config      config.yaml: the resolved configuration (YAML text)
-    table       the Table I printout of ``taebp run``
-    warnings    the run's warnings (also in summary.json's provenance)
-    files       every result file's exact text (name -> text)
-    out         the directory written, or None
-    timeseries  timeseries.csv as a Table (runs beyond the paper), else None
-    hv_trust    hv_trust.csv as a Table (runs beyond the paper), else None"""
-
-    def __init__(self, files, table=None, warnings=None, out=None):
-        self.files = dict(files)
-        self.summary = json.loads(self.files["summary.json"])
-        self.encounters = Table.from_csv(self.files["encounters.csv"], "encounters.csv")
-        self.junctions = Table.from_csv(self.files.get("junctions.csv", ""), "junctions.csv")
-        self.timeseries = (Table.from_csv(self.files["timeseries.csv"], "timeseries.csv")
-                           if "timeseries.csv" in self.files else None)
-        self.hv_trust = (Table.from_csv(self.files["hv_trust.csv"], "hv_trust.csv")
-                         if "hv_trust.csv" in self.files else None)
-        self.config = self.files.get("config.yaml", "")
-        self.warnings = list(warnings if warnings is not None
-                             else self.summary.get("provenance", {}).get("warnings", []))
-        self.table = table
-        self.out = out
-
-    @property
-    def policies(self):
-        return list(self.summary.get("policies", {}))
-
-    def to_pandas(self):
-        """{"encounters": one row per encounter, "junctions": one row per
-        junction and policy, "policies": one row per policy with summary.json's
-        metrics (the names of the metric table, e.g. theory_dc_rate;
-        sections such as scheme flattened: scheme.nudge)}, plus "timeseries" and
-        "hv_trust" for runs beyond the paper."""
-        pd = _pandas()
-        rows = []
-        for name, metrics in self.summary.get("policies", {}).items():
-            flat = {"policy": name}
-            _flatten("", metrics, flat)
-            rows.append(flat)
-        out = {"encounters": self.encounters.to_pandas(),
-               "junctions": self.junctions.to_pandas(),
-               "policies": pd.DataFrame(rows)}
-        for name in ("timeseries", "hv_trust"):
-            if getattr(self, name) is not None:
-                out[name] = getattr(self, name).to_pandas()
-        return out
-
-    def __repr__(self):
-        return "<taebp.RunResult %s: %d encounters>" % (", ".join(self.policies),
-                                                       len(self.encounters))
-
-
-def _paths(config, overrides):
+def _override_list(overrides):
+    """Overrides as --set strings: a dict {key: value} (values as YAML: JSON
+    of the Python value) or a list of 'KEY=VALUE' strings."""
     if isinstance(overrides, str):
-        raise TypeError("overrides: a list of 'KEY=VALUE' strings, e.g. "
-                        "['scenario.duration=600'], not one string")
-    return os.fspath(config), [str(o) for o in overrides]
+        raise TypeError("overrides: a dict {'scenario.duration': 600} or a list of 'KEY=VALUE' "
+                        "strings, e.g. ['scenario.duration=600'], not one string")
+    if isinstance(overrides, dict):
+        return ["%s=%s" % (k, json.dumps(_plain(v))) for k, v in overrides.items()]
+    return [str(o) for o in overrides]
+
+
+class _ConfigFile:
+    """A config given as a dict, as a file while it is used: JSON (which is
+    YAML) in the working directory, so that relative paths in it (networks,
+    routes) are relative to the working directory; named by its content, so
+    the same dict gives the same provenance; removed afterwards."""
+
+    def __init__(self, config):
+        self.config = config
+        self.path = None
+
+    def __enter__(self):
+        if isinstance(self.config, dict):
+            text = json.dumps(_plain(self.config), indent=1, sort_keys=False) + "\n"
+            name = ".taebp-config-%s.yaml" % hashlib.sha1(text.encode()).hexdigest()[:12]
+            self.path = os.path.join(os.getcwd(), name)
+            with open(self.path, "w", encoding="utf-8") as f:
+                f.write(text)
+            return self.path, "config"
+        if isinstance(self.config, (str, os.PathLike)):
+            path = os.fspath(self.config)
+            return path, os.path.splitext(os.path.basename(path))[0]
+        raise TypeError("config: a dict or the path of a config YAML file, not %s"
+                        % type(self.config).__name__)
+
+    def __exit__(self, *exc):
+        if self.path:
+            try:
+                os.remove(self.path)
+            except OSError:
+                pass
 
 
 def run(config, overrides=(), out=None, progress=False):
     """Runs every listed policy of the experiment config in SUMO (``taebp run``).
 
-    ``overrides`` are ``taebp run --set`` values, e.g. ["scenario.duration=600",
-    "policies=[ta_ebp]"]. With ``out`` the result files are written there (as
+    ``config`` is the path of a config YAML file or the config as a dict
+    ({"scenario": {...}, "model": {...}, "policies": [...]}; relative paths in
+    it are relative to the working directory). The policies: {policies}.
+    ``overrides`` are ``taebp run --set`` values, a dict
+    {"scenario.duration": 600, "policies": ["ta_ebp"]} or a list of strings
+    ["scenario.duration=600", "policies=[ta_ebp]"]. With ``out`` the result files are written there (as
     ``--out``; atomically); without, nothing is written. ``progress`` prints
     each policy's wall time on stderr. The GIL is released while SUMO runs.
     Raises ConfigError, InvalidArgument, SumoError or BusyError; StallError
     (with the result so far, written to ``out``) when a run stalled under
     scenario.stall_action: error."""
-    config, overrides = _paths(config, overrides)
+    overrides = _override_list(overrides)
     out = None if out is None else os.fspath(out)
-    r = _taebp.run(config, overrides, out, bool(progress))
+    with _ConfigFile(config) as (path, _name):
+        r = _taebp.run(path, overrides, out, bool(progress))
     result = RunResult(r["files"], table=r["table"], warnings=r["warnings"], out=out)
     if r["stopped"]:
         raise StallError(r["error"], result)
     return result
 
 
-def load_run(out_dir):
-    """The RunResult of a directory that ``taebp run --out`` (or run(out=...)) wrote."""
-    files = {}
-    for name in ("summary.json", "encounters.csv", "junctions.csv", "config.yaml",
-                 "timing.json", "timeseries.csv", "hv_trust.csv"):
-        path = os.path.join(out_dir, name)
-        if os.path.isfile(path):
-            with open(path, encoding="utf-8") as f:
-                files[name] = f.read()
-    if "summary.json" not in files or "encounters.csv" not in files:
-        raise FileNotFoundError("%s: no summary.json / encounters.csv (is it the --out of "
-                                "taebp run?)" % out_dir)
-    return RunResult(files, out=out_dir)
-
-
-class SweepResult:
-    """A sweep's output directory, as data (tables read when first used).
-
-    info        sweep.json (config, grid with typed values, provenance)
-    results     results.csv: one row per (point, seed, policy)
-    aggregate   aggregate.csv: one row per (point, policy), pooled over seeds
-    encounters  encounters.csv: every encounter, with point, replicate, seed
-                and the swept keys in front
-    junctions   every finished task's junctions.csv (one row per junction and
-                policy), with point, replicate, seed and the swept keys in front
-    keys        the swept config keys (columns between point/seed and policy)
-    out         the directory"""
-
-    def __init__(self, out):
-        self.out = out
-        with open(os.path.join(out, "sweep.json"), encoding="utf-8") as f:
-            self.info = json.load(f)
-        self.keys = list(self.info.get("columns", []))
-        self._tables = {}
-
-    def _table(self, name):
-        if name not in self._tables:
-            with open(os.path.join(self.out, name), encoding="utf-8", newline="") as f:
-                self._tables[name] = Table.from_csv(f.read(), name)
-        return self._tables[name]
-
-    @property
-    def results(self):
-        return self._table("results.csv")
-
-    @property
-    def aggregate(self):
-        return self._table("aggregate.csv")
-
-    @property
-    def encounters(self):
-        return self._table("encounters.csv")
-
-    @property
-    def junctions(self):
-        if "junctions.csv" not in self._tables:
-            front = ["point", "replicate", "seed"] + self.keys
-            columns, rows, tasks = None, [], {}
-            for r in self.results:  # the finished tasks, in task order
-                if r.get("status") == "ok":
-                    tasks.setdefault((r["point"], r["replicate"]), [r[c] for c in front])
-            for (point, replicate), values in tasks.items():
-                path = os.path.join(self.out, "tasks", "%d-%d" % (point, replicate),
-                                    "junctions.csv")
-                if not os.path.isfile(path):
-                    continue
-                with open(path, encoding="utf-8", newline="") as f:
-                    t = Table.from_csv(f.read(), "junctions.csv")
-                columns = columns or front + t.columns
-                rows.extend(tuple(values) + row for row in t.rows)
-            self._tables["junctions.csv"] = Table(columns or front, rows, "junctions")
-        return self._tables["junctions.csv"]
-
-    def run(self, point, replicate=0):
-        """One task's RunResult (tasks/POINT-REPLICATE)."""
-        return load_run(os.path.join(self.out, "tasks", "%d-%d" % (point, replicate)))
-
-    def to_pandas(self):
-        """{"results", "aggregate", "encounters", "junctions"} as pandas DataFrames."""
-        return {name: getattr(self, name).to_pandas()
-                for name in ("results", "aggregate", "encounters", "junctions")}
-
-    def __repr__(self):
-        return "<taebp.SweepResult %s: %s points x %s replicates>" % (
-            self.out, self.info.get("points"), self.info.get("replicates"))
-
-
-def load_sweep(out_dir):
-    """The SweepResult of a directory a sweep wrote."""
-    if not os.path.isfile(os.path.join(out_dir, "sweep.json")):
-        raise FileNotFoundError("%s: no sweep.json (is it the --out of taebp sweep?)" % out_dir)
-    return SweepResult(out_dir)
-
-
-def sweep(config, overrides=(), out=None, jobs=None, quiet=True, shard=None):
+def sweep(config, overrides=(), out=None, jobs=None, quiet=True, shard=None, grid=None,
+          replicates=None):
     """Runs a config's sweep with the sweep engine (``taebp sweep``).
+
+    ``config`` and ``overrides`` as run() (a path or a dict; a dict or a
+    list of 'KEY=VALUE'); ``grid`` the sweep's grid as a dict {key: [values]}
+    (values may be maps, e.g. {"model.trust": [{"dist": "beta", "alpha": 12,
+    "beta": 8}, 0.6]}; it replaces the config's sweep.grid) and
+    ``replicates`` its seeds per point. ``quiet`` (default True) prints no
+    progress line per task (``--quiet``); ``shard`` runs one part of the
+    tasks, "I/N" (``--shard I/N``); ``jobs`` worker processes.
 
     Each task (grid point x seed replicate) runs in a forked worker process,
     up to ``jobs`` at once (default: the number of cores); finished tasks are
@@ -479,12 +455,17 @@ def sweep(config, overrides=(), out=None, jobs=None, quiet=True, shard=None):
     is ``--shard I/N``. Returns a SweepResult; raises SweepError (with the
     partial result) when a task failed, ConfigError for a bad config and
     KeyboardInterrupt after Ctrl-C."""
-    config, overrides = _paths(config, overrides)
-    if out is None:
-        out = os.path.join("results", os.path.splitext(os.path.basename(config))[0])
-    out = os.fspath(out)
-    code = _taebp.sweep(config, overrides, out, 0 if jobs is None else int(jobs), bool(quiet),
-                        "" if shard is None else str(shard))
+    overrides = _override_list(overrides)
+    if grid is not None:
+        overrides.append("sweep.grid=" + json.dumps(_plain(dict(grid))))
+    if replicates is not None:
+        overrides.append("sweep.replicates=%d" % int(replicates))
+    with _ConfigFile(config) as (path, name):
+        if out is None:
+            out = os.path.join("results", name)
+        out = os.fspath(out)
+        code = _taebp.sweep(path, overrides, out, 0 if jobs is None else int(jobs), bool(quiet),
+                            "" if shard is None else str(shard))
     if code == 130:
         raise KeyboardInterrupt("taebp sweep interrupted; the same call resumes it")
     result = SweepResult(out)
@@ -508,3 +489,13 @@ def sweep(config, overrides=(), out=None, jobs=None, quiet=True, shard=None):
                          % (config, len(failed), (": " + detail) if detail else "", out),
                          result, failed)
     return result
+
+
+def policies():
+    """Every policy a config may list, in the program's order."""
+    return list(_taebp.policy_names())
+
+
+# The policy lists of the docstrings, from the one list.
+run.__doc__ = run.__doc__.replace("{policies}", ", ".join(policies()))
+set_metric_types(metrics())

@@ -147,6 +147,10 @@ const std::vector<Metric>& RunMetrics() {
     {"collision_rate", T::kReal, "", kPJ, S::kAll, Pool::kRate, "collisions", "encounters",
      "collision_rate_ci95", "collisions per encounter",
      [](const MetricFacts& f) { return Rate(f.s.collisions, f.s.n); }},
+    {"collisions_total", T::kCount, "", kP, S::kAll, Pool::kSum, nullptr, nullptr, nullptr,
+     "every collision a move of the game took part in: the encounters' AV-HV collisions plus "
+     "other_collisions_game_move (the headline beside collision_rate)",
+     [](const MetricFacts& f) { return D(f.s.collisions + f.run->other_collisions_game_move); }},
     {"dc", T::kCount, "", kPJ, S::kAll, Pool::kSum, nullptr, nullptr, nullptr,
      "encounters in which the HV chose Drive if Clear",
      [](const MetricFacts& f) { return D(f.s.dc); }},

@@ -513,6 +513,19 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
     out << std::setw(w)
         << cell(stats[i].collisions, stats[i].n,
                 runs[i].policy == "sumo_native" ? -1.0 : runs[i].theory.collision_rate);
+  // The headline's count: every collision a move of the game took part in
+  // (metric collisions_total), a third vehicle hit by one included.
+  out << "\n" << std::setw(w0) << "Collisions, all";
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    char buf[96];
+    if (runs[i].policy == "sumo_native")
+      std::snprintf(buf, sizeof buf, "- (SUMO's own logic: %ld)", runs[i].other_collisions);
+    else
+      std::snprintf(buf, sizeof buf, "%ld (AV-HV %ld, third vehicles %ld)",
+                    stats[i].collisions + runs[i].other_collisions_game_move, stats[i].collisions,
+                    runs[i].other_collisions_game_move);
+    out << std::setw(w) << buf;
+  }
   out << "\n" << std::setw(w0) << "DC Rate";
   for (std::size_t i = 0; i < runs.size(); ++i)
     out << std::setw(w)

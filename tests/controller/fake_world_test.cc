@@ -6,8 +6,8 @@
 //   once-a-second samples and commands nothing;
 // - a pair that does not conflict is never commanded;
 // - an AV and an HV waiting at conflicting lines are held, the game runs and
-//   the two are released in the paper's order (the reckless HV with SUMO's
-//   right of way off, speed mode 55; the AV handed back under SUMO's rules,
+//   the two are released in the paper's order (the reckless HV disregarding
+//   the AV's right of way alone, junctionModel.ignoreIDs; the AV handed back under SUMO's rules,
 //   mode 31, once the HV is inside the junction), and a third vehicle on a
 //   conflicting movement is held meanwhile and handed back afterwards.
 #include "taebp/config/config.h"
@@ -132,6 +132,11 @@ class FakeWorld : public SumoWorld {
   }
   void SetSpeedMode(const std::string& v, int mode) override {
     commands.push_back("mode " + v + " " + std::to_string(mode));
+  }
+  void SetIgnoredFoes(const std::string& v, const std::vector<std::string>& foes) override {
+    std::string ids;
+    for (const std::string& f : foes) ids += (ids.empty() ? "" : " ") + f;
+    commands.push_back("ignore " + v + " [" + ids + "]");
   }
   void SetLaneChangeMode(const std::string& v, int mode) override {
     lane_change_modes[v] = mode;
@@ -300,7 +305,10 @@ TEST_F(FakeJunction, TheGameIsExecutedInTheWorldAndBothAreHandedBackInThePapersO
   Step(*c);
   EXPECT_THAT(world_.CommandsFor("h2"), ElementsAre("speed h2 0")) << "held for the encounter";
   // The reckless HV goes with SUMO's right of way off; the AV waits.
-  EXPECT_THAT(world_.CommandsFor("h1"), ElementsAre("speed h1 0", "mode h1 55", "speed h1 -1"));
+  // A move of the game at an all-way stop (every third vehicle held): right
+  // of way off (mode 55), the AV named as its partner.
+  EXPECT_THAT(world_.CommandsFor("h1"),
+              ElementsAre("speed h1 0", "mode h1 55", "ignore h1 [a1]", "speed h1 -1"));
   EXPECT_THAT(world_.CommandsFor("a1"), ElementsAre("speed a1 0"));
   // The HV enters the junction: the AV is handed back to SUMO's rules (SUMO
   // makes it yield to the HV at their crossing point); both are on their way,
@@ -315,7 +323,8 @@ TEST_F(FakeJunction, TheGameIsExecutedInTheWorldAndBothAreHandedBackInThePapersO
   world_.Move("h1", "CN_0", 6.0, 5.0);
   Step(*c);
   EXPECT_THAT(world_.CommandsFor("h1"),
-              ElementsAre("speed h1 0", "mode h1 55", "speed h1 -1", "mode h1 31"));
+              ElementsAre("speed h1 0", "mode h1 55", "ignore h1 [a1]", "speed h1 -1",
+                          "ignore h1 []", "mode h1 31"));
   // The AV leaves; the encounter is recorded.
   world_.Move("a1", "CE_0", 6.0, 5.0);
   Step(*c);
@@ -332,7 +341,7 @@ TEST_F(FakeJunction, TheGameIsExecutedInTheWorldAndBothAreHandedBackInThePapersO
   EXPECT_EQ(e.observed, 0.0) << "a still AV: the displacement the world reported";
   EXPECT_FALSE(e.collision) << "no collision reported by the world";
   EXPECT_EQ(run.held, 3);  // the two and the third vehicle
-  EXPECT_THAT(world_.commands, Not(Contains(::testing::HasSubstr("h2 55"))));
+  EXPECT_THAT(world_.commands, Not(Contains(::testing::HasSubstr("ignore h2"))));
 }
 
 }  // namespace

@@ -251,6 +251,27 @@ TEST(Interception, BothWaitingAreHeldNudgeWhenStandingAndClearThenTheGame) {
   EXPECT_FALSE(r.logic.Busy());
 }
 
+// Each release of a move of the game names the other vehicle of the game
+// (VehicleCommands::GameMove hands it to SUMO as the vehicle the move
+// disregards: docs/encounter-rules.md).
+TEST(Interception, EveryMoveOfTheGameNamesItsPartnerAlone) {
+  for (const bool go : {true, false}) {
+    SCOPED_TRACE(go ? "the AV goes" : "the AV waits");
+    Sim r;
+    r.model.draws[kAv] = Draw(go, go ? 1.5 : 0.0);
+    const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 1.0), Wait(kHv, kHV, kSs, 1.2)};
+    r.Step(1.2, at);
+    r.Step(1.5, at);
+    r.logic.NudgeDone(kAv, go ? 1.5 : 0.0, 2.5, r.model);
+    const std::vector<Command> rel = r.logic.Step(2.5, {}, r.env, r.model);
+    ASSERT_EQ(rel.size(), go ? 2u : 1u);
+    for (const Command& c : rel) {
+      EXPECT_EQ(c.kind, Kind::kRelease);
+      EXPECT_EQ(c.partner, c.vehicle == kAv ? kHv : kAv) << "vehicle " << c.vehicle;
+    }
+  }
+}
+
 // The paper's order for each (intent, response), and which moves are the
 // game's (right of way off) and which go back to SUMO's rules.
 TEST(Interception, ReleaseOrderAndRightOfWayForEachIntentAndResponse) {

@@ -144,6 +144,7 @@ TEST(MajorRoadInterception, FormsOnlyAtATwoWayStopWithTheOptionOnWhenTheModelSay
   ASSERT_EQ(c.size(), 3u);
   EXPECT_DOUBLE_EQ(c[1].speed, 12.0);
   EXPECT_EQ(c[1].movement, kWs);
+  EXPECT_EQ(c[1].partner, kAv) << "the cruising HV names the AV as its partner";
   EXPECT_DOUBLE_EQ(c[2].distance, 1.6);
   EXPECT_DOUBLE_EQ(c[2].duration, 2.0);
   EXPECT_TRUE(logic.Busy());
@@ -170,7 +171,10 @@ TEST(MajorRoadInterception, TheMovesOfEachIntentAndResponse) {
     logic.NudgeDone(kAv, 0.0, 2.0, model);
     std::vector<Command> at = logic.Step(2.0, kAtLine, env, model, kMajor);
     std::vector<Cmd> expected;
-    if (k.go) expected.push_back({Kind::kRelease, kAv});
+    if (k.go) {
+      expected.push_back({Kind::kRelease, kAv});
+      EXPECT_EQ(at.front().partner, kHv) << "the AV that goes names the HV as its partner";
+    }
     if (k.dc) expected.push_back({Kind::kYield, kHv});
     EXPECT_EQ(Simple(at), expected);
     if (k.dc) {

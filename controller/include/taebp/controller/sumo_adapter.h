@@ -96,6 +96,9 @@ void SetSpeedMode(const std::string& veh, int mode);
 // its own).
 void SetLaneChangeMode(const std::string& veh, int mode);
 void SetSpeed(const std::string& veh, double speed);  // < 0: back to car-following
+// The vehicles whose right of way `veh` disregards at junctions (SUMO's
+// junctionModel.ignoreIDs; empty: none), every other foe's kept.
+void SetIgnoredFoes(const std::string& veh, const std::vector<std::string>& foes);
 void SetColor(const std::string& veh, int r, int g, int b);
 double Distance(const std::string& veh);  // odometer (m)
 double Speed(const std::string& veh);

@@ -57,6 +57,8 @@ class SumoWorld {
   // Commands.
   virtual void SetSpeed(const std::string& veh, double speed) = 0;  // < 0: car-following again
   virtual void SetSpeedMode(const std::string& veh, int mode) = 0;
+  // SUMO's right of way toward these vehicles only is disregarded (empty: none).
+  virtual void SetIgnoredFoes(const std::string& veh, const std::vector<std::string>& foes) = 0;
   virtual void SetLaneChangeMode(const std::string& veh, int mode) = 0;
   virtual void SetColor(const std::string& veh, int r, int g, int b) = 0;
   virtual void SetRouteID(const std::string& veh, const std::string& route) = 0;

@@ -249,6 +249,8 @@ struct Command {
   double delay = 0;     // kYield: reaction time
   double duration = 0;  // kStartNudge: the signal lasts at least this long (a still AV too)
   int movement = -1;    // kCruise: the HV's movement
+  int partner = -1;     // kRelease, kCruise: the other vehicle of the game (named to SUMO as
+                        // the vehicle the move disregards: docs/encounter-rules.md)
   bool in_encounter = false;  // a release or hand-back of an encounter vehicle: report Cleared
 };
 
