@@ -4,7 +4,7 @@
 // crash or a leak is a finding.
 #include "fuzz_support.h"
 #include "taebp/config/config.h"
-#include "taebp/report/output_dir.h"
+#include "taebp/rundir/output_dir.h"
 #include "taebp/sweep/engine.h"
 
 #include <filesystem>

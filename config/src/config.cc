@@ -143,6 +143,11 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   const ScenarioConfig& s = scenario;
   if (s.avs < 0) c.Fail("scenario.avs = " + std::to_string(s.avs) + " must be >= 0");
   if (s.hvs < 0) c.Fail("scenario.hvs = " + std::to_string(s.hvs) + " must be >= 0");
+  for (const auto& [key, n] : {std::pair<const char*, int>{"scenario.avs", s.avs}, {"scenario.hvs", s.hvs}})
+    if (c.ok() && n > kMaxVehicles)
+      c.Fail(std::string(key) + " = " + std::to_string(n) + " is above " +
+             std::to_string(kMaxVehicles) +
+             " (SUMO inserts them all in its first step, which cannot be interrupted)");
   if (s.avs >= 0 && s.hvs >= 0 && s.avs + s.hvs == 0)
     c.Fail("scenario.avs + scenario.hvs = 0: the scenario needs at least one vehicle");
   c.Positive("scenario.cruise_speed", s.cruise_speed);

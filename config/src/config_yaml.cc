@@ -23,15 +23,30 @@ namespace taebp {
 namespace {
 
 // Where a key came from, for error messages: the file, or the --set that wrote it.
+// A value as an error message shows it: at most 200 characters (a 10 MB
+// value gives a short message, not a 20 MB one).
+std::string Clip(const std::string& text) {
+  constexpr std::size_t kMax = 200;
+  if (text.size() <= kMax) return text;
+  std::size_t cut = kMax;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // UTF-8
+  return text.substr(0, cut) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
 class Origins {
  public:
   Origins(std::string file) : file_(std::move(file)) {}
   void AddOverride(const std::string& key, const std::string& text) { overrides_[key] = text; }
+  // Forgets the overrides of `key` and below (a key removed from the config).
+  void Forget(const std::string& key) {
+    for (auto it = overrides_.begin(); it != overrides_.end();)
+      it = it->first == key || it->first.rfind(key + ".", 0) == 0 ? overrides_.erase(it) : ++it;
+  }
   // "--set a.b=1" if `key` or one of its parents was overridden, else the file.
   std::string For(const std::string& key) const {
     for (const auto& [k, text] : overrides_) {
       if (key == k || key.rfind(k + ".", 0) == 0 || k.rfind(key + ".", 0) == 0)
-        return "--set " + text;
+        return "--set " + Clip(text);
     }
     return file_;
   }
@@ -52,11 +67,11 @@ std::string Join(const std::string& prefix, const std::string& name) {
 }
 
 std::string Show(const YAML::Node& node) {
-  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsScalar()) return "'" + Clip(node.Scalar()) + "'";
   if (node.IsNull()) return "null";
   YAML::Emitter out;
   out << YAML::Flow << node;
-  return out.c_str();
+  return Clip(out.c_str());
 }
 
 template <typename T>
@@ -131,10 +146,24 @@ class YamlReader {
 
   void Read(const YAML::Node& node, const std::string& key, int* value) {
     ReadScalarCheck(node, key, "an integer");
+    // Decimal digits only: YAML 1.1 (yaml-cpp) reads 010 as octal 8 and 0x10
+    // as 16, while the tables would show the text (010): refused, not guessed.
+    const std::string& s = node.Scalar();
+    const std::size_t digits = s.find_first_not_of("+-") == 1 ? 1 : 0;
+    const bool decimal = s.size() > digits &&
+                         s.find_first_not_of("0123456789", digits) == std::string::npos;
+    if (decimal && s.size() > digits + 1 && s[digits] == '0')
+      Fail(key, node, "key '" + key + "' = " + Show(node) +
+                          ": an integer with a leading zero (YAML 1.1 reads it as octal); "
+                          "write it without the zero");
     long long v = 0;
-    if (!YAML::convert<long long>::decode(node, v) || v < std::numeric_limits<int>::min() ||
-        v > std::numeric_limits<int>::max())
-      Fail(key, node, "key '" + key + "' expects an integer, got " + Show(node));
+    if (decimal && s.size() - digits > 10)
+      v = std::numeric_limits<long long>::max();  // out of range below, not "not an integer"
+    else if (!decimal || !YAML::convert<long long>::decode(node, v))
+      Fail(key, node, "key '" + key + "' expects an integer (decimal digits), got " + Show(node));
+    if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+      Fail(key, node, "key '" + key + "' = " + Show(node) + " is out of range (at most " +
+                          std::to_string(std::numeric_limits<int>::max()) + ")");
     *value = static_cast<int>(v);
   }
   void Read(const YAML::Node& node, const std::string& key, std::uint64_t* value) {
@@ -455,10 +484,22 @@ void RequireUtf8(const std::string& text, const std::string& origin, bool lines)
                     "): save the file as UTF-8 (YAML is UTF-8)");
 }
 
+// One YAML document, or a ConfigError naming `origin`: a second document
+// (after a --- line) would be ignored by YAML::Load, and a run would use the
+// first without a word.
+YAML::Node OneDocument(const std::string& text, const std::string& origin) {
+  std::vector<YAML::Node> docs = YAML::LoadAll(text);
+  if (docs.size() > 1)
+    throw ConfigError(origin + ": holds " + std::to_string(docs.size()) +
+                      " YAML documents (separated by --- lines); a config is one document: "
+                      "remove all but one");
+  return docs.empty() ? YAML::Node() : docs.front();
+}
+
 YAML::Node ParseYaml(const std::string& text, const std::string& origin) {
   RequireUtf8(text, origin, true);
   try {
-    return YAML::Load(text);
+    return OneDocument(text, origin);
   } catch (const YAML::DeepRecursion& e) {
     throw ConfigError(origin + ":" + std::to_string(e.mark.line + 1) +
                       ": malformed YAML: nested more than " + std::to_string(e.depth() - 1) +
@@ -595,7 +636,8 @@ void ApplyOverride(YAML::Node& root, const std::string& text, Origins* origins) 
   }
   YAML::Node value;
   try {
-    value = value_text.empty() ? YAML::Node(YAML::NodeType::Null) : YAML::Load(value_text);
+    value = value_text.empty() ? YAML::Node(YAML::NodeType::Null)
+                               : OneDocument(value_text, "--set " + Clip(text) + ": the value");
   } catch (const YAML::DeepRecursion& e) {
     throw ConfigError("--set " + text + ": value is not valid YAML: nested more than " +
                       std::to_string(e.depth() - 1) + " levels deep");
@@ -625,9 +667,9 @@ T ReadRoot(const YAML::Node& root, const Origins& origins, const std::string& or
 
 }  // namespace
 
-static ExperimentConfig ParseExperimentRoot(YAML::Node root, const std::string& origin,
-                                     const std::vector<std::string>& overrides) {
-  Origins origins(origin);
+static ExperimentConfig ParseExperimentRoot(YAML::Node root, Origins origins,
+                                            const std::string& origin,
+                                            const std::vector<std::string>& overrides) {
   for (const std::string& o : overrides) ApplyOverride(root, o, &origins);
   ExperimentConfig config = ReadRoot<ExperimentConfig>(root, origins, origin, false);
   std::string why;
@@ -669,15 +711,25 @@ std::string NotAFile(const std::string& path) {
 
 struct ExperimentTemplate::Impl {
   std::string text;
-  YAML::Node root;
+  YAML::Node root;  // `base` applied, without the sweep: section
   std::string origin;
+  std::vector<std::string> base;
+  Origins origins{""};
 };
 
-ExperimentTemplate::ExperimentTemplate(const std::string& yaml_text, const std::string& origin) {
+ExperimentTemplate::ExperimentTemplate(const std::string& yaml_text, const std::string& origin,
+                                       const std::vector<std::string>& base) {
   auto impl = std::make_shared<Impl>();
   impl->text = yaml_text;
   impl->root = ParseYaml(yaml_text, origin);
   impl->origin = origin;
+  impl->base = base;
+  impl->origins = Origins(origin);
+  for (const std::string& o : base) ApplyOverride(impl->root, o, &impl->origins);
+  // The sweep: section is the same for every point: not copied per Load
+  // (a grid of N values would make N loads cost N^2).
+  if (impl->root.IsMap()) impl->root.remove("sweep");
+  impl->origins.Forget("sweep");
   impl_ = std::move(impl);
 }
 
@@ -685,21 +737,25 @@ ExperimentTemplate::~ExperimentTemplate() = default;
 
 ExperimentConfig ExperimentTemplate::Load(const std::vector<std::string>& overrides) const {
   try {
-    return ParseExperimentRoot(YAML::Clone(impl_->root), impl_->origin, overrides);
+    return ParseExperimentRoot(YAML::Clone(impl_->root), impl_->origins, impl_->origin, overrides);
   } catch (const ConfigError&) {
     // YAML::Clone drops the line numbers: the message from a fresh parse.
-    return ParseExperimentRoot(ParseYaml(impl_->text, impl_->origin), impl_->origin, overrides);
+    std::vector<std::string> all = impl_->base;
+    all.push_back("sweep=~");
+    all.insert(all.end(), overrides.begin(), overrides.end());
+    return ParseExperimentRoot(ParseYaml(impl_->text, impl_->origin), Origins(impl_->origin),
+                               impl_->origin, all);
   }
 }
 
 ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& origin,
                                        const std::vector<std::string>& overrides) {
-  return ParseExperimentRoot(ParseYaml(yaml_text, origin), origin, overrides);
+  return ParseExperimentRoot(ParseYaml(yaml_text, origin), Origins(origin), origin, overrides);
 }
 
 ExperimentConfig LoadExperimentConfig(const std::string& path,
                                       const std::vector<std::string>& overrides) {
-  return ParseExperimentRoot(ParseFileYaml(path), path, overrides);
+  return ParseExperimentRoot(ParseFileYaml(path), Origins(path), path, overrides);
 }
 
 std::string ToJson(const ExperimentConfig& config) {

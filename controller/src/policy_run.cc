@@ -2,7 +2,7 @@
 
 #include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_adapter.h"
-#include "taebp/report/interrupt.h"
+#include "taebp/rundir/interrupt.h"
 
 #include "sumo_messages.h"
 #include "vehicles.h"

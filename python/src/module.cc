@@ -11,6 +11,8 @@
 #include "taebp/report/report.h"
 #include "taebp/runner/runner.h"
 #include "taebp/runner/theory.h"
+#include "taebp/rundir/interrupt.h"
+#include "taebp/rundir/output_dir.h"
 #include "taebp/sweep/engine.h"
 
 #include <pybind11/pybind11.h>
@@ -93,26 +95,18 @@ int RunTask(const std::string& config, const std::vector<std::string>& overrides
   }
 }
 
-// The sweep engine installs its own SIGINT/SIGTERM handlers and blocks
-// SIGCHLD; Python's are put back afterwards (Ctrl-C raises KeyboardInterrupt
-// again).
-class SignalState {
- public:
-  SignalState() {
-    sigaction(SIGINT, nullptr, &int_);
-    sigaction(SIGTERM, nullptr, &term_);
-    sigprocmask(SIG_SETMASK, nullptr, &mask_);
+// A run or sweep stopped by `signal` (its guard gone, Python's handlers
+// back): the signal goes on to Python's handler (SIGTERM's default ends the
+// process as it would have without taebp; a handler of the user's runs);
+// Ctrl-C raises KeyboardInterrupt with `message`.
+[[noreturn]] void RaiseInterrupted(int signal, const std::string& message) {
+  if (signal != SIGINT) {
+    ::raise(signal);
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
   }
-  ~SignalState() {
-    sigaction(SIGINT, &int_, nullptr);
-    sigaction(SIGTERM, &term_, nullptr);
-    sigprocmask(SIG_SETMASK, &mask_, nullptr);
-  }
-
- private:
-  struct sigaction int_ {}, term_ {};
-  sigset_t mask_{};
-};
+  PyErr_SetString(PyExc_KeyboardInterrupt, message.c_str());
+  throw py::error_already_set();
+}
 
 }  // namespace
 
@@ -212,8 +206,14 @@ PYBIND11_MODULE(_taebp, m) {
         // Checked, not a sweep's, locked before the run (as `taebp run --out`).
         std::optional<taebp::RunFolder> folder;
         if (out) folder.emplace(*out, "out=");
-        {
+        std::string replaced;
+        int interrupted = 0;
+        std::string interrupted_message;
+        try {
           py::gil_scoped_release release;
+          // Ctrl-C, SIGTERM, SIGHUP: noted, the run stops at its next step
+          // with the folder as it was; Python's handlers back afterwards.
+          const taebp::InterruptGuard interrupts;
           taebp::ExperimentObserver observer;
           if (progress) {
             observer.policy_done = [](const taebp::PolicyRun& run, double wall) {
@@ -223,7 +223,14 @@ PYBIND11_MODULE(_taebp, m) {
             };
           }
           result = taebp::RunExperiment(config, overrides, {}, observer);
-          if (folder) taebp::WriteExperiment(result, *folder);
+          if (folder) replaced = taebp::WriteExperiment(result, *folder);
+        } catch (const taebp::Interrupted& e) {
+          interrupted = e.signal();
+          interrupted_message = e.what();
+        }
+        if (interrupted) {
+          folder.reset();  // unlocked, as it was
+          RaiseInterrupted(interrupted, "taebp.run " + interrupted_message);
         }
         py::dict files;
         for (const auto& [name, text] : result.Files()) files[py::str(name)] = py::str(text);
@@ -235,12 +242,13 @@ PYBIND11_MODULE(_taebp, m) {
         // taebp.run raises StallError with them (the program exits 4).
         r["stopped"] = result.stopped.reason;
         r["error"] = result.stopped.message;
+        r["replaced"] = replaced;
         return r;
       },
       py::arg("config"), py::arg("overrides"), py::arg("out"), py::arg("progress"));
 
   // The sweep engine, tasks in forked workers; returns its exit code (0 ok,
-  // 1 a task failed, 130 interrupted). The GIL is released throughout and
+  // 1 a task failed, 130 Ctrl-C). The GIL is released throughout and
   // this process's simulation slot held, so no run() starts meanwhile.
   m.def(
       "sweep",
@@ -253,11 +261,18 @@ PYBIND11_MODULE(_taebp, m) {
         o.jobs = jobs;
         o.quiet = quiet;
         o.shard = shard;
-        py::gil_scoped_release release;
-        const taebp::SimulationSlot slot("sweep " + config);
-        const SignalState signals;
-        std::fflush(nullptr);
-        return taebp::sweep::RunSweep(o, RunTask);
+        int code = 0;
+        {
+          py::gil_scoped_release release;
+          const taebp::SimulationSlot slot("sweep " + config);
+          std::fflush(nullptr);
+          code = taebp::sweep::RunSweep(o, RunTask);  // its InterruptGuard restores Python's
+        }
+        // SIGTERM, SIGHUP: on to Python's handler (as without taebp); Ctrl-C
+        // is taebp.sweep's KeyboardInterrupt (code 130).
+        if (code == 128 + SIGTERM || code == 128 + SIGHUP)
+          RaiseInterrupted(code - 128, "taebp.sweep interrupted; the same call resumes it");
+        return code;
       },
       py::arg("config"), py::arg("overrides"), py::arg("out"), py::arg("jobs"),
       py::arg("quiet"), py::arg("shard"));

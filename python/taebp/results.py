@@ -15,6 +15,7 @@ distribution) keeps its text and gains numeric columns beside it:
 import csv
 import io
 import json
+import numbers
 import os
 import re
 
@@ -326,6 +327,11 @@ class SweepResult:
 
     def run(self, point, replicate=0):
         """One task's RunResult (tasks/POINT-REPLICATE)."""
+        for what, v in (("point", point), ("replicate", replicate)):
+            if isinstance(v, bool) or not isinstance(v, numbers.Integral):
+                raise TypeError("SweepResult.run: %s must be %s number (an int, as in "
+                                "results.csv), got %r"
+                                % (what, "a grid point's" if what == "point" else "a", v))
         return load_run(os.path.join(self.out, "tasks", "%d-%d" % (point, replicate)))
 
     def to_pandas(self):

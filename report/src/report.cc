@@ -13,11 +13,7 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
-#include <cerrno>
-#include <cstring>
 
-#include <fcntl.h>
-#include <unistd.h>
 
 #if __has_include("taebp_git.h")
 #include "taebp_git.h"
@@ -659,56 +655,6 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
            "= DC lost + r x collisions against it)\n";
   if (flagged) out << "! the theory lies outside the measured rate's 95% interval\n";
   for (const std::string& warning : warnings) out << "warning: " << warning << "\n";
-}
-
-void WriteFilesAtomically(const std::string& dir,
-                          const std::vector<std::pair<std::string, std::string>>& files) {
-  namespace fs = std::filesystem;
-  fs::create_directories(dir);
-  const std::string suffix = ".tmp." + std::to_string(::getpid());
-  std::vector<fs::path> temps;
-  auto fail = [](const fs::path& p, const char* what) {
-    return std::runtime_error("cannot write " + p.string() + ": " + what + ": " +
-                              std::strerror(errno));
-  };
-  try {
-    // Each file in full, on disk (fsync), under a temporary name ...
-    for (const auto& [name, content] : files) {
-      const fs::path tmp = fs::path(dir) / (name + suffix);
-      const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-      if (fd < 0) throw fail(tmp, "open");
-      temps.push_back(tmp);
-      std::size_t done = 0;
-      while (done < content.size()) {
-        const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n < 0) {
-          const std::runtime_error e = fail(tmp, "write");
-          ::close(fd);
-          throw e;
-        }
-        done += static_cast<std::size_t>(n);
-      }
-      if (::fsync(fd) != 0) {
-        const std::runtime_error e = fail(tmp, "fsync");
-        ::close(fd);
-        throw e;
-      }
-      if (::close(fd) != 0) throw fail(tmp, "close");
-    }
-  } catch (...) {
-    std::error_code ec;
-    for (const fs::path& t : temps) fs::remove(t, ec);
-    throw;
-  }
-  // ... then renamed into place, and the folder's entries synced.
-  for (std::size_t i = 0; i < files.size(); ++i)
-    fs::rename(temps[i], fs::path(dir) / files[i].first);
-  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dfd >= 0) {
-    ::fsync(dfd);
-    ::close(dfd);
-  }
 }
 
 }  // namespace taebp

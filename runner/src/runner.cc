@@ -1,6 +1,6 @@
 #include "taebp/runner/runner.h"
 
-#include "taebp/report/interrupt.h"
+#include "taebp/rundir/interrupt.h"
 
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/scenario/scenario.h"
@@ -158,14 +158,18 @@ ExperimentResult RunExperiment(const std::string& config_path,
   return result;
 }
 
-void WriteExperiment(const ExperimentResult& result, RunFolder& folder) {
+std::string WriteExperiment(const ExperimentResult& result, RunFolder& folder) {
   ThrowIfInterrupted();
-  folder.Replace(result.Files(), result.CopiedFiles());
+  std::string names;
+  for (const PolicyRun& r : result.runs) names += (names.empty() ? "" : ", ") + r.policy;
+  const std::string about = std::to_string(result.runs.size()) +
+                            (result.runs.size() == 1 ? " policy (" : " policies (") + names + ")";
+  return folder.Replace(result.Files(), result.CopiedFiles(), about);
 }
 
-void WriteExperiment(const ExperimentResult& result, const std::string& out_dir) {
+std::string WriteExperiment(const ExperimentResult& result, const std::string& out_dir) {
   RunFolder folder(out_dir);
-  WriteExperiment(result, folder);
+  return WriteExperiment(result, folder);
 }
 
 std::string DefaultOutDir(const std::string& config_path) {

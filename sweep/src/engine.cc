@@ -8,7 +8,9 @@
 
 #include "taebp/sweep/plan.h"
 #include "taebp/config/config.h"
-#include "taebp/report/output_dir.h"
+#include "taebp/rundir/interrupt.h"
+#include "taebp/rundir/output_dir.h"
+#include "taebp/rundir/synced_file.h"
 #include "taebp/report/report.h"
 #include "taebp/persuasion/persuasion.h"
 
@@ -64,22 +66,38 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 constexpr int kExitFailed = 1;
-constexpr int kExitInterrupted = 130;
+// Interrupted: 128 + the signal (130 Ctrl-C, 143 SIGTERM, 129 SIGHUP), as `run`.
+int ExitInterrupted() { return 128 + (PendingInterrupt() ? PendingInterrupt() : SIGINT); }
 
-volatile std::sig_atomic_t g_signal = 0;
-extern "C" void OnSignal(int sig) { g_signal = sig; }
 int g_journal_fd = -1;  // closed in forked workers
 int g_lock_fd = -1;     // the output folder's lock: closed in forked workers
 
-// SIGINT/SIGTERM set g_signal; SIGCHLD is blocked and waited for (WaitForChild).
-void InstallSignalHandlers() {
-  g_signal = 0;  // a process may run several sweeps (the Python module)
-  struct sigaction sa {};
-  sa.sa_handler = OnSignal;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = 0;  // no SA_RESTART: waits wake up
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
+// The files a sweep writes into its folder with WriteFilesAtomically (their
+// temporaries, left by a kill, are removed when the folder is next locked).
+const std::vector<std::string> kSweepFiles = {"sweep.json",    "journal.jsonl", "results.csv",
+                                              "aggregate.csv", "encounters.csv"};
+
+// "no space left on device in DIR" when a file of a task's size cannot be
+// written into `dir` (a full disk or quota), else "".
+std::string NoSpaceIn(const fs::path& dir) {
+  const fs::path probe = dir / (".taebp-space-probe." + std::to_string(::getpid()));
+  std::string why;
+  try {
+    WriteSynced(probe.string(), std::string(256 * 1024, '\0'));
+  } catch (const std::exception& e) {
+    const std::string message = e.what();
+    for (const int err : {ENOSPC, EDQUOT})
+      if (why.empty() && message.find(std::strerror(err)) != std::string::npos)
+        why = std::string(std::strerror(err)) + " in " + dir.string();
+  }
+  std::error_code ec;
+  fs::remove(probe, ec);
+  return why;
+}
+
+// SIGCHLD blocked and waited for (WaitForChild); SIGINT/SIGTERM/SIGHUP are
+// the InterruptGuard's (interrupt.h), which puts the mask back.
+void BlockChildSignal() {
   sigset_t chld;
   sigemptyset(&chld);
   sigaddset(&chld, SIGCHLD);
@@ -383,6 +401,8 @@ pid_t Launch(const Plan& plan, const Task& task, const fs::path& dir, const RunF
   argv.push_back(nullptr);
   const std::string log = (dir / "stderr.log").string();
   const std::string out = dir.string();
+  std::error_code abs_ec;
+  const std::string task_dir = fs::weakly_canonical(fs::absolute(dir), abs_ec).string();
   const pid_t parent = ::getpid();
   std::fflush(nullptr);
 
@@ -391,11 +411,8 @@ pid_t Launch(const Plan& plan, const Task& task, const fs::path& dir, const RunF
   if (pid == 0) {
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // the worker dies with its driver
     if (::getppid() != parent) ::_exit(127);
-    ::signal(SIGINT, SIG_DFL);
-    ::signal(SIGTERM, SIG_DFL);
-    sigset_t none;
-    sigemptyset(&none);
-    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    InterruptGuard::ResetInChild();
+    ::setenv(RunFolder::kSweepTaskVariable, task_dir.c_str(), 1);  // its folder: see RunFolder
     if (g_journal_fd >= 0) ::close(g_journal_fd);
     if (g_lock_fd >= 0) ::close(g_lock_fd);  // the folder's lock stays with the driver
     const int null_fd = ::open("/dev/null", O_RDWR);
@@ -426,7 +443,7 @@ Json Collect(const Plan& plan, const Running& r, int wait_status, int rank) {
   Json metrics = Json::object();
   if (WIFSIGNALED(wait_status)) {
     const int sig = WTERMSIG(wait_status);
-    if (sig == SIGINT || sig == SIGTERM || g_signal) return nullptr;
+    if (sig == SIGINT || sig == SIGTERM || sig == SIGHUP || PendingInterrupt()) return nullptr;
     error = "killed by signal " + std::to_string(sig) + " (" + strsignal(sig) + ")";
     const std::string last = LastLine(r.dir / "stderr.log");
     if (!last.empty() && last.rfind("warning:", 0) != 0) error += ": " + last;
@@ -441,7 +458,7 @@ Json Collect(const Plan& plan, const Running& r, int wait_status, int rank) {
       metrics = Json::object();
     }
   } else {
-    if (g_signal) return nullptr;
+    if (PendingInterrupt()) return nullptr;
     error = LastLine(r.dir / "stderr.log");
     if (error.empty()) error = "exit code " + std::to_string(WEXITSTATUS(wait_status));
   }
@@ -465,7 +482,7 @@ bool RunTasks(const Plan& plan, const fs::path& out, const std::vector<Task>& ta
   Clock::time_point stop_time;
   bool killed_hard = false;
   for (;;) {
-    if ((g_signal || poll()) && !stop) {
+    if ((PendingInterrupt() || poll()) && !stop) {
       stop = true;
       stop_time = Clock::now();
       for (const Running& r : running) ::kill(r.pid, SIGTERM);
@@ -493,7 +510,7 @@ bool RunTasks(const Plan& plan, const fs::path& out, const std::vector<Task>& ta
         Json e = Collect(plan, running[i], st, rank);
         running.erase(running.begin() + static_cast<std::ptrdiff_t>(i));
         if (e.is_null()) {
-          stop = stop || g_signal;
+          stop = stop || PendingInterrupt();
           continue;
         }
         done(e);
@@ -727,8 +744,10 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
     Json s;
     try {
       CheckOutputDir(out.string());
+      RefuseRunResults(out.string(), "--out " + out.string());
       fs::create_directories(out);
       lock = std::make_unique<FolderLock>(out.string());
+      RemoveWriterTemporaries(out.string(), kSweepFiles);  // a killed table write's
       CheckHeader(out, plan.hash, true, o.shard);
       fs::create_directories(out / "tasks");
       journal_file = std::make_unique<JournalFile>(out / "journal.jsonl");
@@ -789,9 +808,22 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
   const RunFunction worker = mpi.active() || o.exec ? RunFunction() : run_function;
   if (journal_file) g_journal_fd = journal_file->fd();
   if (lock) g_lock_fd = lock->fd();
-  InstallSignalHandlers();
+  const InterruptGuard interrupts;  // the handlers and mask as they were, after
+  BlockChildSignal();
   Progress progress(show, static_cast<int>(scope.size()), already_ok);
+  std::string disk_full;  // why the sweep stopped for want of space ("" = it did not)
   auto record = [&](const Json& e) {  // rank 0
+    // A task failed on a full disk: the sweep stops (README) rather than run
+    // and fail every remaining task; the task is not recorded (a resume redoes it).
+    if (!IsOk(e)) {
+      const std::string why = NoSpaceIn(out);
+      if (!why.empty()) {
+        if (disk_full.empty())
+          disk_full = why + " (task " + std::to_string(e.value("point", -1)) + "-" +
+                      std::to_string(e.value("replicate", -1)) + ": " + e.value("error", "") + ")";
+        return;
+      }
+    }
     journal_file->Append(Dump(e));
     AddEntry(&journal, plan, e);
     progress.Finished(IsOk(e));
@@ -810,25 +842,25 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
           else if (tag == kTagDone) ++ranks_done;
         }
         progress.Update();
-        return false;
+        return !disk_full.empty();
       };
       completed = RunTasks(plan, out, mine, jobs, 0, worker, record, poll);
       // Gather the other ranks' results until each reports done.
       const auto wait_from = Clock::now();
       while (ranks_done < mpi.size()) {
-        if (g_signal && !stop_sent) {
+        if (PendingInterrupt() && !stop_sent) {
           for (int r = 1; r < mpi.size(); ++r) mpi.Send("", r, kTagStop);
           stop_sent = true;
         }
         poll();
-        if (g_signal && Clock::now() - wait_from > std::chrono::seconds(30)) {
+        if (PendingInterrupt() && Clock::now() - wait_from > std::chrono::seconds(30)) {
           std::fprintf(stderr, "taebp sweep: ranks did not stop in time, aborting\n");
           WriteOutputs(out, plan, journal, header);
-          mpi.Abort(kExitInterrupted);
+          mpi.Abort(ExitInterrupted());
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(15));
       }
-      completed = completed && !g_signal;
+      completed = completed && !PendingInterrupt();
     } else {
       bool stop = false;
       auto poll = [&]() {
@@ -841,7 +873,7 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
       auto send = [&](const Json& e) { mpi.Send(Dump(e), 0, kTagResult); };
       completed = RunTasks(plan, out, mine, jobs, mpi.rank(), worker, send, poll);
       mpi.Send(completed ? "ok" : "stopped", 0, kTagDone);
-      return completed ? 0 : kExitInterrupted;
+      return completed ? 0 : ExitInterrupted();
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "taebp sweep: error (rank %d): %s\n", mpi.rank(), e.what());
@@ -850,6 +882,14 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
     throw;
   }
 
+  if (!disk_full.empty()) {
+    std::fprintf(stderr,
+                 "taebp sweep: stopped: %s; every finished task is kept: free some space, then "
+                 "the same command resumes the sweep\n",
+                 disk_full.c_str());
+    WriteOutputs(out, plan, journal, header);  // may fail for the same reason, naming it
+    return kExitFailed;
+  }
   // Rank 0: the final tables from the journal.
   WriteOutputs(out, plan, journal, header);
   progress.Update(true);
@@ -870,7 +910,7 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
   if (!completed) {
     if (!o.quiet)
       std::fprintf(stderr, "taebp sweep: interrupted; the same command resumes the sweep\n");
-    return kExitInterrupted;
+    return ExitInterrupted();
   }
   return failed || missing ? kExitFailed : 0;
 }
@@ -882,13 +922,27 @@ int RunMerge(const MergeOptions& o) {
   // sweep still running there is refused rather than merged half-done).
   const fs::path out(o.out);
   CheckOutputDir(out.string(), "OUT");
-  fs::create_directories(out);
-  FolderLock lock(out.string());
-  std::vector<std::unique_ptr<FolderLock>> shard_locks;
+  RefuseRunResults(out.string(), "OUT " + out.string());
+  // Each shard once: the same folder twice (or through a link) is an error.
+  std::map<fs::path, std::string> seen;
   for (const std::string& d : o.dirs) {
     std::error_code ec;
     if (!fs::is_directory(d, ec))
       throw ConfigError(d + ": not a folder (is it the --out of a taebp sweep --shard?)");
+    const fs::path real = fs::canonical(d, ec);
+    const auto [it, fresh] = seen.emplace(ec ? fs::absolute(d) : real, d);
+    if (!fresh)
+      throw ConfigError("taebp merge: " + d + " is given twice" +
+                        (it->second == d ? std::string() : " (as " + it->second + ")") +
+                        "; name each shard folder once");
+  }
+  const InterruptGuard interrupts;  // a signal now waits until the merge is written
+  fs::create_directories(out);
+  FolderLock lock(out.string());
+  RemoveWriterTemporaries(out.string(), kSweepFiles);
+  std::vector<std::unique_ptr<FolderLock>> shard_locks;
+  for (const std::string& d : o.dirs) {
+    std::error_code ec;
     if (fs::equivalent(out, d, ec)) continue;
     shard_locks.push_back(std::make_unique<FolderLock>(d, /*required=*/false));
   }
@@ -966,6 +1020,7 @@ int RunMerge(const MergeOptions& o) {
   // are not): running that shard's sweep again redoes it.
   std::vector<std::string> lost;
   for (const auto& [index, dir] : source) {
+    ThrowIfInterrupted();  // OUT's tables as they were; copied task folders are redone
     const Task& t = plan.tasks[static_cast<std::size_t>(index)];
     const fs::path from = TaskDir(dir, t), to = TaskDir(out, t);
     if (!HasTaskOutputs(from)) {
@@ -986,6 +1041,7 @@ int RunMerge(const MergeOptions& o) {
   for (const auto& [index, e] : journal.entries) lines += Dump(e) + "\n";
   Json header = SweepHeader(plan, "", SumoVersionOf(journal));
   header["merged_from"] = o.dirs;
+  ThrowIfInterrupted();
   WriteFilesAtomically(out.string(), {{"journal.jsonl", lines}});
   WriteOutputs(out, plan, journal, header);
 

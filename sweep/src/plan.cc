@@ -283,7 +283,10 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
   // Every point's config is loaded and checked here, before any task runs: a
   // misspelt grid key or a bad value is refused up front, naming the point.
   // The text is parsed once (ExperimentTemplate).
-  const ExperimentTemplate config_template(config_text, config_path);
+  // The user's overrides are applied once and the sweep: section dropped
+  // (ExperimentTemplate), so that each point costs the same however many
+  // points there are (planning is linear in the points).
+  const ExperimentTemplate config_template(config_text, config_path, overrides);
   std::size_t invalid = 0;
   std::string first_error;
   for (std::size_t idx = 0; idx < total; ++idx) {
@@ -303,9 +306,10 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
     std::uint64_t seed = plan.base.scenario.seed;
     try {
       // Without its sweep: section (the same for every point, checked with
-      // the base config; re-reading a large grid per point would be slow).
-      std::vector<std::string> point_overrides = plan.PointOverrides(point);
-      point_overrides.push_back("sweep=~");
+      // the base config); the point's own values only (the rest is in the template).
+      std::vector<std::string> point_overrides;
+      for (std::size_t k = 0; k < plan.columns.size(); ++k)
+        point_overrides.push_back(plan.columns[k] + "=" + point.values[k]);
       const ExperimentConfig c = config_template.Load(point_overrides);
       point.policies = c.policies;
       seed = c.scenario.seed;

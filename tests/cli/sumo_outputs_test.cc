@@ -39,7 +39,8 @@ std::set<std::string> Tree(const fs::path& dir) {
   std::set<std::string> out;
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
     const std::string rel = fs::relative(e.path(), dir).string();
-    if (rel == ".taebp.lock" || rel == "timing.json") continue;
+    // taebp's bookkeeping (the lock, the manifest of the run's files), not results.
+    if (rel == ".taebp.lock" || rel == ".taebp-files" || rel == "timing.json") continue;
     out.insert(rel);
   }
   return out;

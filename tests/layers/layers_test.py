@@ -15,14 +15,17 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 ALLOWED = {
     "persuasion": {"persuasion"},
     "config": {"config", "persuasion"},
+    "rundir": {"rundir"},
     "report": {"report", "persuasion"},
     "encounter": {"encounter", "persuasion", "config", "report"},
     "junction": {"junction", "encounter", "persuasion"},
     "scenario": {"scenario", "config", "persuasion"},
-    "controller": {"controller", "junction", "encounter", "scenario", "report", "config",
-                   "persuasion"},
-    "runner": {"runner", "controller", "encounter", "scenario", "report", "config", "persuasion"},
-    "sweep": {"sweep", "runner", "controller", "scenario", "report", "config", "persuasion"},
+    "controller": {"controller", "junction", "encounter", "scenario", "report", "rundir",
+                   "config", "persuasion"},
+    "runner": {"runner", "controller", "encounter", "scenario", "report", "rundir", "config",
+               "persuasion"},
+    "sweep": {"sweep", "runner", "controller", "scenario", "report", "rundir", "config",
+              "persuasion"},
 }
 SUMO_ADAPTER = {"controller/src/sumo_adapter.cc", "controller/src/sumo_adapter_libtraci.cc"}
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]')

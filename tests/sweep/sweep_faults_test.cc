@@ -313,4 +313,23 @@ TEST_F(SweepCli, FullDiskDuringASweepLosesNothing) {
   EXPECT_EQ(Journal(out).size() >= 3u, true);
 }
 
+// Issue 32, item 12: extending a sweep on a full disk stops at the first
+// task that cannot write, rather than running every remaining task and
+// recording each as failed ("exit code 1"); no task is recorded as failed.
+TEST_F(SweepCli, FullDiskStopsTheSweepInsteadOfFailingEveryRemainingTask) {
+  const fs::path cfg = Config("    model.trust: [0.5]\n", 1);
+  const fs::path out = dir_ / "small";
+  fs::create_directories(out);
+  std::string why;
+  auto tmpfs = taebp::test::Tmpfs::Mount(out, 1 << 20, /*read_only=*/false, &why);
+  if (!tmpfs) GTEST_SKIP() << "cannot mount a small tmpfs: " << why;
+  ASSERT_EQ(Sweep(cfg, out, "--jobs 1"), 0) << last_log_;
+  const std::string journal = ReadFile(out / "journal.jsonl");
+  taebp::test::FillDisk(out / "filler");
+  EXPECT_EQ(Sweep(cfg, out, "--jobs 1 --set sweep.replicates=8"), 1) << last_log_;
+  EXPECT_THAT(last_log_, HasSubstr("stopped: No space left on device in " + out.string()));
+  EXPECT_THAT(last_log_, HasSubstr("the same command resumes"));
+  EXPECT_EQ(ReadFile(out / "journal.jsonl"), journal) << "tasks recorded as failed on a full disk";
+}
+
 }  // namespace

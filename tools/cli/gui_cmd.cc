@@ -5,7 +5,8 @@
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/persuasion.h"
-#include "taebp/report/output_dir.h"
+#include "taebp/rundir/interrupt.h"
+#include "taebp/rundir/output_dir.h"
 #include "taebp/scenario/net_file.h"
 
 #include <CLI/CLI.hpp>
@@ -25,6 +26,7 @@
 #include <thread>
 #include <vector>
 
+#include <csignal>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -183,6 +185,16 @@ Framing FrameFor(const std::string& net_path, const std::string& junction, doubl
     hx = 0.5 * (hi.x - lo.x) + margin;
     hy = 0.5 * (hi.y - lo.y) + margin;
   }
+  // Below a car's length across, a picture shows nothing of the junction.
+  constexpr double kMinHalfView = 2.5;  // m
+  const double max_zoom = std::min(hx, hy) / kMinHalfView;
+  if (zoom > max_zoom) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  ": the view would be %.3g m across, less than a car; at most %.4g here", 2 * std::min(hx, hy) / zoom,
+                  max_zoom);
+    throw persuasion::InvalidArgument("--zoom " + Seconds(zoom) + buf);
+  }
   hx /= zoom;
   hy /= zoom;
   Framing f;
@@ -287,6 +299,67 @@ Snapshot::Snapshot(CLI::App& app) : impl_(std::make_unique<Impl>()) {
 }
 Snapshot::~Snapshot() = default;
 
+namespace {
+
+// Runs `args` (xvfb-run, this program again) as its own process group, with
+// TMPDIR a folder of its own: on SIGINT, SIGTERM or SIGHUP the whole group
+// (xvfb-run, Xvfb, this program's copy, sumo-gui) is ended, and xvfb-run's
+// temporary files go with that folder. Returns the copy's exit code, or
+// 128 + the signal.
+int RunUnderXvfb(std::vector<std::string> args) {
+  const char* tmp_env = std::getenv("TMPDIR");
+  std::string tmpl = (fs::path(tmp_env && *tmp_env ? tmp_env : "/tmp") / "taebp-xvfb-XXXXXX").string();
+  if (!::mkdtemp(tmpl.data()))
+    throw GuiError("cannot create a temporary folder " + tmpl + ": " + std::strerror(errno));
+  const fs::path scratch = tmpl;
+  std::vector<char*> cargs;
+  for (std::string& a : args) cargs.push_back(a.data());
+  cargs.push_back(nullptr);
+  const InterruptGuard interrupts;
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    std::error_code ec;
+    fs::remove_all(scratch, ec);
+    throw GuiError(std::string("fork failed: ") + std::strerror(errno));
+  }
+  if (pid == 0) {
+    ::setpgid(0, 0);
+    InterruptGuard::ResetInChild();
+    ::setenv("TMPDIR", scratch.c_str(), 1);
+    ::setenv(kUnderXvfbEnv, "1", 1);
+    ::execv(cargs[0], cargs.data());
+    static const char msg[] = "taebp: cannot run xvfb-run\n";
+    ssize_t ignored = ::write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)ignored;
+    ::_exit(127);
+  }
+  ::setpgid(pid, pid);
+  int status = 0;
+  bool stopping = false;
+  auto stop_since = std::chrono::steady_clock::now();
+  for (;;) {
+    const pid_t r = ::waitpid(pid, &status, WNOHANG);
+    if (r == pid || (r < 0 && errno != EINTR)) break;
+    if (PendingInterrupt() && !stopping) {
+      stopping = true;
+      stop_since = std::chrono::steady_clock::now();
+      ::kill(-pid, SIGTERM);
+    } else if (stopping && std::chrono::steady_clock::now() - stop_since > std::chrono::seconds(5)) {
+      ::kill(-pid, SIGKILL);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ::kill(-pid, SIGKILL);  // whatever of the group is left (Xvfb, sumo-gui)
+  std::error_code ec;
+  fs::remove_all(scratch, ec);
+  if (PendingInterrupt()) throw Interrupted(PendingInterrupt());
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+}  // namespace
+
 bool Snapshot::Parsed() const { return impl_->cmd->parsed(); }
 
 int Snapshot::Run(int argc, char** argv) {
@@ -314,6 +387,11 @@ int Snapshot::Run(int argc, char** argv) {
   const std::string name = o.policy.empty() ? config.policies.front() : o.policy;
   if (name != kSumoNative) persuasion::ParsePolicy(name);  // throws for an unknown name
   const std::string policy = name;
+  if (o.at > config.scenario.duration)
+    throw persuasion::InvalidArgument("--at " + Seconds(o.at) + " s is beyond the scenario's end (" +
+                                      o.config_path + ": scenario.duration = " +
+                                      Seconds(config.scenario.duration) +
+                                      " s): choose a time within it, or --set scenario.duration");
 
   if (!HasDisplay()) {
     if (std::getenv(kUnderXvfbEnv))
@@ -327,13 +405,7 @@ int Snapshot::Run(int argc, char** argv) {
     if (ec) throw GuiError("cannot find this program to re-run it under xvfb-run: " + ec.message());
     std::vector<std::string> args = {xvfb, "-a", "-s", kXvfbScreen, self.string()};
     for (int i = 1; i < argc; ++i) args.emplace_back(argv[i]);
-    std::vector<char*> cargs;
-    for (std::string& a : args) cargs.push_back(a.data());
-    cargs.push_back(nullptr);
-    setenv(kUnderXvfbEnv, "1", 1);
-    std::fflush(nullptr);
-    execv(xvfb.c_str(), cargs.data());
-    throw GuiError("cannot run " + xvfb + ": " + std::string(std::strerror(errno)));
+    return RunUnderXvfb(args);
   }
 
   const std::string config_dir = fs::path(o.config_path).parent_path().string();

@@ -2,8 +2,8 @@
 #include "taebp/config/config.h"
 #include "taebp/controller/policy_run.h"
 #include "taebp/controller/network_controller.h"
-#include "taebp/report/interrupt.h"
-#include "taebp/report/output_dir.h"
+#include "taebp/rundir/interrupt.h"
+#include "taebp/rundir/output_dir.h"
 #include "taebp/report/metrics.h"
 #include "taebp/report/report.h"
 #include "taebp/runner/runner.h"
@@ -207,8 +207,9 @@ int RunExperimentCommand(const std::string& config_path, const std::vector<std::
   } clear_on_exit{clear_line};
   const taebp::ExperimentResult result =
       taebp::RunExperiment(config_path, overrides, options, observer);
-  taebp::WriteExperiment(result, folder);
+  const std::string replaced = taebp::WriteExperiment(result, folder);
   std::cout << result.Table();
+  if (!quiet && !replaced.empty()) std::fprintf(stderr, "taebp: %s\n", replaced.c_str());
   if (!quiet) std::fprintf(stderr, "taebp: results in %s\n", out_dir.c_str());
   // The files hold every policy up to and including the stalled one; the
   // stall's message is the last line on stderr (a sweep records it).

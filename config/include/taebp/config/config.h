@@ -478,6 +478,9 @@ struct SweepConfig {
 // Bounds that keep a run's allocations and SUMO's physics sane.
 inline constexpr double kMaxCruiseSpeed = 70.0;  // m/s (252 km/h)
 inline constexpr double kMaxDuration = 1e7;      // s (~116 simulated days)
+// scenario.avs and scenario.hvs each: SUMO inserts them all in its first
+// step, which a signal cannot interrupt (a million took over 10 minutes).
+inline constexpr int kMaxVehicles = 10000;
 inline constexpr double kMaxSteps = 1e9;
 
 // The baseline policy without a controller: SUMO's own junction logic.
@@ -543,10 +546,14 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
                                        const std::vector<std::string>& overrides = {});
 // A config text parsed once, to be loaded many times with different
 // overrides (a sweep's grid points): Load(o) equals
-// ParseExperimentConfig(yaml_text, origin, o), without re-parsing the text.
+// ParseExperimentConfig(yaml_text, origin, base + {"sweep=~"} + o), without
+// re-parsing the text or copying the sweep's grid (linear in the points).
 class ExperimentTemplate {
  public:
-  ExperimentTemplate(const std::string& yaml_text, const std::string& origin);
+  // `base`: overrides applied once, before each Load's own; the config's
+  // sweep: section is dropped (each Load is a point's config without it).
+  ExperimentTemplate(const std::string& yaml_text, const std::string& origin,
+                     const std::vector<std::string>& base = {});
   ~ExperimentTemplate();
   ExperimentConfig Load(const std::vector<std::string>& overrides) const;
 

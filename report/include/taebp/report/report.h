@@ -86,10 +86,4 @@ std::string FormatDouble(double v);
 void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
                 const std::vector<std::string>& warnings = {});
 
-// Writes `files` (name -> content) into `dir` atomically: each is written to a
-// temporary file in `dir` and renamed into place only after all were written,
-// so a failure never leaves a half-written result. Creates `dir`.
-void WriteFilesAtomically(const std::string& dir,
-                          const std::vector<std::pair<std::string, std::string>>& files);
-
 }  // namespace taebp

@@ -5,7 +5,7 @@
 
 #include "taebp/config/config.h"
 #include "taebp/controller/policy_run.h"
-#include "taebp/report/output_dir.h"
+#include "taebp/rundir/output_dir.h"
 #include "taebp/report/report.h"
 
 #include <functional>
@@ -80,9 +80,10 @@ ExperimentResult RunExperiment(const std::string& config_path,
 // Replaces the run files of `folder` with the result's, as one set
 // (RunFolder::Replace: a reader sees the old set or the new one); throws
 // Interrupted, before writing anything, when a signal came during the run.
-void WriteExperiment(const ExperimentResult& result, RunFolder& folder);
+// Returns the line saying what it replaced ("" for a folder without results).
+std::string WriteExperiment(const ExperimentResult& result, RunFolder& folder);
 // The same into `out_dir`, locked and checked only now (a sweep's task).
-void WriteExperiment(const ExperimentResult& result, const std::string& out_dir);
+std::string WriteExperiment(const ExperimentResult& result, const std::string& out_dir);
 
 // The default output directory of a config: results/STEM, STEM the config file name without its extension.
 std::string DefaultOutDir(const std::string& config_path);

@@ -1,4 +1,4 @@
-#include "taebp/report/interrupt.h"
+#include "taebp/rundir/interrupt.h"
 
 #include <cstring>
 
@@ -21,6 +21,7 @@ Interrupted::Interrupted(int signal)
 
 InterruptGuard::InterruptGuard() {
   g_pending = 0;
+  sigprocmask(SIG_SETMASK, nullptr, &mask_);
   struct sigaction sa {};
   sa.sa_handler = NoteSignal;
   sigemptyset(&sa.sa_mask);
@@ -34,6 +35,16 @@ InterruptGuard::~InterruptGuard() {
   sigaction(SIGINT, &int_, nullptr);
   sigaction(SIGTERM, &term_, nullptr);
   sigaction(SIGHUP, &hup_, nullptr);
+  sigprocmask(SIG_SETMASK, &mask_, nullptr);
+}
+
+void InterruptGuard::ResetInChild() {
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  std::signal(SIGHUP, SIG_DFL);
+  sigset_t none;
+  sigemptyset(&none);
+  sigprocmask(SIG_SETMASK, &none, nullptr);
 }
 
 int PendingInterrupt() { return g_pending; }

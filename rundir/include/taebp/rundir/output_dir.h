@@ -1,5 +1,6 @@
 // Output folders: checked before any work, written atomically, and locked for
-// the whole life of a command that owns one (sweep, merge).
+// the whole life of a command that owns one (run, sweep, merge). What each
+// command refuses, keeps and replaces: docs/results-folders.md.
 #pragma once
 
 #include <memory>
@@ -54,12 +55,24 @@ bool IsRunFile(const std::string& name);
 // A folder named after a policy: that policy's SUMO outputs (a run file).
 bool IsPolicyFolder(const std::string& name);
 
+// A sweep or merge into a folder holding a run's results (summary.json or a
+// run's manifest, and no sweep.json) would replace the run's encounters.csv
+// with the sweep's pooled one: refused (OutputError naming `what`).
+void RefuseRunResults(const std::string& dir, const std::string& what);
+
 // A run's output folder (taebp run, taebp.run(..., out=...)) for the life of
 // the run. On construction, before any simulation:
 // - checked as CheckOutputDir does;
 // - not a sweep's folder (sweep.json or journal.jsonl in it: a run would
 //   replace the sweep's pooled encounters.csv beside its tables);
-// - holding no folder of its own (the whole folder is replaced at the end);
+// - not a sweep's task folder (DIR/tasks/P-R beside sweep.json), unless
+//   this process is the sweep's worker for it (kSweepTaskVariable = its path);
+// - holding nothing named like a run's file or a policy's folder that no
+//   taebp run wrote there: the manifest (kManifest) of the last run lists
+//   what is its; an older taebp's folder (summary.json, no manifest) counts
+//   its run files as a run's but not its policy folders; any other folder
+//   is refused (the whole folder is replaced at the end); other files (a
+//   user's notes) are kept;
 // - created if missing and locked (FolderLock) for the object's life, so two
 //   runs, or a run and a sweep, never write one folder at once;
 // - what runs killed while replacing it left beside it (see Replace) removed.
@@ -68,6 +81,12 @@ bool IsPolicyFolder(const std::string& name);
 // removed again when still empty, a lock file it made too.
 class RunFolder {
  public:
+  // The list of the files the last run wrote here, one per line after a
+  // "# description" line; part of each set it writes.
+  static constexpr const char* kManifest = ".taebp-files";
+  // Set by a sweep for its worker: the task folder it may write.
+  static constexpr const char* kSweepTaskVariable = "TAEBP_SWEEP_TASK";
+
   explicit RunFolder(const std::string& dir, const std::string& option = "--out");
   ~RunFolder();
   RunFolder(const RunFolder&) = delete;
@@ -85,8 +104,13 @@ class RunFolder {
   // `copies`: files copied into the set (name -> the file), e.g. SUMO's
   // outputs; a name may hold one folder level (POLICY/NAME: a policy's
   // folder, a run file like the others).
-  void Replace(const std::vector<std::pair<std::string, std::string>>& files,
-               const std::vector<std::pair<std::string, std::string>>& copies = {});
+  // `about` describes the set in the manifest (e.g. "2 policies (no_trust,
+  // ta_ebp)"). Returns one line saying what was replaced ("replaced the
+  // results of 3 policies (...) from 2026-12-03 18:00 in R"), "" when the
+  // folder held no results.
+  std::string Replace(const std::vector<std::pair<std::string, std::string>>& files,
+                      const std::vector<std::pair<std::string, std::string>>& copies = {},
+                      const std::string& about = "");
 
   const std::string& dir() const { return dir_; }
 

@@ -1,4 +1,6 @@
-#include "taebp/report/output_dir.h"
+#include "taebp/rundir/output_dir.h"
+
+#include "taebp/rundir/synced_file.h"
 
 #include <cerrno>
 #include <chrono>
@@ -14,6 +16,7 @@
 
 #include <cstdio>  // renameat2
 
+#include <climits>
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -71,6 +74,12 @@ std::string ReadFd(int fd) {
 void CheckOutputDir(const std::string& dir, const std::string& option) {
   const std::string what = option.empty() ? dir : option + " " + dir;
   if (dir.empty()) throw OutputError(what + ": an empty path");
+  for (const fs::path& part : fs::path(dir))
+    if (part.string().size() > static_cast<std::size_t>(NAME_MAX))
+      throw OutputError(what + ": the folder name " + part.string().substr(0, 40) + "... is " +
+                        std::to_string(part.string().size()) +
+                        " characters long; a file system allows at most " +
+                        std::to_string(NAME_MAX));
   const fs::path target = fs::absolute(fs::path(dir)).lexically_normal();
   // The nearest existing path: the folder itself or where it would be made.
   fs::path existing = target;
@@ -102,15 +111,25 @@ void CheckOutputDir(const std::string& dir, const std::string& option) {
 
 FolderLock::FolderLock(const std::string& dir, bool required) {
   const std::string path = (fs::path(dir) / kFileName).string();
-  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  // Never through a symbolic link (it would write the holder's name into
+  // whatever file the link names), never anything but a regular file.
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
   bool writable = fd_ >= 0;
-  if (fd_ < 0) {
+  if (fd_ < 0 && errno != ELOOP) {
     const std::string why = Errno();
-    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);  // a read-only folder
-    if (fd_ < 0) {
+    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);  // read-only
+    if (fd_ < 0 && errno != ELOOP) {
       if (!required) return;
       throw OutputError(dir + ": cannot create the lock file " + path + ": " + why);
     }
+  }
+  struct stat st {};
+  if (fd_ < 0 || ::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+    throw OutputError(dir + ": its lock file " + path +
+                      " is not a regular file (a symbolic link or a special file): taebp "
+                      "neither follows nor replaces it; remove it, or use another folder");
   }
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     const int err = errno;
@@ -166,10 +185,8 @@ bool IsRunFile(const std::string& name) {
   };
   if ((starts("tripinfo-") || starts("summary-")) && ends(".xml")) return true;
   // An earlier writer's temporary: a run file's name, ".tmp.", digits.
-  const std::size_t tmp = name.rfind(".tmp.");
-  if (tmp != std::string::npos && tmp + 5 < name.size() &&
-      name.find_first_not_of("0123456789", tmp + 5) == std::string::npos)
-    return IsRunFile(name.substr(0, tmp));
+  std::string base;
+  if (IsWriterTemporary(name, &base)) return IsRunFile(base);
   return false;
 }
 
@@ -197,32 +214,6 @@ long StagingPid(const std::string& name, const std::string& prefix) {
   return std::strtol(digits.c_str(), nullptr, 10);
 }
 
-// I/O failures while writing results are no bad argument (exit 1).
-void WriteSynced(const fs::path& path, const std::string& content) {
-  auto fail = [&](const char* what) {
-    return std::runtime_error("cannot write " + path.string() + ": " + what + ": " + Errno());
-  };
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw fail("open");
-  std::size_t done = 0;
-  while (done < content.size()) {
-    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      const std::runtime_error e = fail("write");
-      ::close(fd);
-      throw e;
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0) {
-    const std::runtime_error e = fail("fsync");
-    ::close(fd);
-    throw e;
-  }
-  if (::close(fd) != 0) throw fail("close");
-}
-
 // A copy of `from` at `to`, on disk (fsync) before it counts.
 void CopySynced(const fs::path& from, const fs::path& to) {
   std::error_code ec;
@@ -238,20 +229,70 @@ void CopySynced(const fs::path& from, const fs::path& to) {
   ::close(fd);
 }
 
-void SyncFolder(const fs::path& dir) {
-  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dfd >= 0) {
-    ::fsync(dfd);
-    ::close(dfd);
-  }
-}
-
 bool SameDevice(const fs::path& a, const fs::path& b) {
   struct stat sa {}, sb {};
   return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev;
 }
 
+// The manifest of the set a run wrote into `dir` (RunFolder::kManifest):
+// false when there is none; else its names and its first line's description.
+bool ReadManifest(const fs::path& dir, std::set<std::string>* names, std::string* about) {
+  std::error_code ec;
+  const fs::path path = dir / RunFolder::kManifest;
+  if (!fs::is_regular_file(fs::symlink_status(path, ec))) return false;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("# ", 0) == 0) {
+      if (about->empty()) *about = line.substr(2);
+    } else if (!line.empty()) {
+      names->insert(line);
+    }
+  }
+  return true;
+}
+
+std::string ModifiedAt(const fs::path& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return "";
+  std::tm tm{};
+  ::localtime_r(&st.st_mtime, &tm);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M", &tm);
+  return buf;
+}
+
+// The first entry below `folder` (named `name` in its run folder) that the
+// manifest `ours` does not list; "" when all are listed.
+std::string FirstUnlisted(const fs::path& folder, const std::string& name,
+                          const std::set<std::string>& ours) {
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+    const std::string entry = name + "/" + e.path().filename().string();
+    if (!ours.count(entry) || e.is_directory(ec) || e.is_symlink(ec)) return entry;
+  }
+  if (ec) return name + " (unreadable: " + ec.message() + ")";
+  return "";
+}
+
+bool HoldsSweep(const fs::path& dir) {
+  std::error_code ec;
+  return fs::exists(dir / "sweep.json", ec) || fs::exists(dir / "journal.jsonl", ec);
+}
+
 }  // namespace
+
+void RefuseRunResults(const std::string& dir, const std::string& what) {
+  std::error_code ec;
+  const fs::path abs = fs::absolute(fs::path(dir));
+  if (HoldsSweep(abs)) return;  // a sweep's folder (its tables are replaced as ever)
+  for (const char* marker : {"summary.json", RunFolder::kManifest})
+    if (fs::exists(abs / marker, ec))
+      throw OutputError(what + " holds a run's results (" + marker +
+                        "): a sweep's tables there would replace the run's encounters.csv "
+                        "beside its summary.json; choose another folder");
+}
 
 RunFolder::RunFolder(const std::string& dir, const std::string& option) : dir_(dir) {
   const std::string what = option.empty() ? dir : option + " " + dir;
@@ -263,16 +304,50 @@ RunFolder::RunFolder(const std::string& dir, const std::string& option) : dir_(d
       throw OutputError(what + " holds a sweep's results (" + sweep_file +
                         "): a run there would replace the sweep's pooled encounters.csv; "
                         "choose another folder");
+  // A sweep's task folder belongs to its sweep (load_sweep reads it as the
+  // task's results); only the sweep's own worker writes it.
+  if (abs.parent_path().filename() == "tasks" && HoldsSweep(abs.parent_path().parent_path())) {
+    const char* task = std::getenv(kSweepTaskVariable);
+    if (!task || fs::path(task) != abs)
+      throw OutputError(what + " is a task folder of the sweep in " +
+                        abs.parent_path().parent_path().string() +
+                        ": its results are that sweep's (a run there would replace them); "
+                        "choose another folder");
+  }
+  // What an earlier run wrote here (its manifest) is replaced; nothing else
+  // is: a folder or a file named like a run's that no run of ours wrote
+  // (a user's) is refused before any work. An older taebp's results
+  // (summary.json, no manifest): its run files count as a run's.
+  std::set<std::string> ours;
+  std::string about;
+  const bool manifest = ReadManifest(abs, &ours, &about);
+  const bool legacy = !manifest && fs::exists(abs / "summary.json", ec);
   if (fs::is_directory(abs, ec)) {
     for (const fs::directory_entry& e : fs::directory_iterator(abs, ec)) {
       const std::string name = e.path().filename().string();
-      if (!e.is_directory(ec) || e.is_symlink(ec)) continue;
-      const long pid = StagingPid(name, kStagingTag);
-      if (pid >= 0) continue;  // a run's staging inside a mount point (below)
-      if (IsPolicyFolder(name)) continue;  // an earlier run's SUMO outputs
-      throw OutputError(what + " holds a folder, " + name +
-                        ", that a run would replace with its own files; choose another "
-                        "folder or move it");
+      if (e.is_directory(ec) && !e.is_symlink(ec)) {
+        const long pid = StagingPid(name, kStagingTag);
+        if (pid >= 0) continue;  // a run's staging inside a mount point (below)
+        if (!IsPolicyFolder(name))
+          throw OutputError(what + " holds a folder, " + name +
+                            ", that a run would replace with its own files; choose another "
+                            "folder or move it");
+        const std::string unlisted = manifest ? FirstUnlisted(e.path(), name, ours) : name;
+        if (!unlisted.empty())
+          throw OutputError(what + " holds a folder named like a policy, " + name + ", with " +
+                            (manifest ? "files no taebp run wrote there (" + unlisted + ")"
+                                      : std::string("no record that a taebp run wrote it (no ") +
+                                            kManifest + ")") +
+                            ": a run would replace it; move it, or choose another folder");
+        continue;
+      }
+      if (name == kManifest || !IsRunFile(name)) continue;  // a user's file: kept
+      std::string base;
+      if (IsWriterTemporary(name, &base)) continue;  // an older writer's leftover
+      if (manifest ? !ours.count(name) : !legacy)
+        throw OutputError(what + " holds " + name +
+                          ", a file named like a run's result that no taebp run wrote there: a "
+                          "run would replace it; move or rename it, or choose another folder");
     }
   }
   made_dir_ = !fs::exists(abs, ec);
@@ -313,11 +388,32 @@ RunFolder::~RunFolder() {
   lock_.reset();
 }
 
-void RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& files,
-                        const std::vector<std::pair<std::string, std::string>>& copies) {
+std::string RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& given,
+                               const std::vector<std::pair<std::string, std::string>>& copies,
+                               const std::string& about) {
   std::error_code ec;
   // The real folder (a symbolic link to it stays a link).
   const fs::path dir = fs::weakly_canonical(fs::absolute(fs::path(dir_)), ec);
+  // What the folder held: said in one line.
+  std::string replaced;
+  {
+    std::set<std::string> old_names;
+    std::string old_about;
+    const bool manifest = ReadManifest(dir, &old_names, &old_about);
+    if (manifest || fs::exists(dir / "summary.json", ec)) {
+      const std::string when = ModifiedAt(dir / (manifest ? kManifest : "summary.json"));
+      replaced = "replaced " + (old_about.empty() ? std::string("the results") : "the results of " + old_about) +
+                 (when.empty() ? "" : " from " + when) + " in " + dir_;
+    }
+  }
+  // The manifest: every name of the new set, the description first.
+  std::vector<std::pair<std::string, std::string>> files = given;
+  {
+    std::string text = about.empty() ? "" : "# " + about + "\n";
+    for (const auto& f : given) text += f.first + "\n";
+    for (const auto& f : copies) text += f.first + "\n";
+    files.emplace_back(kManifest, text);
+  }
   // Beside the folder for a swap; inside it where the folder is a mount
   // point or its parent cannot take the staging folder.
   fs::path staging = StagingPath(dir, ::getpid());
@@ -340,13 +436,13 @@ void RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& 
     };
     for (const auto& [name, content] : files) {
       parent(name);
-      WriteSynced(staging / name, content);
+      WriteSynced((staging / name).string(), content);
     }
     for (const auto& [name, from] : copies) {
       parent(name);
       CopySynced(from, staging / name);
     }
-    for (const fs::path& sub : subfolders) SyncFolder(staging / sub);
+    for (const fs::path& sub : subfolders) SyncFolder((staging / sub).string());
     // For a swap, the folder's other files go with the new set (links).
     if (swap) {
       for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
@@ -360,7 +456,7 @@ void RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& 
           fs::copy(e.path(), staging / name, fs::copy_options::copy_symlinks);
       }
     }
-    SyncFolder(staging);
+    SyncFolder(staging.string());
   } catch (const OutputError&) {
     fs::remove_all(staging, ec);
     throw;
@@ -373,9 +469,9 @@ void RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& 
   if (swap) {
     if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
       replaced_ = true;
-      SyncFolder(dir.parent_path());
+      SyncFolder(dir.parent_path().string());
       fs::remove_all(staging, ec);  // now the old set
-      return;
+      return replaced;
     }
     if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP && errno != EPERM &&
         errno != EXDEV && errno != EBUSY) {
@@ -411,8 +507,9 @@ void RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& 
                                   [&](const auto& f) { return f.first == name; });
     if (IsRunFile(name) && !ours && !IsPolicyFolder(name)) fs::remove(e.path(), ec);
   }
-  SyncFolder(dir);
+  SyncFolder(dir.string());
   fs::remove_all(staging, ec);
+  return replaced;
 }
 
 }  // namespace taebp

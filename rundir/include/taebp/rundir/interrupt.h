@@ -24,7 +24,10 @@ class Interrupted : public std::runtime_error {
   int signal_;
 };
 
-// Installs the handlers for its life (the previous ones are put back).
+// The one signal guard of taebp (run, sweep, merge, snapshot, Python):
+// installs the handlers for its life; the previous handlers and the signal
+// mask (a sweep blocks SIGCHLD meanwhile) are put back when it ends, so a
+// Python session's own Ctrl-C handling returns after a run or a sweep.
 class InterruptGuard {
  public:
   InterruptGuard();
@@ -32,8 +35,13 @@ class InterruptGuard {
   InterruptGuard(const InterruptGuard&) = delete;
   InterruptGuard& operator=(const InterruptGuard&) = delete;
 
+  // In a forked child that will run or exec a command of its own: the
+  // default actions and an empty mask.
+  static void ResetInChild();
+
  private:
   struct sigaction int_ {}, term_ {}, hup_ {};
+  sigset_t mask_{};
 };
 
 // The signal noted (0: none); throws Interrupted when there is one.

@@ -1,0 +1,38 @@
+// The one synced file writer: every result file taebp writes goes through
+// WriteSynced (a run folder's staging set, a sweep's tables, its header,
+// merge's journal), so that a file counts only once it is on disk.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace taebp {
+
+// Writes `content` to `path` (created or truncated, never through a symbolic
+// link), then fsync and close; write(2) interrupted by a signal continues.
+// Throws std::runtime_error "cannot write PATH: open|write|fsync|close: why"
+// (an I/O failure, exit 1).
+void WriteSynced(const std::string& path, const std::string& content);
+
+// fsync of a folder's entries (after renames into it); best effort.
+void SyncFolder(const std::string& dir);
+
+// Writes `files` (name -> content) into `dir` atomically: each is written
+// with WriteSynced to NAME.tmp.PID in `dir` and renamed into place only after
+// all were written, so a failure never leaves a half-written result (the
+// temporaries are removed). Creates `dir`.
+void WriteFilesAtomically(const std::string& dir,
+                          const std::vector<std::pair<std::string, std::string>>& files);
+
+// A temporary of an interrupted WriteFilesAtomically: NAME.tmp.DIGITS; NAME
+// is set to the file it stood for.
+bool IsWriterTemporary(const std::string& file_name, std::string* name = nullptr);
+
+// Removes from `dir` (not below) the temporaries WriteFilesAtomically left
+// when killed, of the files named in `names` only (a user's file that merely
+// looks like one stays). Called by a process holding the folder's lock: no
+// other writer is at work there. Returns how many were removed.
+int RemoveWriterTemporaries(const std::string& dir, const std::vector<std::string>& names);
+
+}  // namespace taebp
