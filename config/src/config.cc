@@ -240,6 +240,25 @@ bool ExperimentConfig::IsValid(std::string* why) const {
       c.Fail("scenario.grid.lanes = " + std::to_string(g.lanes) + " must be in 1..4");
     c.Positive("scenario.grid.speed", g.speed);
   }
+  if (s.outputs.ssm) {
+    const SsmConfig& ssm = *s.outputs.ssm;
+    std::string known;
+    for (const std::string& m : SsmMeasures()) known += (known.empty() ? "" : ", ") + m;
+    if (ssm.measures.empty())
+      c.Fail("scenario.outputs.ssm.measures is empty: list at least one of " + known);
+    std::set<std::string> seen;
+    for (const std::string& m : ssm.measures) {
+      if (std::find(SsmMeasures().begin(), SsmMeasures().end(), m) == SsmMeasures().end())
+        c.Fail("scenario.outputs.ssm.measures: '" + m +
+               "' is not a conflict measure of SUMO 1.15's SSM device (known: " + known + ")");
+      if (!seen.insert(m).second)
+        c.Fail("scenario.outputs.ssm.measures: '" + m + "' is listed twice");
+    }
+    c.Positive("scenario.outputs.ssm.thresholds.TTC", ssm.thresholds.ttc);
+    c.Positive("scenario.outputs.ssm.thresholds.DRAC", ssm.thresholds.drac);
+    c.Positive("scenario.outputs.ssm.thresholds.PET", ssm.thresholds.pet);
+    c.NonNegative("scenario.outputs.ssm.junction_radius", ssm.junction_radius);
+  }
   if (s.demand) {
     const DemandConfig& d = *s.demand;
     if (!(std::isfinite(d.flow) && d.flow > 0 && d.flow <= 3600.0 / s.step_length))

@@ -3,6 +3,8 @@
 #include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/rundir/interrupt.h"
+#include "taebp/report/ssm.h"
+#include "taebp/scenario/ssm_args.h"
 
 #include "sumo_messages.h"
 #include "vehicles.h"
@@ -121,6 +123,12 @@ void StripGeneratedComment(const fs::path& file) {
   fs::rename(tmp, file);
 }
 
+// The file SUMO's SSM device writes, copied to ssm.xml once the policy's
+// simulation is closed: SUMO 1.15 keeps the names of the SSM files it created
+// across simulations in one process and reopens (empties) them when the next
+// one ends, so the policies run before the last would keep an empty file.
+constexpr const char* kSsmSumoFile = ".ssm-sumo.xml";
+
 std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario& scenario,
                                   const std::string& policy) {
   const ScenarioConfig& sc = config.scenario;
@@ -154,6 +162,10 @@ std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario
     const OutputsConfig& o = sc.outputs;
     if (o.fcd) args.insert(args.end(), {"--fcd-output", (dir / "fcd.xml").string()});
     if (o.queue) args.insert(args.end(), {"--queue-output", (dir / "queue.xml").string()});
+    if (o.ssm) {  // under every policy, sumo_native included
+      const std::vector<std::string> ssm = SsmSumoArgs(*o.ssm, (dir / kSsmSumoFile).string());
+      args.insert(args.end(), ssm.begin(), ssm.end());
+    }
     if (o.edgedata || o.lanedata) {
       // Means over the measured time (from the warm-up's end).
       std::ostringstream add;
@@ -271,6 +283,32 @@ void ReadTripinfo(const std::string& path, const ScenarioConfig& sc, NetworkRun*
   }
 }
 
+// SUMO's SSM conflicts of this policy (scenario.outputs.ssm, report/ssm.h),
+// placed at the controlled junctions by their internal lanes.
+SsmRun ReadSsm(const fs::path& file, const ScenarioConfig& sc, const Scenario& scenario) {
+  const SsmConfig& c = *sc.outputs.ssm;
+  SsmRules rules;
+  rules.on = {c.Measures("TTC"), c.Measures("DRAC"), c.Measures("PET")};
+  rules.threshold = {c.thresholds.ttc, c.thresholds.drac, c.thresholds.pet};
+  rules.warmup = sc.warmup;
+  rules.junction_radius = c.junction_radius;
+  std::vector<SsmJunctionArea> areas;
+  for (const ControlledJunction& cj : scenario.junctions) {
+    SsmJunctionArea a{cj.id, {}};
+    if (const net::Junction* j = scenario.topology->FindJunction(cj.id)) {
+      for (const std::string& id : j->int_lanes)
+        if (const net::Lane* lane = scenario.topology->FindLane(id)) {
+          std::vector<std::array<double, 2>> shape;
+          for (const net::Point& p : lane->shape) shape.push_back({p.x, p.y});
+          a.shapes.push_back(std::move(shape));
+        }
+      if (a.shapes.empty()) a.shapes.push_back({{j->pos.x, j->pos.y}});
+    }
+    areas.push_back(std::move(a));
+  }
+  return ReadSsmOutput(file.string(), rules, areas);
+}
+
 }  // namespace
 
 PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
@@ -337,6 +375,10 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     // SUMO's outputs of this policy (their files, as SUMO closed them).
     std::error_code ec;
     const fs::path dir = PolicyOutputDir(scenario, policy);
+    if (config.scenario.outputs.ssm &&
+        !fs::copy_file(dir / kSsmSumoFile, dir / "ssm.xml", fs::copy_options::overwrite_existing, ec))
+      throw SumoError("SUMO wrote no SSM output for policy " + policy + " (" +
+                      (dir / kSsmSumoFile).string() + ": " + ec.message() + ")");
     std::vector<std::string> names;
     for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
       const std::string name = e.path().filename().string();
@@ -346,6 +388,10 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     for (const std::string& name : names) {
       StripGeneratedComment(dir / name);
       run.sumo_output_files.emplace_back(policy + "/" + name, (dir / name).string());
+    }
+    if (config.scenario.outputs.ssm) {
+      run.ssm = ReadSsm(dir / "ssm.xml", config.scenario, scenario);
+      run.ssm.device_warnings = warned.ssm;
     }
   }
   if (scenario.scratch && scenario.kind == ScenarioKind::kNetwork) {

@@ -25,6 +25,14 @@ void SortSumoOutput(const std::string& text, SumoWarnings* into, std::string* re
     const std::string w = line.substr(9);
     // SUMO_HOME unset: taebp runs SUMO with --xml-validation never.
     if (w.rfind("Environment variable SUMO_HOME is not set", 0) == 0) continue;
+    // The SSM device's own remarks ("SSM device of vehicle 'a' detected
+    // collision with vehicle 'b'", "Cannot compute SSM due to bad internal
+    // lane geometry at junction 'J'. ..."): the same run without the device
+    // has none of them.
+    if (w.rfind("SSM device of vehicle", 0) == 0 || w.rfind("Cannot compute SSM", 0) == 0) {
+      ++into->ssm;
+      continue;
+    }
     ++into->count;
     // "Vehicle 'a'; collision with vehicle 'b', ..." and "...; junction collision with ...".
     if (w.find("collision with vehicle") != std::string::npos) {

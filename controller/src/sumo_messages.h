@@ -17,6 +17,9 @@ namespace taebp::control {
 struct SumoWarnings {
   long count = 0;            // every "Warning: " line
   long collisions = 0;       // of those, SUMO's collision reports (taebp counts collisions itself)
+  // The SSM device's remarks (scenario.outputs.ssm): not counted above (the
+  // device only observes; its "detected collision" is no collision report).
+  long ssm = 0;
   std::vector<std::string> first;           // the first few others, without "Warning: "
   std::vector<std::string> demand_changed;  // those that change the demand (all of them)
 };

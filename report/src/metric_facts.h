@@ -5,6 +5,7 @@
 #include "taebp/report/results.h"
 
 #include <string>
+#include <vector>
 
 namespace taebp {
 
@@ -45,6 +46,9 @@ MetricFacts JunctionFacts(const PolicyRun& r, const JunctionRun& j);
 
 // Whether metric scope `s` applies to run `r`.
 bool InScope(MetricScope s, const PolicyRun& r);
+
+// The rows of RunMetrics() for scenario.outputs.ssm (ssm.cc), in table order.
+std::vector<Metric> SsmMetricRows();
 
 double Rate(long k, long n);
 double PerHour(double count, double seconds);

@@ -86,6 +86,7 @@ bool InScope(MetricScope s, const PolicyRun& r) {
     case MetricScope::kAll: return true;
     case MetricScope::kNetwork: return r.scenario_kind == "network";
     case MetricScope::kBeyond: return r.beyond.on && r.policy != "sumo_native";
+    case MetricScope::kSsm: return r.ssm.on;
   }
   return false;
 }
@@ -495,7 +496,13 @@ const std::vector<Metric>& RunMetrics() {
      [](const MetricFacts& f) { return LastHourMean(f, f.last_hour.oracle_dc); }},
   };
   // clang-format on
-  return table;
+  // SUMO's surrogate safety measures (ssm.cc), last.
+  static const std::vector<Metric> all = [] {
+    std::vector<Metric> t = table;
+    for (const Metric& m : SsmMetricRows()) t.push_back(m);
+    return t;
+  }();
+  return all;
 }
 
 const Metric* FindMetric(const std::string& name) {
@@ -582,6 +589,7 @@ const char* ToString(MetricScope s) {
     case MetricScope::kAll: return "";
     case MetricScope::kNetwork: return "network";
     case MetricScope::kBeyond: return "beyond";
+    case MetricScope::kSsm: return "ssm";
   }
   return "?";
 }

@@ -1,4 +1,5 @@
 #include "taebp/scenario/scenario.h"
+#include "taebp/scenario/ssm_args.h"
 
 #include "taebp/scenario/demand.h"
 #include "taebp/scenario/net_file.h"
@@ -703,7 +704,10 @@ Scenario BuildScenario(const ExperimentConfig& config, const std::string& config
   Scenario s = config.scenario.IsNetwork() ? BuildNetwork(config, config_dir)
                                            : BuildFigure8(config, config_dir);
   // SUMO's outputs are written there first (per policy).
-  if (!s.scratch && config.scenario.outputs.Any()) s.scratch = std::make_shared<ScratchDir>();
+  if (!s.scratch && (config.scenario.outputs.Any() || config.scenario.outputs.ssm))
+    s.scratch = std::make_shared<ScratchDir>();
+  if (config.scenario.outputs.ssm)
+    s.abort_hint = (s.abort_hint.empty() ? "" : s.abort_hint + "; or ") + SsmAbortHint();
   return s;
 }
 

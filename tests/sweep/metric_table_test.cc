@@ -115,6 +115,16 @@ PolicyRun NetworkRun() {
   r.network.duration_sum = 4500;
   r.network.waiting_time_sum = 180;
   r.stalls = {{"J2", 100, 400}};
+  // SSM on, PET not measured: 7 conflicts in the network, 4 at J1, none at J2.
+  r.ssm.on = true;
+  r.ssm.rules.on = {true, true, false};
+  r.ssm.network.conflicts = 7;
+  r.ssm.network.by_measure = {5, 3, 0};
+  r.ssm.network.ttc_min = 0.8;
+  r.ssm.at_junctions.conflicts = 4;
+  r.ssm.at_junctions.by_measure = {2, 2, 0};
+  r.ssm.junction["J1"] = r.ssm.at_junctions;
+  r.ssm.junction["J2"] = {};
   r.beyond.on = true;
   r.beyond.long_run = true;
   r.beyond.learning = true;
@@ -152,7 +162,8 @@ std::vector<std::string> Expected(const PolicyRun& run, MetricLevel level) {
     const bool in_scope = m.scope == MetricScope::kAll ||
                           (m.scope == MetricScope::kNetwork && run.scenario_kind == "network") ||
                           (m.scope == MetricScope::kBeyond && run.beyond.on &&
-                           run.policy != "sumo_native");
+                           run.policy != "sumo_native") ||
+                          (m.scope == MetricScope::kSsm && run.ssm.on);
     if (!in_scope) continue;
     for (const std::string& c : MetricColumns(m, false)) keys.push_back(c);
   }
@@ -236,7 +247,18 @@ TEST(MetricTable, SummaryJsonHoldsExactlyTheTable) {
   EXPECT_DOUBLE_EQ(j1["queue_max"].get<double>(), 5);
   EXPECT_EQ(j1["collisions"], 1);
   EXPECT_TRUE(p["junctions"][1]["wait_mean"].is_null()) << "nobody held at J2";
+  EXPECT_EQ(p["ssm_conflicts"], 7);
+  EXPECT_DOUBLE_EQ(p["ssm_conflicts_per_hour"].get<double>(), 7 * 6.0);
+  EXPECT_DOUBLE_EQ(p["ssm_conflicts_per_1000_crossings"].get<double>(), 4 * 1000.0 / 80);
+  EXPECT_EQ(p["ssm_ttc_conflicts"], 5);
+  EXPECT_TRUE(p["ssm_pet_conflicts"].is_null()) << "PET was not measured";
+  EXPECT_DOUBLE_EQ(p["ssm_ttc_min"].get<double>(), 0.8);
+  EXPECT_TRUE(p["ssm_drac_max"].is_null()) << "no DRAC value given";
+  EXPECT_EQ(j1["ssm_conflicts"], 4);
+  EXPECT_DOUBLE_EQ(j1["ssm_drac_conflicts_per_1000_crossings"].get<double>(), 2 * 1000.0 / 50);
+  EXPECT_EQ(p["junctions"][1]["ssm_conflicts"], 0);
   const auto& f8 = s["policies"]["no_ebp"];
+  EXPECT_FALSE(f8.contains("ssm_conflicts")) << "an SSM metric in a run without SSM";
   EXPECT_FALSE(f8.contains("served_flow")) << "a network metric on the figure-8";
   EXPECT_FALSE(f8.contains("regret")) << "a beyond metric in a paper run";
 }

@@ -112,6 +112,51 @@ struct DemandConfig {
   }
 };
 
+// scenario.outputs.ssm.thresholds: SUMO's SSM thresholds (SUMO 1.15's
+// defaults). A conflict record counts for a measure when its value passes the
+// threshold as SUMO's own test does: TTC <= TTC, DRAC >= DRAC, PET <= PET.
+struct SsmThresholds {
+  double ttc = 3.0;   // s, time to collision
+  double drac = 3.0;  // m/s^2, deceleration rate to avoid a crash
+  double pet = 2.0;   // s, post-encroachment time
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("TTC", &ttc);
+    a->Visit("DRAC", &drac);
+    a->Visit("PET", &pet);
+  }
+};
+
+// scenario.outputs.ssm (unset: off; `ssm: {}` for SUMO's defaults): SUMO's
+// surrogate-safety device on every vehicle under every policy, sumo_native
+// included (docs/ssm.md). SUMO writes DIR/POLICY/ssm.xml; the run reports its
+// conflicts by measure per policy and per controlled junction (the ssm_*
+// metrics). A conflict is at a controlled junction when its point lies within
+// junction_radius of one of the junction's internal lanes (the nearest wins).
+struct SsmConfig {
+  std::vector<std::string> measures = {"TTC", "DRAC", "PET"};  // of TTC, DRAC, PET
+  SsmThresholds thresholds;
+  double junction_radius = 10.0;  // m
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("measures", &measures);
+    a->Visit("thresholds", &thresholds);
+    a->Visit("junction_radius", &junction_radius);
+  }
+  bool Measures(const std::string& m) const {
+    for (const std::string& x : measures)
+      if (x == m) return true;
+    return false;
+  }
+};
+// The measures SUMO 1.15's SSM device computes that have a conflict threshold.
+inline const std::vector<std::string>& SsmMeasures() {
+  static const std::vector<std::string> kMeasures = {"TTC", "DRAC", "PET"};
+  return kMeasures;
+}
+
 // SUMO's own outputs, per policy, in the run folder as DIR/POLICY/NAME
 // (README "Outputs"): fcd.xml (every vehicle's position each step),
 // edgedata.xml / lanedata.xml (SUMO's edge / lane means over the measured
@@ -121,6 +166,7 @@ struct OutputsConfig {
   bool edgedata = false;
   bool lanedata = false;
   bool queue = false;
+  std::optional<SsmConfig> ssm;  // surrogate safety measures (above); a sweep keeps them too
 
   template <typename Archive>
   void Serialize(Archive* a) {
@@ -128,7 +174,9 @@ struct OutputsConfig {
     a->Visit("edgedata", &edgedata);
     a->Visit("lanedata", &lanedata);
     a->Visit("queue", &queue);
+    a->Visit("ssm", &ssm);
   }
+  // The outputs kept only as files (a sweep refuses them); ssm is a metric too.
   bool Any() const { return fcd || edgedata || lanedata || queue; }
 };
 

@@ -48,6 +48,7 @@ enum class MetricScope {
   kAll,
   kNetwork,  // scenario.kind: network
   kBeyond,   // a run beyond the paper (dynamic or learned trust, noise), not sumo_native
+  kSsm,      // scenario.outputs.ssm: SUMO's surrogate safety measures (every policy)
 };
 
 struct MetricFacts;  // the numbers of one policy or junction (report/src)

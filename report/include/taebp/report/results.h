@@ -3,6 +3,7 @@
 #pragma once
 
 #include "taebp/persuasion/outcomes.h"
+#include "taebp/report/ssm.h"
 
 #include <limits>
 #include <algorithm>
@@ -246,6 +247,7 @@ struct PolicyRun {
   // wrote, in the scenario's scratch folder).
   std::vector<std::pair<std::string, std::string>> sumo_output_files;
   BeyondRun beyond;
+  SsmRun ssm;  // scenario.outputs.ssm: SUMO's SSM conflicts (report/ssm.h)
 };
 
 }  // namespace taebp

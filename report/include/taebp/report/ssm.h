@@ -1,0 +1,70 @@
+// SUMO's SSM output (scenario.outputs.ssm, docs/ssm.md) read into conflicts by
+// measure, per policy and per controlled junction. Plain data and pugixml;
+// no SUMO and no config (the caller passes the rules).
+//
+// A conflict is one pair of vehicles over one stretch of time: SUMO's device
+// on each equipped vehicle writes its own <conflict ego foe> record, so with
+// every vehicle equipped most conflicts appear twice (ego and foe swapped,
+// their spans and values not always equal). Records of the same unordered
+// pair whose [begin, end] overlap are one conflict, with the worst value of
+// each measure (least TTC and PET, greatest DRAC).
+// A conflict counts for a measure when its value passes the threshold as in
+// SUMO's own test: TTC <= t (and TTC > 0: SUMO 1.15 writes minTTC 0, type 111,
+// for vehicles standing nose to tail; not a conflict), DRAC >= t, PET <= t.
+// It counts after the warm-up: its first record began at or after `warmup`.
+// Its place is the point of the measure's extreme (TTC's, else DRAC's, else
+// PET's for the conflict itself): at the controlled junction whose internal
+// lanes pass nearest that point, within `junction_radius`.
+#pragma once
+
+#include <array>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace taebp {
+
+enum class SsmMeasure { kTtc, kDrac, kPet };
+inline constexpr int kSsmMeasures = 3;
+
+struct SsmRules {
+  std::array<bool, kSsmMeasures> on{};         // the measures SUMO computed
+  std::array<double, kSsmMeasures> threshold{};  // TTC s, DRAC m/s^2, PET s
+  double warmup = 0;                           // s
+  double junction_radius = 10;                 // m
+};
+
+// A controlled junction's place: its internal lanes' shapes (or its centre
+// when it has none).
+struct SsmJunctionArea {
+  std::string junction;
+  std::vector<std::vector<std::array<double, 2>>> shapes;
+};
+
+// Conflicts of one policy or one junction.
+struct SsmTally {
+  long conflicts = 0;                           // any measure
+  std::array<long, kSsmMeasures> by_measure{};  // TTC, DRAC, PET
+  double ttc_min = std::numeric_limits<double>::quiet_NaN();   // over the TTC conflicts
+  double drac_max = std::numeric_limits<double>::quiet_NaN();  // over the DRAC conflicts
+};
+
+struct SsmRun {
+  bool on = false;
+  SsmRules rules;
+  SsmTally network;                         // every conflict in the network
+  SsmTally at_junctions;                    // those at a controlled junction
+  std::map<std::string, SsmTally> junction; // by controlled junction id
+  long records = 0;                         // <conflict> records SUMO wrote (all times)
+  // The device's warnings (a collision it saw; "Cannot compute SSM due to bad
+  // internal lane geometry at junction J": crossings there go unmeasured).
+  long device_warnings = 0;
+};
+
+// Reads SUMO's SSM output `path`. Throws std::runtime_error naming the file
+// when it is missing or not an SSM log.
+SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
+                     const std::vector<SsmJunctionArea>& areas);
+
+}  // namespace taebp

@@ -1,0 +1,186 @@
+"""scenario.outputs.ssm: SUMO's SSM device under every policy, its conflicts
+counted in summary.json and junctions.csv exactly as SUMO's own ssm.xml holds
+them (parsed here with ElementTree, independently of taebp's pugixml reader),
+and the device leaves the game and SUMO's traffic unchanged."""
+import csv
+import json
+import math
+import os
+import xml.etree.ElementTree as ET
+
+import pytest
+
+from conftest import ROOT, cli
+
+GRID = os.path.join(ROOT, "configs", "grid_two_way.yaml")
+POLICIES = ["sumo_native", "no_ebp", "no_trust", "ta_ebp"]
+# A short, light run in which no game collides (prior_go 0.01): SUMO 1.15's SSM
+# device aborts SUMO when two vehicles that collided leave their conflict area
+# in the same step (docs/ssm.md), and No Trust's games collide at rate prior_go.
+SHORT = ["--set", "scenario.duration=300", "--set", "scenario.warmup=60",
+         "--set", "scenario.demand.flow=100", "--set", "model.prior_go=0.01"]
+SSM = ["--set", "scenario.outputs.ssm={}"]
+THRESHOLDS = {"minTTC": 3.0, "maxDRAC": 3.0, "PET": 2.0}  # SUMO 1.15's defaults
+WARMUP = 60.0
+RADIUS = 10.0
+
+
+def num(text):
+    return None if text in (None, "", "NA") else float(text)
+
+
+def conflicts_of(path):
+    """SUMO's <conflict> records, both devices' records of one pair over
+    overlapping spans merged, each measure's worst value and its point."""
+    records = []
+    for c in ET.parse(path).getroot().iter("conflict"):
+        pair = tuple(sorted((c.get("ego"), c.get("foe"))))
+        m = {}
+        for tag in THRESHOLDS:
+            e = c.find(tag)
+            v = num(e.get("value")) if e is not None else None
+            pos = e.get("position") if e is not None else "NA"
+            m[tag] = (v, None if pos in (None, "NA") else tuple(map(float, pos.split(","))))
+        records.append((pair, float(c.get("begin")), float(c.get("end")), m))
+    records.sort(key=lambda r: (r[0], r[1], r[2]))
+    merged = []
+    for pair, begin, end, m in records:
+        if merged and merged[-1]["pair"] == pair and begin <= merged[-1]["end"]:
+            last = merged[-1]
+            last["end"] = max(last["end"], end)
+            for tag, (v, pos) in m.items():
+                old = last["m"][tag][0]
+                worse = v is not None and (old is None or (v > old if tag == "maxDRAC" else v < old))
+                if worse:
+                    last["m"][tag] = (v, pos)
+            continue
+        merged.append({"pair": pair, "begin": begin, "end": end, "m": dict(m)})
+    return merged
+
+
+def passes(tag, v):
+    if v is None:
+        return False
+    if tag == "minTTC":
+        return 0 < v <= THRESHOLDS[tag]
+    if tag == "maxDRAC":
+        return v >= THRESHOLDS[tag]
+    return v <= THRESHOLDS[tag]
+
+
+def junction_shapes(net_path, ids):
+    root = ET.parse(net_path).getroot()
+    lanes = {l.get("id"): [tuple(map(float, p.split(","))) for p in l.get("shape").split()]
+             for e in root.iter("edge") if e.get("function") == "internal" for l in e.iter("lane")}
+    shapes = {}
+    for j in root.iter("junction"):
+        if j.get("id") in ids:
+            shapes[j.get("id")] = [lanes[l] for l in j.get("intLanes", "").split() if l in lanes] or \
+                [[(float(j.get("x")), float(j.get("y")))]]
+    return shapes
+
+
+def distance(p, shape):
+    if len(shape) == 1:
+        return math.dist(p, shape[0])
+    best = math.inf
+    for a, b in zip(shape, shape[1:]):
+        dx, dy = b[0] - a[0], b[1] - a[1]
+        l2 = dx * dx + dy * dy
+        t = 0 if l2 == 0 else max(0.0, min(1.0, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2))
+        best = min(best, math.dist(p, (a[0] + t * dx, a[1] + t * dy)))
+    return best
+
+
+def place(p, shapes, order):
+    if p is None:
+        return None
+    best, best_d = None, RADIUS
+    for j in order:
+        for s in shapes[j]:
+            d = distance(p, s)
+            if (d < best_d) if best else (d <= best_d):
+                best, best_d = j, d
+    return best
+
+
+def expected(ssm_xml, shapes, order):
+    """Counts by measure, network-wide and per junction, from SUMO's file."""
+    keys = {"minTTC": "ssm_ttc_conflicts", "maxDRAC": "ssm_drac_conflicts", "PET": "ssm_pet_conflicts"}
+    net = {"ssm_conflicts": 0, **{k: 0 for k in keys.values()}, "ssm_ttc_min": None, "ssm_drac_max": None}
+    per_j = {j: {"ssm_conflicts": 0, **{k: 0 for k in keys.values()}} for j in order}
+    for c in conflicts_of(ssm_xml):
+        if c["begin"] < WARMUP:
+            continue
+        first = None
+        for tag, key in keys.items():
+            v, pos = c["m"][tag]
+            if not passes(tag, v):
+                continue
+            first = first or tag
+            net[key] += 1
+            if tag == "minTTC":
+                net["ssm_ttc_min"] = v if net["ssm_ttc_min"] is None else min(net["ssm_ttc_min"], v)
+            if tag == "maxDRAC":
+                net["ssm_drac_max"] = v if net["ssm_drac_max"] is None else max(net["ssm_drac_max"], v)
+            j = place(pos, shapes, order)
+            if j:
+                per_j[j][key] += 1
+        if first:
+            net["ssm_conflicts"] += 1
+            j = place(c["m"][first][1], shapes, order)
+            if j:
+                per_j[j]["ssm_conflicts"] += 1
+    return net, per_j
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    base = tmp_path_factory.mktemp("ssm")
+    cli("run", GRID, *SHORT, *SSM, "--out", base / "on")
+    cli("run", GRID, *SHORT, "--out", base / "off")
+    return base
+
+
+def test_every_policy_has_numeric_conflicts_per_hour_equal_to_sumos_own_file(runs):
+    on = runs / "on"
+    summary = json.load(open(on / "summary.json"))
+    with open(on / "junctions.csv") as f:
+        rows = list(csv.DictReader(f))
+    order = [r["junction"] for r in rows if r["policy"] == POLICIES[0]]
+    shapes = junction_shapes(on / "network.net.xml", set(order))
+    hours = (300 - WARMUP) / 3600
+    total = 0
+    for policy in POLICIES:
+        p = summary["policies"][policy]
+        ssm_xml = on / policy / "ssm.xml"
+        assert ssm_xml.exists(), "%s: SUMO wrote no SSM output" % policy
+        net, per_j = expected(ssm_xml, shapes, order)
+        assert isinstance(p["ssm_conflicts_per_hour"], float), policy
+        for key, value in net.items():
+            assert p[key] == value, (policy, key, p[key], value)
+        assert p["ssm_conflicts_per_hour"] == pytest.approx(net["ssm_conflicts"] / hours)
+        at_junctions = sum(v["ssm_conflicts"] for v in per_j.values())
+        crossings = p["crossings_all"]
+        assert p["ssm_conflicts_per_1000_crossings"] == pytest.approx(1000 * at_junctions / crossings)
+        for r in rows:
+            if r["policy"] != policy:
+                continue
+            for key, value in per_j[r["junction"]].items():
+                assert int(r[key]) == value, (policy, r["junction"], key)
+        total += net["ssm_conflicts"]
+    assert total > 0, "no conflict anywhere: the test compares nothing"
+
+
+def test_the_device_leaves_the_game_and_sumos_traffic_unchanged(runs):
+    on, off = runs / "on", runs / "off"
+    assert open(on / "encounters.csv").read() == open(off / "encounters.csv").read()
+    s_on = json.load(open(on / "summary.json"))["policies"]
+    s_off = json.load(open(off / "summary.json"))["policies"]
+    for policy in POLICIES:
+        without = {k: v for k, v in s_on[policy].items() if not k.startswith("ssm_")}
+        without["junctions"] = [{k: v for k, v in j.items() if not k.startswith("ssm_")}
+                                for j in s_on[policy]["junctions"]]
+        assert without == s_off[policy], policy
+        assert "ssm_conflicts" not in s_off[policy]
+        assert not (off / policy / "ssm.xml").exists()
