@@ -52,7 +52,8 @@ Cost Time(F&& f) {
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
-                 "usage: sumo_overhead CONFIG [ROUNDS] [--baseline bare|sumo_native] [--set K=V]...\n");
+                 "usage: sumo_overhead CONFIG [ROUNDS] [--baseline bare|%s] [--set K=V]...\n",
+                 taebp::SumoNative().name);
     return 2;
   }
   const std::string path = argv[1];
@@ -77,12 +78,12 @@ int main(int argc, char** argv) {
         bare.push_back(Time([&] { taebp::RunBareSumo(config, files); }));
       } else {
         bare.push_back(Time([&] {
-          const taebp::PolicyRun run = taebp::RunPolicy(config, taebp::kSumoNative, files);
+          const taebp::PolicyRun run = taebp::RunPolicy(config, taebp::SumoNative().name, files);
           vehicles_max = std::max(vehicles_max, run.network.vehicles_max);
         }));
       }
       for (const std::string& p : config.policies) {
-        if (p == taebp::kSumoNative) continue;
+        if (p == taebp::SumoNative().name) continue;
         policy[p].push_back(Time([&] {
           const taebp::PolicyRun run = taebp::RunPolicy(config, p, files);
           vehicles_max = std::max(vehicles_max, run.network.vehicles_max);
@@ -106,9 +107,9 @@ int main(int argc, char** argv) {
                   config.scenario.step_length, rounds);
     std::printf("%-12s %10s %8s %10s %8s\n", "run", "median cpu", "ratio", "wall s", "ratio");
     std::printf("%-12s %10.3f %8.3f %10.3f %8.3f\n",
-                baseline == "bare" ? "bare SUMO" : "sumo_native", b, 1.0, bw, 1.0);
+                baseline == "bare" ? "bare SUMO" : taebp::SumoNative().name, b, 1.0, bw, 1.0);
     for (const std::string& p : config.policies) {
-      if (p == taebp::kSumoNative) continue;
+      if (p == taebp::SumoNative().name) continue;
       const double m = median(policy[p], &Cost::cpu), mw = median(policy[p], &Cost::wall);
       std::printf("%-12s %10.3f %8.3f %10.3f %8.3f\n", p.c_str(), m, m / b, mw, mw / bw);
     }

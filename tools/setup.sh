@@ -11,7 +11,7 @@ TAEBP_BUILD=${TAEBP_BUILD_DIR:-$TAEBP_ROOT/build}
 # venv python3 earlier on PATH.
 TAEBP_PYTHON=/usr/bin/python3
 
-# Package -> why it is here: see README.md, "Dependencies".
+# Package -> why it is here: see docs/dependencies.md, "Dependencies and why".
 TAEBP_PACKAGES=(
   build-essential cmake pkg-config
   sumo sumo-tools
@@ -21,7 +21,7 @@ TAEBP_PACKAGES=(
   python3 python3-dev python3-pybind11 python3-numpy python3-pandas python3-pytest
   python3-matplotlib python3-pil
   xvfb xauth
-  doxygen
+  doxygen mkdocs mkdocs-material
   strace
 )
 # Wanted but not required: when they cannot be installed, a warning, and the

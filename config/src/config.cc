@@ -14,6 +14,14 @@
 namespace taebp {
 namespace {
 
+// "population_mean, ta_ebp_learned": the policies defined beyond the paper.
+std::string BeyondPaperPolicies() {
+  std::string out;
+  for (const PolicyInfo& p : Policies())
+    if (p.beyond_paper) out += (out.empty() ? "" : ", ") + std::string(p.name);
+  return out;
+}
+
 std::string Num(double v) {
   std::ostringstream os;
   os.precision(10);
@@ -94,6 +102,16 @@ double TrustSpec::Quantile(double q) const {
     return values.empty() ? 0.0 : values.back();
   }
   return value;
+}
+
+std::vector<std::string> TrustDistKeys(TrustDist dist) {
+  switch (dist) {
+    case TrustDist::kUniform: return {"low", "high"};
+    case TrustDist::kBeta: return {"alpha", "beta"};
+    case TrustDist::kDiscrete: return {"values", "weights"};
+    case TrustDist::kFixed: break;
+  }
+  return {};
 }
 
 bool TrustSpec::IsValid(const std::string& key, std::string* why) const {
@@ -315,7 +333,7 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     if (BeyondPaper())
       c.Fail("scenario.major_road is modelled in the paper's setting only: not with "
              "model.trust_dynamics, model.noise, model.learning or the policies "
-             "population_mean, ta_ebp_learned (an HV's trust state and the fleet's beliefs "
+             "beyond it (" + BeyondPaperPolicies() + ") (an HV's trust state and the fleet's beliefs "
              "would be split between two games, and regret would charge r_eff)");
   }
 
@@ -366,8 +384,8 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     c.Model("model.", ToModel(n));
     c.Open01("model.noise.delta", n.delta);
   }
-  const bool learned =
-      std::find(policies.begin(), policies.end(), "ta_ebp_learned") != policies.end();
+  const bool learned = std::find(policies.begin(), policies.end(),
+                                 PolicyOf(PolicyKind::kTaEbpLearned).name) != policies.end();
   if (m.learning) {
     const LearningConfig& l = *m.learning;
     c.Model("model.learning.", ToModel(l));
@@ -380,36 +398,32 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     c.Fail("model.prior_go = " + Num(m.prior_go) +
            " is at or above p* = 2/(2 + model.collision_penalty) = " +
            Num(2.0 / (2.0 + m.collision_penalty)) +
-           ": every HV drives if clear without persuasion, so ta_ebp_learned has nothing to "
-           "learn");
+           ": every HV drives if clear without persuasion, so " +
+           PolicyOf(PolicyKind::kTaEbpLearned).name + " has nothing to learn");
   if (m.experience) {
     c.Model("model.experience.", ToModel(*m.experience));
     if (m.trust_dynamics || m.noise || m.learning || s.major_road)
       c.Fail("model.experience is modelled alone: not with model.trust_dynamics, model.noise, "
              "model.learning or scenario.major_road (their theories assume an HV whose reading "
              "of a nudge never changes)");
-    for (const std::string& p : policies)
-      if (p == "population_mean" || p == "ta_ebp_learned")
-        c.Fail("policies: '" + p + "' is not modelled with model.experience (use ta_ebp)");
+    for (const std::string& p : policies) {
+      const PolicyInfo* info = FindPolicy(p);
+      if (info && info->plays_game &&
+          (info->game == persuasion::Policy::kPopulationMean ||
+           info->game == persuasion::Policy::kTaEbpLearned))
+        c.Fail("policies: '" + p + "' is not modelled with model.experience (use " +
+               PolicyOf(PolicyKind::kTaEbp).name + ")");
+    }
   }
   if (!(std::isfinite(outputs.interval) && outputs.interval >= 1.0))
     c.Fail("outputs.interval = " + Num(outputs.interval) +
            " must be >= 1 s (the time series are sampled once a simulated second)");
 
   if (policies.empty())
-    c.Fail("policies is empty: list at least one of sumo_native, no_ebp, no_trust, ta_ebp, "
-           "full_reveal, population_mean, ta_ebp_learned, always_nudge");
+    c.Fail("policies is empty: list at least one of " + PolicyChoices());
   std::set<std::string> seen;
   for (const std::string& p : policies) {
-    if (p != kSumoNative) {
-      try {
-        persuasion::ParsePolicy(p);  // the one list of persuasion policy names
-      } catch (const persuasion::InvalidArgument&) {
-        c.Fail("policies: '" + p +
-               "' is not one of sumo_native, no_ebp, no_trust, ta_ebp, full_reveal, "
-               "population_mean, ta_ebp_learned, always_nudge");
-      }
-    }
+    if (!FindPolicy(p)) c.Fail("policies: '" + p + "' is not one of " + PolicyChoices());
     if (!seen.insert(p).second) c.Fail("policies: '" + p + "' is listed twice");
   }
   if (sweep) {
@@ -427,8 +441,10 @@ bool ExperimentConfig::IsValid(std::string* why) const {
 
 bool ExperimentConfig::BeyondPaper() const {
   if (model.trust_dynamics || model.noise || model.learning || model.experience) return true;
-  for (const std::string& p : policies)
-    if (p == "population_mean" || p == "ta_ebp_learned" || p == "always_nudge") return true;
+  for (const std::string& p : policies) {
+    const PolicyInfo* info = FindPolicy(p);
+    if (info && info->beyond_paper) return true;
+  }
   return false;
 }
 

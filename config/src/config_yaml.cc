@@ -223,10 +223,7 @@ class YamlReader {
     if (!dist.IsScalar() || !ParseEnum(dist.Scalar(), &t.dist) || t.IsFixed())
       Fail(key + ".dist", dist, key + ".dist = " + Show(dist) +
                                     " is not one of: uniform, beta, discrete");
-    std::vector<std::string> allowed;
-    if (t.dist == TrustDist::kUniform) allowed = {"low", "high"};
-    else if (t.dist == TrustDist::kBeta) allowed = {"alpha", "beta"};
-    else allowed = {"values", "weights"};
+    const std::vector<std::string> allowed = TrustDistKeys(t.dist);
     for (const auto& kv : node) {
       const std::string name = kv.first.as<std::string>();
       if (name == "dist") continue;

@@ -105,7 +105,7 @@ Premise PremiseForEveryPolicy(junction::Mover av, double av_line, const junction
 
 }  // namespace
 
-// The major-road approach (persuasion/MAJOR_ROAD.md, "When is an approach the
+// The major-road approach (docs/beyond/major-road.md, "When is an approach the
 // game"), measured on SUMO's state this step and the junction's geometry:
 // - the HV's distance d to the conflict zone and the zone's length l on its
 //   path (ZoneOnPath: its front positions at which its body can touch the

@@ -40,7 +40,7 @@ RunState::RunState(const ExperimentConfig& config, std::optional<persuasion::Pol
       dt(config.scenario.step_length),
       sample_every(std::max(1L, std::lround(1.0 / config.scenario.step_length))),
       topo(config.scenario, scenario, net, sample_every * config.scenario.step_length) {
-  out.policy = policy ? persuasion::ToString(*policy) : kSumoNative;
+  out.policy = policy ? PolicyName(*policy) : SumoNative().name;
   out.scenario_kind = EnumName(sc.kind);
   if (policy) {
     // Each HV's trust, the AV's design for it, its reading (hv_population.h).

@@ -250,8 +250,8 @@ class AbortGuard {
 };
 
 std::optional<persuasion::Policy> PolicyOf(const std::string& name) {
-  if (name == kSumoNative) return std::nullopt;
-  return persuasion::ParsePolicy(name);
+  if (name == SumoNative().name) return std::nullopt;
+  return ParseGamePolicy(name);
 }
 
 // SUMO's tripinfo records of the vehicles that departed after the warm-up,
@@ -320,7 +320,18 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
   // SUMO's warnings (its stderr) from its start to its close.
   std::optional<control::SumoMessages> messages(std::in_place);
   std::optional<AbortGuard> abort_guard(std::in_place, scenario, *messages);
-  sumo::Start(SumoArgs(config, scenario, policy));
+  // SUMO's errors name the policy, the input file and the usual fix.
+  auto explained = [&](const SumoError& e) {
+    std::vector<std::string> files = scenario.route_files;
+    files.insert(files.end(), scenario.additional_files.begin(), scenario.additional_files.end());
+    return SumoError(control::ExplainSumoError(
+        e.what(), policy, files, scenario.scratch ? scenario.scratch->path() : ""));
+  };
+  try {
+    sumo::Start(SumoArgs(config, scenario, policy));
+  } catch (const SumoError& e) {
+    throw explained(e);
+  }
   PolicyRun run;
   // SUMO is closed on every way out: a scenario that does not fit or a stall
   // leaves no simulation (or sumo-gui window) open.
@@ -350,6 +361,9 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
       run = controller.Finish();  // every junction stalled by then is in run.stalls
       run.stall_error = e.what();
     }
+  } catch (const SumoError& e) {
+    sumo::Close();
+    throw explained(e);
   } catch (...) {
     sumo::Close();
     throw;
@@ -417,10 +431,10 @@ double RunBareSumo(const ExperimentConfig& config, const Scenario& scenario) {
   if (!config.scenario.IsNetwork())
     throw ConfigError(
         "a bare SUMO run needs scenario.kind = 'network': the figure-8's vehicles keep "
-        "circulating only through the controller's lap re-routing (compare against "
-        "sumo_native instead)");
+        "circulating only through the controller's lap re-routing (compare against " +
+        std::string(SumoNative().name) + " instead)");
   NetworkController controller(config, std::nullopt, scenario, *scenario.topology, {});
-  sumo::Start(SumoArgs(config, scenario, kSumoNative));
+  sumo::Start(SumoArgs(config, scenario, SumoNative().name));
   try {
     controller.Start();
     const long steps = std::lround(config.scenario.duration / config.scenario.step_length);

@@ -1,6 +1,9 @@
 #include "sumo_messages.h"
 
+#include <pugixml.hpp>
+
 #include <iostream>
+#include <regex>
 #include <sstream>
 
 #include <unistd.h>
@@ -44,6 +47,84 @@ void SortSumoOutput(const std::string& text, SumoWarnings* into, std::string* re
     if (demand) into->demand_changed.push_back(w);
     if (into->first.size() < SumoMessages::kFirst) into->first.push_back(w);
   }
+}
+
+namespace {
+
+// The first of `files` with an element <TAG id="ID"> (any depth: a vType
+// inside a vTypeDistribution), for each tag in `tags`; "" if none.
+std::string DefiningFile(const std::vector<std::string>& files,
+                         const std::vector<std::string>& tags, const std::string& id) {
+  for (const std::string& f : files) {
+    pugi::xml_document doc;
+    if (!doc.load_file(f.c_str())) continue;
+    for (const std::string& tag : tags) {
+      const std::string xpath = "//" + tag + "[@id=$id]";
+      pugi::xpath_variable_set vars;
+      vars.add("id", pugi::xpath_type_string);
+      vars.set("id", id.c_str());
+      if (doc.select_node(pugi::xpath_query(xpath.c_str(), &vars))) return f;
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string ExplainSumoError(const std::string& message, const std::string& policy,
+                             const std::vector<std::string>& files,
+                             const std::string& generated_dir) {
+  auto name = [&](const std::string& f) {
+    if (!generated_dir.empty() && f.rfind(generated_dir, 0) == 0)
+      return std::string("the trips scenario.demand generated");
+    return f;
+  };
+  auto all = [&] {
+    std::string list;
+    for (const std::string& f : files) list += (list.empty() ? "" : ", ") + name(f);
+    return list.empty() ? std::string("(no route or additional file)") : list;
+  };
+  std::smatch m;
+  std::string where, fix;
+  static const std::regex kType(R"(vehicle type '([^']*)')", std::regex::icase);
+  static const std::regex kVehicle(R"(\b(?:vehicle|person|container) '([^']*)')",
+                                   std::regex::icase);
+  static const std::regex kRoute(R"(\broute '([^']*)')", std::regex::icase);
+  const bool type_unknown = std::regex_search(message, m, kType);
+  const std::string type = type_unknown ? m[1].str() : "";
+  // The vehicle SUMO names ("vehicle type 'T'" is not one).
+  const std::string vehicle = std::regex_search(message, m, kVehicle) ? m[1].str() : "";
+  if (!vehicle.empty()) {
+    static const std::vector<std::string> kTags = {"vehicle", "trip", "flow", "person",
+                                                   "container", "personFlow"};
+    std::string file = DefiningFile(files, kTags, vehicle);
+    // A flow's vehicles are FLOW.N.
+    if (file.empty() && vehicle.find('.') != std::string::npos)
+      file = DefiningFile(files, kTags, vehicle.substr(0, vehicle.rfind('.')));
+    where = "vehicle '" + vehicle + "' is " +
+            (file.empty() ? "not defined in any of " + all() : "defined in " + name(file));
+  } else if (std::regex_search(message, m, kRoute)) {
+    const std::string file = DefiningFile(files, {"route", "routeDistribution"}, m[1].str());
+    where = "route '" + m[1].str() + "' is " +
+            (file.empty() ? "not defined in any of " + all() : "defined in " + name(file));
+  } else if (type_unknown) {
+    const std::string file = DefiningFile(files, {"vType", "vTypeDistribution"}, type);
+    where = "vehicle type '" + type + "' is " +
+            (file.empty() ? "not defined in any of " + all() : "defined in " + name(file));
+  }
+  if (type_unknown)
+    fix = "define the vehicle type '" + type + "' (a <vType> in a route file or in "
+          "scenario.additional) or give the vehicle a type that is defined";
+  else if (std::regex_search(message, std::regex("route|connect", std::regex::icase)))
+    fix = "randomTrips.py --validate or duarouter repair such routes";
+  // Before the command line SUMO's start failures end with.
+  const std::size_t cmd = message.find("; the command was: ");
+  std::string out = message.substr(0, cmd);
+  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+  out += " (policy " + policy;
+  if (!where.empty()) out += "; " + where;
+  if (!fix.empty()) out += "; " + fix;
+  return out + ")" + (cmd == std::string::npos ? std::string() : message.substr(cmd));
 }
 
 SumoMessages::SumoMessages() {

@@ -31,6 +31,18 @@ const std::vector<std::string>& DemandChangingWarnings();
 // Sorts SUMO's output: warnings into `into`, every other line into `rest`.
 void SortSumoOutput(const std::string& text, SumoWarnings* into, std::string* rest);
 
+// SUMO's error `message` during (or at the start of) a run of `policy`, made
+// to name what to fix: the policy and, where SUMO names a vehicle, route or
+// vehicle type, the input file that defines it (`files`: the route files,
+// then the additional files, as SUMO was given them; one under
+// `generated_dir` is scenario.demand's) or "not defined in any of FILES", and
+// the usual fix (routes: randomTrips.py --validate or duarouter). E.g.
+// "SUMO step failed: Vehicle '16' has no valid route. (policy ta_ebp;
+// vehicle '16' is defined in routes.rou.xml; ...)".
+std::string ExplainSumoError(const std::string& message, const std::string& policy,
+                             const std::vector<std::string>& files,
+                             const std::string& generated_dir = "");
+
 class SumoMessages {
  public:
   static constexpr std::size_t kFirst = 5;

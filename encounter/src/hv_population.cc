@@ -449,7 +449,7 @@ BeyondRun HvPopulation::Results(double end) {
     out.long_run = true;
     const per::DesignRule& rule = *design_rule_;
     const double strength = m.trust_dynamics->strength;
-    out.design_rule = per::ToString(rule.policy);
+    out.design_rule = PolicyName(rule.policy);
     if (rule.policy == Policy::kTaEbp)
       out.design_rule += rule.assumed_trust ? " for theta_hat = " + Num(*rule.assumed_trust)
                                             : " tracking the HV's trust";

@@ -1,6 +1,6 @@
 // The major-road encounter: the paper's game with a yielding cost, expressed
 // through the paper's functions at the equivalent penalty r_eff, and the
-// kinematic window in which an approach is that game. See persuasion/MAJOR_ROAD.md.
+// kinematic window in which an approach is that game. See docs/beyond/major-road.md.
 #include "taebp/persuasion/major_road.h"
 
 #include "internal.h"

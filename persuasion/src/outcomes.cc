@@ -8,43 +8,6 @@
 
 namespace taebp::persuasion {
 
-const char* ToString(Policy policy) {
-  switch (policy) {
-    case Policy::kNoEbp:
-      return "no_ebp";
-    case Policy::kNoTrust:
-      return "no_trust";
-    case Policy::kTaEbp:
-      return "ta_ebp";
-    case Policy::kFullReveal:
-      return "full_reveal";
-    case Policy::kPopulationMean:
-      return "population_mean";
-    case Policy::kTaEbpLearned:
-      return "ta_ebp_learned";
-    case Policy::kAlwaysNudge:
-      return "always_nudge";
-  }
-  return "unknown";
-}
-
-const std::vector<Policy>& AllPolicies() {
-  static const std::vector<Policy> all = {Policy::kNoEbp,      Policy::kNoTrust,
-                                          Policy::kTaEbp,      Policy::kFullReveal,
-                                          Policy::kPopulationMean, Policy::kTaEbpLearned,
-                                          Policy::kAlwaysNudge};
-  return all;
-}
-
-Policy ParsePolicy(const std::string& name) {
-  for (Policy policy : AllPolicies()) {
-    if (name == ToString(policy)) return policy;
-  }
-  throw InvalidArgument("policy '" + name +
-                        "' is unknown (expected no_ebp, no_trust, ta_ebp, full_reveal, "
-                        "population_mean, ta_ebp_learned or always_nudge)");
-}
-
 namespace {
 
 // A TA-EBP design as a commitment; the fallback (not persuadable) always yields.

@@ -3,7 +3,9 @@
 // program: the theory and the LP as JSON (runner/theory.h), one experiment
 // (runner/runner.h) and the sweep engine (sweep/engine.h), so Python and the
 // command line give the same numbers and files for the same inputs.
+#include "taebp/runner/errors.h"
 #include "taebp/config/config.h"
+#include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/persuasion.h"
@@ -58,12 +60,10 @@ py::dict TheoryDefaults() {
   return d;
 }
 
-// Every policy a config may list: SUMO's own logic, then the game's
-// (persuasion::AllPolicies, in its order).
+// Every policy a config may list, in the table's order (config/policies.h).
 std::vector<std::string> PolicyNames() {
-  std::vector<std::string> names = {"sumo_native"};
-  for (const taebp::persuasion::Policy p : taebp::persuasion::AllPolicies())
-    names.emplace_back(taebp::persuasion::ToString(p));
+  std::vector<std::string> names;
+  for (const taebp::PolicyInfo& p : taebp::Policies()) names.emplace_back(p.name);
   return names;
 }
 
@@ -75,36 +75,40 @@ int RunTask(const std::string& config, const std::vector<std::string>& overrides
   try {
     const taebp::ExperimentResult result = taebp::RunExperiment(config, overrides);
     taebp::WriteExperiment(result, out);
-    if (!result.stopped.reason.empty()) {  // stall_action: error; what ran is written
-      std::fprintf(stderr, "taebp: stalled: %s\n", result.stopped.message.c_str());
-      return 4;
-    }
-    return 0;
+    if (!result.stopped.reason.empty())  // stall_action: error; what ran is written
+      throw taebp::StallError(result.stopped.message);
+    return taebp::kExitOk;
+  } catch (...) {  // the CLI's lines and codes (runner/errors.h)
+    const taebp::ErrorReport r = taebp::ReportOf(std::current_exception());
+    std::fprintf(stderr, "%s\n", r.line.c_str());
+    return r.exit_code;
+  }
+}
+
+// predict()'s `policy`: a game policy of the table; another name is an
+// InvalidArgument (a function argument, not a config), with the table's message.
+taebp::persuasion::Policy GamePolicyArgument(const std::string& name) {
+  try {
+    return taebp::ParseGamePolicy(name);
   } catch (const taebp::ConfigError& e) {
-    std::fprintf(stderr, "taebp: config error: %s\n", e.what());
-    return 2;
-  } catch (const taebp::persuasion::InvalidArgument& e) {
-    std::fprintf(stderr, "taebp: invalid argument: %s\n", e.what());
-    return 2;
-  } catch (const taebp::SumoError& e) {
-    std::fprintf(stderr, "taebp: %s\n", e.what());
-    return 3;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "taebp: error: %s\n", e.what());
-    return 1;
+    throw taebp::persuasion::InvalidArgument(e.what());
   }
 }
 
 // A run or sweep stopped by `signal` (its guard gone, Python's handlers
 // back): the signal goes on to Python's handler (SIGTERM's default ends the
 // process as it would have without taebp; a handler of the user's runs);
-// Ctrl-C raises KeyboardInterrupt with `message`.
+// Ctrl-C raises taebp.Interrupted (a KeyboardInterrupt) with `message`.
 [[noreturn]] void RaiseInterrupted(int signal, const std::string& message) {
   if (signal != SIGINT) {
     ::raise(signal);
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
   }
-  PyErr_SetString(PyExc_KeyboardInterrupt, message.c_str());
+  // taebp.Interrupted, a KeyboardInterrupt carrying the CLI's exit code.
+  const py::object type = py::module_::import("taebp._taebp").attr("Interrupted");
+  py::object error = type(message);
+  error.attr("exit_code") = taebp::kExitSignalBase + signal;
+  PyErr_SetObject(type.ptr(), error.ptr());
   throw py::error_already_set();
 }
 
@@ -113,13 +117,27 @@ int RunTask(const std::string& config, const std::vector<std::string>& overrides
 PYBIND11_MODULE(_taebp, m) {
   m.doc() = "taebp's C++ library; use the `taebp` package, not this module";
 
-  // Python exceptions for the library's errors (same messages).
-  static py::exception<taebp::ConfigError> config_error(m, "ConfigError", PyExc_ValueError);
-  static py::exception<taebp::persuasion::InvalidArgument> invalid(m, "InvalidArgument",
-                                                                   PyExc_ValueError);
-  static py::exception<taebp::SumoError> sumo_error(m, "SumoError", PyExc_RuntimeError);
-  static py::exception<taebp::SimulationBusy> busy(m, "SimulationBusy", PyExc_RuntimeError);
-  static py::exception<taebp::OutputError> output_error(m, "OutputError", PyExc_OSError);
+  // Python exceptions for the library's errors (same messages), each with the
+  // CLI's exit code as `exit_code` (report/exit_codes.h; runner/errors.h).
+  using taebp::ErrorKind;
+  auto code = [](ErrorKind k) { return taebp::ErrorKindOf(k).exit_code; };
+  auto name = [](ErrorKind k) { return taebp::ErrorKindOf(k).python_name; };
+  static py::exception<taebp::ConfigError> config_error(m, name(ErrorKind::kConfig),
+                                                        PyExc_ValueError);
+  static py::exception<taebp::persuasion::InvalidArgument> invalid(
+      m, name(ErrorKind::kInvalidArgument), PyExc_ValueError);
+  static py::exception<taebp::SumoError> sumo_error(m, name(ErrorKind::kSumo), PyExc_RuntimeError);
+  static py::exception<taebp::SimulationBusy> busy(m, name(ErrorKind::kBusy), PyExc_RuntimeError);
+  static py::exception<taebp::OutputError> output_error(m, name(ErrorKind::kOutput), PyExc_OSError);
+  // Ctrl-C during a run: a KeyboardInterrupt, exit_code 128 + the signal.
+  static py::exception<taebp::Interrupted> interrupted(m, name(ErrorKind::kInterrupted),
+                                                       PyExc_KeyboardInterrupt);
+  config_error.attr("exit_code") = code(ErrorKind::kConfig);
+  invalid.attr("exit_code") = code(ErrorKind::kInvalidArgument);
+  sumo_error.attr("exit_code") = code(ErrorKind::kSumo);
+  busy.attr("exit_code") = code(ErrorKind::kBusy);
+  output_error.attr("exit_code") = code(ErrorKind::kOutput);
+  interrupted.attr("exit_code") = code(ErrorKind::kInterrupted);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -133,7 +151,18 @@ PYBIND11_MODULE(_taebp, m) {
       busy(e.what());
     } catch (const taebp::OutputError& e) {
       output_error(e.what());
+    } catch (const taebp::Interrupted& e) {
+      py::object error = py::reinterpret_borrow<py::object>(interrupted.ptr())(e.what());
+      error.attr("exit_code") = e.exit_code();
+      PyErr_SetObject(interrupted.ptr(), error.ptr());
     }
+  });
+  // The exit codes by kind, for the exceptions defined in Python (StallError,
+  // SweepError): {python_name: exit_code}.
+  m.def("exit_codes", [] {
+    py::dict d;
+    for (const taebp::ErrorKindInfo& k : taebp::ErrorKinds()) d[k.python_name] = k.exit_code;
+    return d;
   });
 
   m.def("version", [] { return taebp::TaebpVersion(); });
@@ -168,7 +197,7 @@ PYBIND11_MODULE(_taebp, m) {
                       std::optional<double> assumed_trust, double s_max,
                       const std::string& likelihood, double steepness, double midpoint) {
     const taebp::persuasion::PredictedOutcome o =
-        taebp::Predict(taebp::persuasion::ParsePolicy(policy),
+        taebp::Predict(GamePolicyArgument(policy),
                        Request(prior, penalty, trust, assumed_trust, s_max, likelihood,
                                steepness, midpoint));
     py::dict out;
@@ -186,6 +215,7 @@ PYBIND11_MODULE(_taebp, m) {
   });
 
   m.def("metrics_json", [] { return taebp::MetricsJson(); });
+  m.def("policies_json", [] { return taebp::PoliciesJson(); });
 
   // Notebook-facing tables (taebp.theory's defaults, the policy list):
   // read here, never retyped in Python.

@@ -59,7 +59,7 @@ __all__ = [
     "theory", "design", "predict", "solve", "run", "sweep", "load_run", "load_sweep",
     "Table", "RunResult", "SweepResult", "to_pandas", "encounter_columns", "metrics", "metric_sections",
     "ConfigError", "InvalidArgument", "OutputError", "SumoError", "BusyError", "StallError",
-    "SweepError", "stats", "dists", "policies",
+    "SweepError", "Interrupted", "EXIT_CODES", "stats", "dists", "policies", "policy_table",
     "__version__",
 ]
 
@@ -71,8 +71,12 @@ InvalidArgument = _taebp.InvalidArgument  # a parameter out of range (ValueError
 SumoError = _taebp.SumoError              # SUMO failed (RuntimeError)
 BusyError = _taebp.SimulationBusy         # a second simulation in this process (RuntimeError)
 OutputError = _taebp.OutputError          # an out= folder not usable, a sweep's, in use (OSError)
-for _e in (ConfigError, InvalidArgument, OutputError, SumoError, BusyError):
+Interrupted = _taebp.Interrupted          # Ctrl-C / SIGTERM during a run (KeyboardInterrupt)
+for _e in (ConfigError, InvalidArgument, OutputError, SumoError, BusyError, Interrupted):
     _e.__module__ = __name__
+# Every exception's `exit_code`: the code `taebp` exits with for the same error
+# (report/exit_codes.h, the README's "Exit codes").
+EXIT_CODES = dict(_taebp.exit_codes())
 
 
 class StallError(RuntimeError):
@@ -81,6 +85,8 @@ class StallError(RuntimeError):
     The experiment stopped after the stalled policy; ``result`` is the
     RunResult of the policies that ran, that one included (written to ``out``
     when given), its stall in ``summary["policies"][policy]["stalls"]``."""
+
+    exit_code = EXIT_CODES["StallError"]
 
     def __init__(self, message, result):
         super().__init__(message)
@@ -92,6 +98,8 @@ class SweepError(RuntimeError):
 
     ``result`` is the SweepResult of the tasks that did finish, ``failed`` a
     list of (point, replicate, error) as recorded in the sweep's journal."""
+
+    exit_code = EXIT_CODES["Error"]  # as `taebp sweep` with a failed task
 
     def __init__(self, message, result, failed):
         super().__init__(message)
@@ -233,9 +241,8 @@ def predict(policy, prior_go=_DEFAULTS["prior_go"],
             collision_penalty=_DEFAULTS["collision_penalty"], trust=_DEFAULTS["trust"],
             assumed_trust=None, s_max=_DEFAULTS["s_max"], likelihood=_DEFAULTS["likelihood"],
             steepness=_DEFAULTS["steepness"], midpoint=_DEFAULTS["midpoint"], **old):
-    """Predicted rates per AV-HV encounter of ``policy`` (no_ebp, no_trust,
-    ta_ebp, full_reveal, population_mean, ta_ebp_learned: the game's
-    policies; sumo_native plays none) for an HV of trust ``trust`` when the
+    """Predicted rates per AV-HV encounter of ``policy`` ({game_policies}:
+    the game's policies; {no_game} plays none) for an HV of trust ``trust`` when the
     AV designs for ``assumed_trust`` (default ``trust``; no_trust designs
     for 1).
 
@@ -362,6 +369,30 @@ def metrics():
     return json.loads(_taebp.metrics_json())["metrics"]
 
 
+def policy_table():
+    """The policies, declared once in C++ (config/policies.h; ``taebp
+    policies``): a list of dicts with name, label (as tables and plots print
+    it), plays_game (False: SUMO's own logic), needs_avs, beyond_paper,
+    by_default (listed when a config gives no ``policies``), ignores (the
+    config keys, or sections, that cannot change the policy's run) and
+    summary. The names are those a config's ``policies`` and results use:
+    {all_policies}."""
+    return json.loads(_taebp.policies_json())
+
+
+def _policy_docstrings():
+    """Fills the policy lists of the docstrings from the table."""
+    rows = policy_table()
+    names = {
+        "{all_policies}": ", ".join(r["name"] for r in rows),
+        "{game_policies}": ", ".join(r["name"] for r in rows if r["plays_game"]),
+        "{no_game}": ", ".join(r["name"] for r in rows if not r["plays_game"]),
+    }
+    for f in (predict, policy_table):
+        for key, text in names.items():
+            f.__doc__ = f.__doc__.replace(key, text)
+
+
 def metric_sections():
     """The structured parts of summary.json that are not metrics (scheme,
     hv_trust, stalls, junctions, ...): dicts with name, level (run, junction),
@@ -423,9 +454,10 @@ def run(config, overrides=(), out=None, progress=False):
     ["scenario.duration=600", "policies=[ta_ebp]"]. With ``out`` the result files are written there (as
     ``--out``; atomically); without, nothing is written. ``progress`` prints
     each policy's wall time on stderr. The GIL is released while SUMO runs.
-    Raises ConfigError, InvalidArgument, SumoError or BusyError; StallError
-    (with the result so far, written to ``out``) when a run stalled under
-    scenario.stall_action: error."""
+    Raises ConfigError, InvalidArgument, OutputError, SumoError or BusyError;
+    StallError (with the result so far, written to ``out``) when a run stalled
+    under scenario.stall_action: error; Interrupted on Ctrl-C. Each carries
+    ``exit_code``, the code ``taebp run`` exits with for the same error."""
     overrides = _override_list(overrides)
     out = None if out is None else os.fspath(out)
     with _ConfigFile(config) as (path, _name):
@@ -499,3 +531,4 @@ def policies():
 # The policy lists of the docstrings, from the one list.
 run.__doc__ = run.__doc__.replace("{policies}", ", ".join(policies()))
 set_metric_types(metrics())
+_policy_docstrings()

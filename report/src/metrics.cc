@@ -1,5 +1,7 @@
 #include "taebp/report/metrics.h"
 
+#include "taebp/config/policies.h"
+
 #include "metric_facts.h"
 
 #include <nlohmann/json.hpp>
@@ -81,11 +83,18 @@ MetricFacts JunctionFacts(const PolicyRun& r, const JunctionRun& j) {
   return f;
 }
 
+bool PlaysGame(const std::string& policy) { return policy != "sumo_native"; }
+
+bool MetricUndefined(const Metric& m, const std::string& policy, double per) {
+  if (m.pool == Pool::kPrediction) return !PlaysGame(policy);
+  return m.per != nullptr && per == 0;
+}
+
 bool InScope(MetricScope s, const PolicyRun& r) {
   switch (s) {
     case MetricScope::kAll: return true;
     case MetricScope::kNetwork: return r.scenario_kind == "network";
-    case MetricScope::kBeyond: return r.beyond.on && r.policy != "sumo_native";
+    case MetricScope::kBeyond: return r.beyond.on && PlaysGame(r.policy);
     case MetricScope::kSsm: return r.ssm.on;
   }
   return false;
@@ -627,6 +636,7 @@ std::string MetricsMarkdown() {
     if (m.per && (m.pool == Pool::kRate || m.pool == Pool::kWeighted ||
                   (m.pool == Pool::kMean)))
       meaning += std::string("; empty where `") + m.per + "` is 0";
+    if (m.pool == Pool::kPrediction) meaning += "; empty for sumo_native (it plays no game)";
     out << "| " << name << " | " << m.unit << " | " << where << " | " << Pooled(m) << " | "
         << meaning << " |\n";
   }

@@ -1,5 +1,7 @@
 #include "taebp/report/report.h"
 
+#include "taebp/config/policies.h"
+
 #include "metric_facts.h"
 #include "taebp/report/metrics.h"
 
@@ -12,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 
@@ -29,15 +32,6 @@ namespace taebp {
 namespace {
 
 using json = nlohmann::ordered_json;
-
-std::string PolicyLabel(const std::string& p) {
-  if (p == "no_ebp") return "No EBP";
-  if (p == "no_trust") return "No Trust";
-  if (p == "ta_ebp") return "TA-EBP";
-  if (p == "full_reveal") return "Full reveal";
-  return p;
-}
-
 
 // One metric's value as summary.json writes it (metrics.h): null where undefined.
 json MetricJson(const Metric& m, double v) {
@@ -59,18 +53,22 @@ std::string JsonCell(const json& v) {
   return CsvCell(v.get<std::string>());
 }
 
+constexpr double kNoPer = std::numeric_limits<double>::quiet_NaN();
+
 // Every metric of `level` in scope for the run, in table order, with a rate's
 // 95 % interval as NAME_lo / NAME_hi.
 void PutMetrics(const MetricFacts& f, MetricLevel level, json* out) {
   for (const Metric& m : RunMetrics()) {
     if (!(m.levels & level) || !InScope(m.scope, *f.run)) continue;
-    (*out)[m.name] = MetricJson(m, m.value(f));
+    const double per = m.per ? FindMetric(m.per)->value(f) : kNoPer;
+    // Undefined (no encounter, no game, ...): null, with its interval.
+    const bool undefined = MetricUndefined(m, f.run->policy, per);
+    (*out)[m.name] = undefined ? json(nullptr) : MetricJson(m, m.value(f));
     if (m.pool == Pool::kRate) {
       const long k = std::lround(FindMetric(m.count)->value(f));
-      const long n = std::lround(FindMetric(m.per)->value(f));
-      const Interval ci = Wilson(k, n);
-      (*out)[std::string(m.name) + "_lo"] = ci.low;
-      (*out)[std::string(m.name) + "_hi"] = ci.high;
+      const Interval ci = Wilson(k, std::lround(per));
+      (*out)[std::string(m.name) + "_lo"] = undefined ? json(nullptr) : json(ci.low);
+      (*out)[std::string(m.name) + "_hi"] = undefined ? json(nullptr) : json(ci.high);
     }
   }
 }
@@ -508,13 +506,13 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
   for (std::size_t i = 0; i < runs.size(); ++i)
     out << std::setw(w)
         << cell(stats[i].collisions, stats[i].n,
-                runs[i].policy == "sumo_native" ? -1.0 : runs[i].theory.collision_rate);
+                !PlaysGame(runs[i].policy) ? -1.0 : runs[i].theory.collision_rate);
   // The headline's count: every collision a move of the game took part in
   // (metric collisions_total), a third vehicle hit by one included.
   out << "\n" << std::setw(w0) << "Collisions, all";
   for (std::size_t i = 0; i < runs.size(); ++i) {
     char buf[96];
-    if (runs[i].policy == "sumo_native")
+    if (!PlaysGame(runs[i].policy))
       std::snprintf(buf, sizeof buf, "- (SUMO's own logic: %ld)", runs[i].other_collisions);
     else
       std::snprintf(buf, sizeof buf, "%ld (AV-HV %ld, third vehicles %ld)",
@@ -525,7 +523,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
   out << "\n" << std::setw(w0) << "DC Rate";
   for (std::size_t i = 0; i < runs.size(); ++i)
     out << std::setw(w)
-        << cell(stats[i].dc, stats[i].n, runs[i].policy == "sumo_native" ? -1.0 : runs[i].theory.dc_rate);
+        << cell(stats[i].dc, stats[i].n, !PlaysGame(runs[i].policy) ? -1.0 : runs[i].theory.dc_rate);
   out << "\n" << std::setw(w0) << "AV-HV encounters";
   for (std::size_t i = 0; i < runs.size(); ++i) out << std::setw(w) << stats[i].n;
   const bool network = !runs.empty() && runs.front().scenario_kind == "network";
@@ -543,7 +541,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
     char buf[64];
     if (r.held == 0)
       std::snprintf(buf, sizeof buf, "%s",
-                    r.policy == "sumo_native" ? "n/a (SUMO's own logic)" : "no vehicle held");
+                    !PlaysGame(r.policy) ? "n/a (SUMO's own logic)" : "no vehicle held");
     else
       std::snprintf(buf, sizeof buf, "%.1f / %.1f", r.wait_sum / r.held, r.wait_max);
     out << std::setw(w) << buf;
@@ -593,7 +591,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       out << "\n";
     };
     row("Last hour DC rate", [](const PolicyRun& r) {
-      if (r.policy == "sumo_native") return std::string("-");
+      if (!PlaysGame(r.policy)) return std::string("-");
       const LastHourWindow win = LastHour(r);
       const Interval ci = Wilson(win.dc, win.n);
       char buf[96];
@@ -602,7 +600,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       return std::string(buf);
     });
     row("Regret / encounter", [](const PolicyRun& r) {
-      if (r.policy == "sumo_native" || r.encounters.empty()) return std::string("-");
+      if (!PlaysGame(r.policy) || r.encounters.empty()) return std::string("-");
       double regret = 0;
       for (const EncounterRecord& e : r.encounters) regret += e.beyond.regret;
       char buf[64];
@@ -610,7 +608,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       return std::string(buf);
     });
     row("Mean trust start/end", [](const PolicyRun& r) {
-      if (r.policy == "sumo_native") return std::string("-");
+      if (!PlaysGame(r.policy)) return std::string("-");
       char buf[96];
       if (r.beyond.long_run)
         std::snprintf(buf, sizeof buf, "%.3f / %.3f (long run %.3f)", r.beyond.initial_mean_trust,

@@ -2,6 +2,8 @@
 
 #include "taebp/rundir/synced_file.h"
 
+#include "taebp/config/policies.h"
+
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -164,11 +166,7 @@ FolderLock::~FolderLock() {
 }
 
 bool IsPolicyFolder(const std::string& name) {
-  static const char* const kPolicies[] = {"sumo_native", "no_ebp", "no_trust", "ta_ebp",
-                                          "full_reveal"};
-  for (const char* p : kPolicies)
-    if (name == p) return true;
-  return false;
+  return FindPolicy(name) != nullptr;  // config/policies.h: every policy
 }
 
 bool IsRunFile(const std::string& name) {

@@ -108,7 +108,7 @@ ExperimentResult RunExperiment(const std::string& config_path,
         w = name + ": no vehicle departed after the warm-up: the demand is empty (check "
                    "scenario.routes or scenario.demand, scenario.routes_scale, the departure "
                    "times against scenario.warmup and scenario.duration)";
-      else if (name != "sumo_native" && run.held == 0)
+      else if (PlaysGame(name) && run.held == 0)
         w = name + ": the controller held no vehicle: no AV and HV met at a controlled "
                    "junction, so this run is SUMO's own traffic (too few AVs or HVs, or too "
                    "little traffic at the junctions)";
@@ -147,6 +147,9 @@ ExperimentResult RunExperiment(const std::string& config_path,
       break;
     }
   }
+  // Its inputs by absolute paths: config.yaml (and summary.json's
+  // provenance.config) rerun and find the network from any directory.
+  result.config = WithAbsoluteInputs(result.config, config_dir);
   Provenance& prov = result.provenance;
   prov.config_path = config_path;
   prov.config_json = ToJson(config);

@@ -74,7 +74,7 @@ ordered_json TheoryJson(const TheoryRequest& o) {
                         per::Policy::kFullReveal}) {
     const per::PredictedOutcome out = per::PredictOutcome(p, params, o.trust, *model, theta_hat);
     if (p == per::Policy::kTaEbp) predicted = out;
-    policies[per::ToString(p)] = {{"dc_rate", out.dc_rate},
+    policies[PolicyName(p)] = {{"dc_rate", out.dc_rate},
                                   {"collision_rate", out.collision_rate},
                                   {"nudge_rate", out.nudge_rate}};
   }
@@ -121,7 +121,7 @@ ordered_json TheoryJson(const TheoryRequest& o) {
                           per::Policy::kFullReveal}) {
       const per::PredictedOutcome out = per::PredictOutcomeUnderNoise(
           per::CommitScheme(p, params, theta_hat, *model), params, o.trust, *model, noise);
-      under[per::ToString(p)] = {{"dc_rate", out.dc_rate},
+      under[PolicyName(p)] = {{"dc_rate", out.dc_rate},
                                  {"collision_rate", out.collision_rate},
                                  {"nudge_rate", out.nudge_rate}};
     }

@@ -45,16 +45,19 @@ std::set<std::string> Reachable(const net::NetFile& net, const std::string& from
 
 }  // namespace
 
-// Entries leave a dead end, exits end at one; both must be open to cars
-// (an OpenStreetMap import has footways and tracks at its fringe too).
+// Entries leave a fringe junction (NetFile::FringeJunctions: a dead end by
+// topology), exits end at one; both must be open to cars (an OpenStreetMap
+// import has footways and tracks at its fringe too).
 FringeEdges FindFringe(const net::NetFile& net) {
   FringeEdges f;
+  const std::vector<std::string> fringe = net.FringeJunctions();
+  auto on_fringe = [&](const std::string& j) {
+    return std::binary_search(fringe.begin(), fringe.end(), j);
+  };
   for (const auto& [id, e] : net.edges()) {
     if (!net.IsCarEdge(e)) continue;
-    const net::Junction* from = net.FindJunction(e.from);
-    const net::Junction* to = net.FindJunction(e.to);
-    if (from && from->type == "dead_end") f.entries.push_back(id);
-    if (to && to->type == "dead_end") f.exits.push_back(id);
+    if (on_fringe(e.from)) f.entries.push_back(id);
+    if (on_fringe(e.to)) f.exits.push_back(id);
   }
   return f;
 }
@@ -159,7 +162,7 @@ std::vector<Trip> DemandTrips(const net::NetFile& net, const DemandSpec& spec) {
   if (f.entries.empty() || f.exits.empty())
     throw std::invalid_argument(
         "the network " + net.path() +
-        (fringe ? " has no fringe (no edge from or to a dead-end junction) for generated demand"
+        (fringe ? " has no fringe (no car edge from or to a junction with one neighbour) for generated demand"
                 : " has no minor road (an approach of a controlled junction with a car link that "
                   "yields or stops and none going straight on with the right of way) for generated "
                   "demand (origins: minor_roads)") +

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -202,6 +203,30 @@ bool NetFile::IsCarEdge(const Edge& e) const {
     if (l && l->passenger) return true;
   }
   return false;
+}
+std::map<std::string, std::set<std::string>> NetFile::CarNeighbours() const {
+  std::map<std::string, std::set<std::string>> neighbours;
+  for (const auto& [id, e] : edges_) {
+    if (!IsCarEdge(e) || e.from == e.to) continue;
+    neighbours[e.from].insert(e.to);
+    neighbours[e.to].insert(e.from);
+  }
+  return neighbours;
+}
+
+std::vector<std::string> NetFile::FringeJunctions() const {
+  const std::map<std::string, std::set<std::string>> neighbours = CarNeighbours();
+  std::vector<std::string> out;
+  for (const auto& [id, j] : junctions_) {
+    const auto it = neighbours.find(id);
+    bool one = it != neighbours.end() && it->second.size() == 1;
+    // A loop's far end (the figure-8's E and W) has one neighbour too, but
+    // traffic goes on through it; at a dead end it can only turn around.
+    for (int l : j.links)
+      if (l >= 0 && links_[static_cast<std::size_t>(l)].dir != 't') one = false;
+    if (one || j.type == "dead_end") out.push_back(id);
+  }
+  return out;
 }
 const Lane* NetFile::FindLane(const std::string& id) const {
   const auto it = lanes_.find(id);

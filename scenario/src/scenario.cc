@@ -373,12 +373,7 @@ void SelectJunctions(const ScenarioConfig& sc, const net::NetFile& net, Scenario
   // Arms (scenario.junctions.min_arms): the distinct junctions a junction's
   // normal car edges lead to or come from.
   std::map<std::string, std::set<std::string>> arms;
-  if (sel.min_arms > 0)
-    for (const auto& [id, e] : net.edges()) {
-      if (!net.IsCarEdge(e) || e.from == e.to) continue;
-      arms[e.to].insert(e.from);
-      arms[e.from].insert(e.to);
-    }
+  if (sel.min_arms > 0) arms = net.CarNeighbours();
   auto enough_arms = [&](const std::string& id) {
     if (sel.min_arms <= 0) return true;
     const auto it = arms.find(id);
@@ -517,7 +512,7 @@ void CheckAvsExist(const ExperimentConfig& config, const Scenario& s) {
   if (sc.av_share) return;  // AVs drawn per vehicle (0 is a choice)
   std::vector<std::string> needing;
   for (const std::string& p : config.policies)
-    if (p != "sumo_native") needing.push_back(p);
+    if (const PolicyInfo* info = FindPolicy(p); info && info->needs_avs) needing.push_back(p);
   if (needing.empty()) return;
   std::set<std::string> types;
   if (!VehicleTypesOf(s.route_files, &types) || !VehicleTypesOf(s.additional_files, &types))
@@ -698,6 +693,19 @@ double RequiredLoopLength(const ScenarioConfig& sc) {
   // vehicles (this gives 80, the paper's track), and loops below ~45 m
   // gridlock even with 8 vehicles, hence the 50 m floor.
   return std::max(50.0, std::ceil(1.25 * n * (sc.vehicle_length + sc.min_gap + 0.5) / 2.0 + 5.0));
+}
+
+ExperimentConfig WithAbsoluteInputs(ExperimentConfig config, const std::string& config_dir) {
+  auto absolute = [&](std::string* path) {
+    if (path->empty() || ExpandSumoHome(*path) != *path) return;  // $SUMO_HOME/...: kept
+    *path = fs::absolute(Resolve(*path, config_dir)).lexically_normal().string();
+  };
+  ScenarioConfig& sc = config.scenario;
+  absolute(&sc.network);
+  absolute(&sc.sumocfg);
+  for (std::string& r : sc.routes) absolute(&r);
+  for (std::string& a : sc.additional) absolute(&a);
+  return config;
 }
 
 Scenario BuildScenario(const ExperimentConfig& config, const std::string& config_dir) {

@@ -4,6 +4,7 @@
 // optionally spread over MPI ranks or Slurm-array shards. Finished tasks are
 // appended to DIR/journal.jsonl (one write(2) + fsync each), which makes the
 // sweep resumable; the tables are rebuilt from the journal at the end.
+#include "taebp/report/exit_codes.h"
 #include "taebp/sweep/engine.h"
 
 #include "taebp/sweep/plan.h"
@@ -65,9 +66,9 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-constexpr int kExitFailed = 1;
-// Interrupted: 128 + the signal (130 Ctrl-C, 143 SIGTERM, 129 SIGHUP), as `run`.
-int ExitInterrupted() { return 128 + (PendingInterrupt() ? PendingInterrupt() : SIGINT); }
+// report/exit_codes.h: kExitFailed (a failed or missing task); interrupted:
+// 128 + the signal (130 Ctrl-C, 143 SIGTERM, 129 SIGHUP), as `run`.
+int ExitInterrupted() { return kExitSignalBase + (PendingInterrupt() ? PendingInterrupt() : SIGINT); }
 
 int g_journal_fd = -1;  // closed in forked workers
 int g_lock_fd = -1;     // the output folder's lock: closed in forked workers
@@ -438,7 +439,6 @@ pid_t Launch(const Plan& plan, const Task& task, const fs::path& dir, const RunF
 // recorded and runs again next time.
 Json Collect(const Plan& plan, const Running& r, int wait_status, int rank) {
   const double wall = std::chrono::duration<double>(Clock::now() - r.start).count();
-  const Point& point = plan.points[static_cast<std::size_t>(r.task.point)];
   std::string status = "failed", error, sumo_version;
   Json metrics = Json::object();
   if (WIFSIGNALED(wait_status)) {
@@ -450,7 +450,7 @@ Json Collect(const Plan& plan, const Running& r, int wait_status, int rank) {
   } else if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0) {
     try {
       const Json s = ParseSummary(ReadText(r.dir / "summary.json"));
-      metrics = MetricsFromSummary(s, point.policies);
+      metrics = MetricsFromSummary(s, r.task.runs);  // the policies it ran
       if (s.contains("provenance")) sumo_version = s["provenance"].value("sumo_version", "");
       status = "ok";
     } catch (const std::exception& e) {
@@ -495,6 +495,10 @@ bool RunTasks(const Plan& plan, const fs::path& out, const std::vector<Task>& ta
       Running r;
       r.task = queue.front();
       queue.pop_front();
+      if (r.task.runs.empty()) {  // every policy reused: nothing to simulate
+        done(JournalEntry(plan, r.task, "ok", "", Json::object()));
+        continue;
+      }
       r.dir = TaskDir(out, r.task);
       r.start = Clock::now();
       r.pid = Launch(plan, r.task, r.dir, run);
@@ -563,7 +567,7 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
   std::vector<std::string> headers;
   for (const Task& t : plan.tasks) {
     const auto it = journal.entries.find(t.index);
-    if (it == journal.entries.end() || !IsOk(it->second)) continue;
+    if (it == journal.entries.end() || !IsOk(it->second) || t.runs.empty()) continue;
     std::ifstream in(TaskDir(out, t) / "encounters.csv", std::ios::binary);
     std::string line;
     if (in && std::getline(in, line)) headers.push_back(line);
@@ -590,7 +594,7 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
   f << ',' << task_header << '\n';
   for (const Task& t : plan.tasks) {
     const auto it = journal.entries.find(t.index);
-    if (it == journal.entries.end() || !IsOk(it->second)) continue;
+    if (it == journal.entries.end() || !IsOk(it->second) || t.runs.empty()) continue;
     const fs::path file = TaskDir(out, t) / "encounters.csv";
     std::ifstream in(file, std::ios::binary);
     std::string line;
@@ -685,7 +689,7 @@ std::vector<Task> Pending(const std::vector<Task>& scope, const Journal& j, cons
     const auto it = j.entries.find(t.index);
     if (it == j.entries.end() || !IsOk(it->second)) {
       pending.push_back(t);
-    } else if (!HasTaskOutputs(TaskDir(out, t))) {
+    } else if (!t.runs.empty() && !HasTaskOutputs(TaskDir(out, t))) {
       pending.push_back(t);
       ++*lost;
     }
@@ -704,7 +708,7 @@ bool HaveMpi() {
 }
 
 int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
-  const Plan plan = ExpandSweep(ReadConfigFile(o.config), o.config, o.overrides);
+  const Plan plan = ExpandSweep(ReadConfigFile(o.config), o.config, o.overrides, o.reuse);
   int shard_index = 0, shard_count = 1;
   ParseShard(o.shard, &shard_index, &shard_count);
   std::vector<Task> scope;  // this shard's tasks
@@ -712,8 +716,8 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
     if (t.index % shard_count == shard_index) scope.push_back(t);
 
   if (o.list) {
-    std::printf("%zu points x %d replicates = %zu tasks%s\n", plan.points.size(), plan.replicates,
-                plan.tasks.size(),
+    std::printf("%zu points x %d replicates = %zu tasks, %zu policy runs (%zu reused)%s\n",
+                plan.points.size(), plan.replicates, plan.tasks.size(), plan.Runs(), plan.Reused(),
                 o.shard.empty() ? "" : (", shard " + o.shard + ": " + std::to_string(scope.size())).c_str());
     for (const Task& t : scope) {
       std::printf("%d point=%d replicate=%d seed=%llu", t.index, t.point, t.replicate,
@@ -721,6 +725,10 @@ int RunSweep(const SweepOptions& o, const RunFunction& run_function) {
       const Point& p = plan.points[static_cast<std::size_t>(t.point)];
       for (std::size_t k = 0; k < plan.columns.size(); ++k)
         std::printf(" %s=%s", plan.columns[k].c_str(), p.values[k].c_str());
+      for (const auto& [policy, from] : t.reused_from) {  // runs it does not make again
+        const Task& f = plan.tasks[static_cast<std::size_t>(from)];
+        std::printf(" %s:reuses=%d-%d", policy.c_str(), f.point, f.replicate);
+      }
       std::printf("\n");
     }
     return 0;
@@ -985,7 +993,8 @@ int RunMerge(const MergeOptions& o) {
   if (replicates != first.value("replicates", 1))
     overrides.push_back("sweep.replicates=" + std::to_string(replicates));
   const std::string origin = first.value("config_path", (fs::path(o.dirs.front()) / "sweep.json").string());
-  Plan plan = ExpandSweep(first["config_text"].get<std::string>(), origin, overrides);
+  Plan plan = ExpandSweep(first["config_text"].get<std::string>(), origin, overrides,
+                          first.value("reuse", true));
   const std::string hash = first["config_hash"].get<std::string>();
   if (plan.hash != hash) {
     std::fprintf(stderr,
@@ -1023,6 +1032,7 @@ int RunMerge(const MergeOptions& o) {
     ThrowIfInterrupted();  // OUT's tables as they were; copied task folders are redone
     const Task& t = plan.tasks[static_cast<std::size_t>(index)];
     const fs::path from = TaskDir(dir, t), to = TaskDir(out, t);
+    if (t.runs.empty()) continue;  // every policy reused: no folder
     if (!HasTaskOutputs(from)) {
       if (IsOk(journal.entries.at(index))) lost.push_back(from.string());
       continue;
@@ -1033,7 +1043,8 @@ int RunMerge(const MergeOptions& o) {
     fs::copy(from, to, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
   }
   for (const auto& [index, e] : journal.entries) {  // already in OUT: check it is there
-    if (source.count(index) || !IsOk(e)) continue;
+    if (source.count(index) || !IsOk(e) || plan.tasks[static_cast<std::size_t>(index)].runs.empty())
+      continue;
     const fs::path here = TaskDir(out, plan.tasks[static_cast<std::size_t>(index)]);
     if (!HasTaskOutputs(here)) lost.push_back(here.string());
   }

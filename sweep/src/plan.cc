@@ -1,5 +1,6 @@
 #include "taebp/sweep/plan.h"
 
+#include "taebp/config/policies.h"
 #include "taebp/report/metrics.h"
 #include "taebp/report/report.h"
 
@@ -64,20 +65,34 @@ void ForEachRow(const Plan& plan, const Journal& journal, F&& emit) {
   for (const Task& task : plan.tasks) {
     const auto it = journal.entries.find(task.index);
     if (it == journal.entries.end()) continue;
-    const Json& e = it->second;
     const Point& point = plan.points[static_cast<std::size_t>(task.point)];
-    const bool ok = IsOk(e);
     for (const std::string& policy : point.policies) {
+      // A reused run: the earlier task's entry, named in reused_from.
+      const auto reused = task.reused_from.find(policy);
+      const Json* entry = &it->second;
+      std::string reused_from;
+      if (reused != task.reused_from.end()) {
+        const auto source = journal.entries.find(reused->second);
+        if (source == journal.entries.end()) continue;  // not run yet: missing
+        entry = &source->second;
+        const Task& from = plan.tasks[static_cast<std::size_t>(reused->second)];
+        reused_from = std::to_string(from.point) + "-" + std::to_string(from.replicate);
+      }
+      const Json& e = *entry;
+      const bool ok = IsOk(e);
       Json metrics = Json::object();
       const Json* m = nullptr;
       if (ok && e.contains("policies") && e["policies"].contains(policy))
         m = &e["policies"][policy];
       for (const Metric& metric : RunMetrics()) {
         if (!(metric.levels & kPolicyLevel)) continue;
-        // Undefined where what it is per (encounters, held, ...) is 0: empty.
-        const bool undefined = m && metric.per && metric.pool != Pool::kPrediction &&
-                               m->contains(metric.per) && (*m)[metric.per].is_number() &&
-                               (*m)[metric.per].get<double>() == 0;
+        // Undefined where what it is per (encounters, held, ...) is 0, or a
+        // prediction of a policy without a game: empty (metrics.h).
+        const bool undefined =
+            m && MetricUndefined(metric, policy,
+                                 metric.per && m->contains(metric.per)
+                                     ? Number((*m)[metric.per])
+                                     : std::nan(""));
         for (const std::string& col : MetricColumns(metric, false)) {
           if (!m || !m->contains(col) || undefined)
             metrics[col] = nullptr;
@@ -88,7 +103,7 @@ void ForEachRow(const Plan& plan, const Journal& journal, F&& emit) {
       const std::string status = ok && !m ? "failed" : e.value("status", "failed");
       const std::string error = ok && !m ? "policy " + policy + " missing from summary.json"
                                          : e.value("error", "");
-      emit(task, point, policy, status, error, metrics);
+      emit(task, point, policy, status, error, metrics, reused_from);
     }
   }
 }
@@ -201,12 +216,73 @@ std::vector<std::string> Plan::PointOverrides(const Point& point) const {
 std::vector<std::string> Plan::TaskOverrides(const Task& task) const {
   std::vector<std::string> out = PointOverrides(points[static_cast<std::size_t>(task.point)]);
   out.push_back("scenario.seed=" + std::to_string(task.seed));
+  if (!task.reused_from.empty() && !task.runs.empty()) {
+    std::string list;
+    for (const std::string& p : task.runs) list += (list.empty() ? "" : ", ") + p;
+    out.push_back("policies=[" + list + "]");
+  }
   return out;
 }
 
+std::size_t Plan::Runs() const {
+  std::size_t n = 0;
+  for (const Task& t : tasks) n += t.runs.size();
+  return n;
+}
+
+std::size_t Plan::Reused() const {
+  std::size_t n = 0;
+  for (const Task& t : tasks) n += t.reused_from.size();
+  return n;
+}
+
+namespace {
+
+// Removes the dotted `key` ("scenario.major_road") from `j`, if there.
+void EraseKey(Json* j, const std::string& key) {
+  Json* at = j;
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t dot = key.find('.', from);
+    const std::string part = key.substr(from, dot == std::string::npos ? dot : dot - from);
+    if (!at->is_object() || !at->contains(part)) return;
+    if (dot == std::string::npos) {
+      at->erase(part);
+      return;
+    }
+    at = &(*at)[part];
+    from = dot + 1;
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// RunIdentity of `policy` from the config already as JSON (`config_json`).
+std::string IdentityOf(const Json& config_json, bool beyond, const std::string& policy) {
+  Json j = config_json;
+  j.erase("policies");
+  j.erase("sweep");
+  if (const PolicyInfo* info = FindPolicy(policy))
+    for (const std::string& key : info->ignores) EraseKey(&j, key);
+  Json id;
+  id["policy"] = policy;
+  id["beyond"] = beyond;
+  id["config"] = j;
+  return id.dump();
+}
+
+}  // namespace
+
+std::string RunIdentity(const ExperimentConfig& config, const std::string& policy) {
+  return IdentityOf(Json::parse(ToJson(config)), config.BeyondPaper(), policy);
+}
+
 Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
-                 const std::vector<std::string>& overrides) {
+                 const std::vector<std::string>& overrides, bool reuse) {
   Plan plan;
+  plan.reuse = reuse;
   plan.config_text = config_text;
   plan.config_path = config_path;
   plan.overrides = overrides;
@@ -289,6 +365,8 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
   const ExperimentTemplate config_template(config_text, config_path, overrides);
   std::size_t invalid = 0;
   std::string first_error;
+  // Each run's identity and seed -> the first task that runs it.
+  std::map<std::string, int> first_run;
   for (std::size_t idx = 0; idx < total; ++idx) {
     Point point;
     point.index = static_cast<int>(idx);
@@ -303,6 +381,8 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
         point.values.push_back(plan.axes[a].values[pick[a]][k]);
     // The point's own policies and seed (a grid may sweep either).
     point.policies = plan.base.policies;
+    std::map<std::string, std::string> identities;  // policy -> RunIdentity at this point
+    bool beyond = false, beyond_by_config = false;
     std::uint64_t seed = plan.base.scenario.seed;
     try {
       // Without its sweep: section (the same for every point, checked with
@@ -310,9 +390,14 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
       std::vector<std::string> point_overrides;
       for (std::size_t k = 0; k < plan.columns.size(); ++k)
         point_overrides.push_back(plan.columns[k] + "=" + point.values[k]);
-      const ExperimentConfig c = config_template.Load(point_overrides);
+      ExperimentConfig c = config_template.Load(point_overrides);
       point.policies = c.policies;
       seed = c.scenario.seed;
+      beyond = c.BeyondPaper();
+      const Json config_json = Json::parse(ToJson(c));  // once per point
+      for (const std::string& p : c.policies) identities[p] = IdentityOf(config_json, beyond, p);
+      c.policies.clear();  // what else makes a run beyond the paper
+      beyond_by_config = c.BeyondPaper();
     } catch (const ConfigError& e) {
       if (invalid++ == 0) {
         std::string values;
@@ -328,6 +413,41 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
       t.replicate = r;
       t.index = point.index * plan.replicates + r;
       t.seed = seed + static_cast<std::uint64_t>(r);
+      bool beyond_left = beyond_by_config;  // the runs' subset still beyond the paper?
+      // A run: its identity and its seed.
+      auto run_key = [&t](const std::string& identity) {
+        return identity + "\nseed " + std::to_string(t.seed);
+      };
+      for (const std::string& p : point.policies) {
+        const auto id = identities.find(p);
+        const auto earlier = id == identities.end() || !reuse
+                                 ? first_run.end()
+                                 : first_run.find(run_key(id->second));
+        if (earlier != first_run.end()) {
+          t.reused_from[p] = earlier->second;
+        } else {
+          t.runs.push_back(p);
+          const PolicyInfo* info = FindPolicy(p);
+          beyond_left = beyond_left || (info && info->beyond_paper);
+        }
+      }
+      // Running a subset must not change the runs' columns (BeyondPaper):
+      // then the beyond-the-paper policies run again.
+      if (beyond && !beyond_left && !t.runs.empty()) {
+        for (auto it = t.reused_from.begin(); it != t.reused_from.end();) {
+          const PolicyInfo* info = FindPolicy(it->first);
+          if (info && info->beyond_paper) it = t.reused_from.erase(it);
+          else ++it;
+        }
+        t.runs.clear();
+        for (const std::string& p : point.policies)
+          if (!t.reused_from.count(p)) t.runs.push_back(p);
+      }
+      for (const std::string& p : t.runs) {
+        const auto id = identities.find(p);
+        if (id != identities.end())
+          first_run.emplace(run_key(id->second), t.index);
+      }
       plan.tasks.push_back(t);
     }
     plan.points.push_back(std::move(point));
@@ -477,15 +597,16 @@ std::string ResultsCsv(const Plan& plan, const Journal& journal) {
   std::ostringstream out;
   out << "point,replicate,seed";
   for (const auto& c : plan.columns) out << ',' << CsvCell(c);
-  out << ",policy,status,error";
+  out << ",policy,status,error,reused_from";
   for (const auto& c : MetricColumns()) out << ',' << c;
   out << '\n';
   ForEachRow(plan, journal, [&](const Task& t, const Point& p, const std::string& policy,
                                 const std::string& status, const std::string& error,
-                                const Json& metrics) {
+                                const Json& metrics, const std::string& reused_from) {
     out << t.point << ',' << t.replicate << ',' << t.seed;
     for (const auto& v : p.values) out << ',' << CsvCell(v);
-    out << ',' << CsvCell(policy) << ',' << status << ',' << CsvCell(error);
+    out << ',' << CsvCell(policy) << ',' << status << ',' << CsvCell(error) << ','
+        << reused_from;
     for (const auto& c : MetricColumns()) out << ',' << Cell(metrics[c]);
     out << '\n';
   });
@@ -496,7 +617,7 @@ std::string ResultsJsonl(const Plan& plan, const Journal& journal) {
   std::string out;
   ForEachRow(plan, journal, [&](const Task& t, const Point& p, const std::string& policy,
                                 const std::string& status, const std::string& error,
-                                const Json& metrics) {
+                                const Json& metrics, const std::string& reused_from) {
     Json row;
     row["point"] = t.point;
     row["replicate"] = t.replicate;
@@ -506,6 +627,7 @@ std::string ResultsJsonl(const Plan& plan, const Journal& journal) {
     row["policy"] = policy;
     row["status"] = status;
     row["error"] = error;
+    row["reused_from"] = reused_from;
     for (const auto& c : MetricColumns()) row[c] = metrics[c];
     out += Dump(row) + "\n";
   });
@@ -521,7 +643,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
   std::map<int, std::map<std::string, Acc>> acc;
   ForEachRow(plan, journal, [&](const Task& t, const Point&, const std::string& policy,
                                 const std::string& status, const std::string&,
-                                const Json& m) {
+                                const Json& m, const std::string&) {
     Acc& a = acc[t.point][policy];
     if (status != "ok") {
       ++a.failed;
@@ -653,6 +775,10 @@ Json SweepHeader(const Plan& plan, const std::string& shard, const std::string& 
   h["replicates"] = plan.replicates;
   h["tasks"] = plan.tasks.size();
   h["policies"] = plan.base.policies;
+  // Policy runs simulated and reused (Task::runs, Task::reused_from).
+  h["policy_runs"] = plan.Runs();
+  h["policy_runs_reused"] = plan.Reused();
+  h["reuse"] = plan.reuse;
   h["shard"] = shard.empty() ? Json(nullptr) : Json(shard);
   h["git_revision"] = BuildGitRevision();
   h["taebp_version"] = TaebpVersion();

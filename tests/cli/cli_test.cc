@@ -1,6 +1,7 @@
 // The taebp command-line program, run as a user would: theory and solve
 // against the library, run's outputs and their determinism, bad input that
 // leaves no half-written results, and --help.
+#include "taebp/config/policies.h"
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/likelihood.h"
 #include "taebp/persuasion/lp.h"
@@ -97,7 +98,7 @@ void ExpectTheoryMatchesLibrary(const TheoryPoint& p) {
   EXPECT_NEAR(j.at("assumed_trust").get<double>(), theta_hat, 1e-12);
   for (per::Policy policy : {per::Policy::kNoEbp, per::Policy::kNoTrust, per::Policy::kTaEbp,
                              per::Policy::kFullReveal}) {
-    const std::string name = per::ToString(policy);
+    const std::string name = taebp::PolicyName(policy);
     const per::PredictedOutcome po = per::PredictOutcome(policy, params, p.trust, lik, theta_hat);
     ASSERT_TRUE(j.at("policies").contains(name)) << name;
     EXPECT_NEAR(j["policies"][name].at("dc_rate").get<double>(), po.dc_rate, 1e-12) << name;
@@ -453,7 +454,7 @@ TEST(CliRun, WritesDocumentedOutputsDeterministically) {
                      static_cast<double>(collisions[name]) / encounters);
     EXPECT_DOUBLE_EQ(p.at("dc_rate").get<double>(), static_cast<double>(dc[name]) / encounters);
     const per::PredictedOutcome o =
-        per::PredictOutcome(per::ParsePolicy(name), params, 0.6, lik);
+        per::PredictOutcome(taebp::ParseGamePolicy(name), params, 0.6, lik);
     EXPECT_NEAR(p.at("theory_collision_rate").get<double>(), o.collision_rate, 1e-12);
     EXPECT_NEAR(p.at("theory_dc_rate").get<double>(), o.dc_rate, 1e-12);
     EXPECT_EQ(p.at("teleports").get<long>(), 0);

@@ -107,7 +107,7 @@ TEST(CliStall, GridlockUnderStallActionErrorWritesWhatRanAndExitsFour) {
   EXPECT_THAT(r.out, HasSubstr("Stalled junctions")) << r.out;
   EXPECT_THAT(r.out, HasSubstr("(run stopped)")) << r.out;
   EXPECT_THAT(r.out, HasSubstr("stalled: No EBP at")) << r.out;
-  EXPECT_THAT(r.out, HasSubstr("stalled: sumo_native at")) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("stalled: SUMO native at")) << r.out;  // the label (config/policies.h)
   EXPECT_THAT(r.out, HasSubstr(" stalled ")) << r.out;  // flow / delay cells marked
 }
 

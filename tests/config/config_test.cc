@@ -62,7 +62,7 @@ TEST(ConfigLoad, PaperYamlHasTheDocumentedValues) {
   EXPECT_EQ(s.cruise_speed, 4.0);
   EXPECT_EQ(s.min_gap, 2.0);
   // 3.0 m, not the paper's 1.7: a nudge of up to s_max = 2 m from 1.7 m would put
-  // the AV's nose into the crossing path of a 1.8 m wide HV (sumo_net/PROBE.md).
+  // the AV's nose into the crossing path of a 1.8 m wide HV (docs/sumo-facts.md).
   EXPECT_EQ(s.stop_distance, 3.0);
   EXPECT_GE(s.stop_distance, c.model.likelihood.s_max + s.vehicle_width / 2);
   EXPECT_EQ(s.step_length, 0.1);

@@ -146,7 +146,7 @@ TEST(Beyond, DynamicTrustFollowsItsMeanFieldToTheFixedPoint) {
   const ExperimentResult r = RunExperiment(
       kSource + "/configs/dynamic_trust.yaml",
       {"scenario.duration=14400", "scenario.seed=3", "policies=[no_trust, ta_ebp]"});
-  // The fixed points of persuasion/BEYOND.md at the paper's point (w_s = w_f,
+  // The fixed points of docs/beyond/derivations.md at the paper's point (w_s = w_f,
   // rho = 0): No Trust 1/2, TA-EBP tracking trust the root of
   // theta^2 + 0.8 theta - 1.2.
   const std::map<std::string, double> fixed = {{"no_trust", 0.5},

@@ -185,7 +185,7 @@ class FakeJunction : public ::testing::Test {
         "fake.yaml", {});
     scenario_ = BuildScenario(config_, "");
     auto c = std::make_unique<NetworkController>(
-        config_, persuasion::ParsePolicy(policy), scenario_, *scenario_.topology,
+        config_, ParseGamePolicy(policy), scenario_, *scenario_.topology,
         ControllerOptions{}, &world_);
     c->Start();
     return c;

@@ -1,4 +1,4 @@
-// The major-road encounter (scenario.major_road; persuasion/MAJOR_ROAD.md) in
+// The major-road encounter (scenario.major_road; docs/beyond/major-road.md) in
 // SUMO through taebp::RunPolicy, on a hand-written two-way stop: a one-way
 // major road W -> E (priority 2) crossed by a two-way minor road N <-> S
 // (priority 1, stop signs), AVs on the minor road only, HVs on the major road
@@ -110,7 +110,7 @@ std::string MajorRoadYaml(const std::string& net, const std::string& routes, dou
          std::string(kModel) + "policies: [sumo_native]\n";
 }
 
-// c = 0.5: r_eff = 2, p* = 0.5, theta* = 0.375 (MAJOR_ROAD.md, section 5).
+// c = 0.5: r_eff = 2, p* = 0.5, theta* = 0.375 (docs/beyond/major-road.md, section 5).
 const char* const kOn = "scenario.major_road={yield_cost: 0.5}";
 
 per::MajorRoadParams Params() {
@@ -222,7 +222,7 @@ TEST(MajorRoad, SumoCollidesExactlyWherePredictedAndRatesAgreeWithTheTheory) {
     }
     EXPECT_EQ(after_handback, 0);
     const per::PredictedOutcome th =
-        per::PredictMajorRoadOutcome(per::ParsePolicy(policy), Params(), 0.6, model);
+        per::PredictMajorRoadOutcome(ParseGamePolicy(policy), Params(), 0.6, model);
     EXPECT_GT(n, 150) << "too few encounters";
     ExpectInside(dc, n, th.dc_rate, policy + " DC rate");
     ExpectInside(collisions, n, th.collision_rate, policy + " collision rate");

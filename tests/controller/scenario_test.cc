@@ -89,7 +89,7 @@ TEST_P(ScenarioPoint, EveryEncounterFollowsTheLibraryAndRatesAgreeWithTheory) {
 
   for (const std::string& name : cfg.policies) {
     SCOPED_TRACE(GetParam().name + " / " + name);
-    const per::Policy policy = per::ParsePolicy(name);
+    const per::Policy policy = ParseGamePolicy(name);
     // The AV's design trust, from the config alone.
     const double theta_hat = policy == per::Policy::kNoTrust ? 1.0
                              : cfg.model.assumed_trust     ? *cfg.model.assumed_trust

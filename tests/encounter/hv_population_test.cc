@@ -4,6 +4,7 @@
 // each capability is checked against the persuasion library's closed forms,
 // its own arithmetic, and binomial bands of many simulated readings.
 #include "taebp/encounter/hv_population.h"
+#include "taebp/config/policies.h"
 
 #include "taebp/config/config.h"
 #include "taebp/encounter/design.h"
@@ -200,7 +201,7 @@ TEST(HvPopulation, DynamicTrustUpdatesFromWhatTheHvSaw) {
 }
 
 TEST(HvPopulation, LongRunTrustIsTheClosedFormFixedPoint) {
-  // Paper point, w_s = w_f, rho = 0 (persuasion/BEYOND.md): TA-EBP tracking
+  // Paper point, w_s = w_f, rho = 0 (docs/beyond/derivations.md): TA-EBP tracking
   // trust settles where theta^2 + 0.8 theta - 1.2 = 0; No Trust where its
   // constant quality Q = 1/2 puts it (w_s Q / (w_s Q + w_f (1 - Q)) = 1/2);
   // full revelation never raises a false alarm: trust goes to 1.
@@ -214,8 +215,8 @@ TEST(HvPopulation, LongRunTrustIsTheClosedFormFixedPoint) {
     HvPopulation pop(Config(yaml), k.policy);
     pop.Add("h", 0.6);
     const BeyondRun r = pop.Results(0.0);
-    ASSERT_TRUE(r.long_run) << per::ToString(k.policy);
-    EXPECT_NEAR(r.expected_long_run_mean, k.expected, 1e-9) << per::ToString(k.policy);
+    ASSERT_TRUE(r.long_run) << taebp::PolicyName(k.policy);
+    EXPECT_NEAR(r.expected_long_run_mean, k.expected, 1e-9) << taebp::PolicyName(k.policy);
   }
   // With forgetting the attractor depends on the initial state: where Q is
   // constant (No Trust) it is ConstantQualityEquilibrium's closed form.

@@ -15,8 +15,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 ALLOWED = {
     "persuasion": {"persuasion"},
     "config": {"config", "persuasion"},
-    "rundir": {"rundir"},
-    "report": {"report", "persuasion"},
+    "rundir": {"rundir", "config"},  # config: the policy table only
+    "report": {"report", "config", "persuasion"},  # config: the policy table only
     "encounter": {"encounter", "persuasion", "config", "report"},
     "junction": {"junction", "encounter", "persuasion"},
     "scenario": {"scenario", "config", "persuasion"},
@@ -27,6 +27,10 @@ ALLOWED = {
     "sweep": {"sweep", "runner", "controller", "scenario", "report", "rundir", "config",
               "persuasion"},
 }
+# A layer that may include only some headers of another (report/ reads the
+# policy table of config/, not the config).
+ONLY = {("report", "config"): {"taebp/config/policies.h"},
+        ("rundir", "config"): {"taebp/config/policies.h"}}
 SUMO_ADAPTER = {"controller/src/sumo_adapter.cc", "controller/src/sumo_adapter_libtraci.cc"}
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]')
 
@@ -52,6 +56,10 @@ def main():
                         if parts[0] == "taebp" and len(parts) > 2 and parts[1] not in allowed:
                             problems.append("%s:%d: %s/ includes %s (allowed: %s)" % (
                                 rel, n, layer, target, ", ".join(sorted(allowed))))
+                        only = ONLY.get((layer, parts[1] if len(parts) > 2 else ""))
+                        if parts[0] == "taebp" and only is not None and target not in only:
+                            problems.append("%s:%d: %s/ includes %s (of %s/ only %s)" % (
+                                rel, n, layer, target, parts[1], ", ".join(sorted(only))))
                         if parts[0] in ("libsumo", "libtraci") and rel not in SUMO_ADAPTER:
                             problems.append("%s:%d: %s outside the SUMO adapter (%s)" % (
                                 rel, n, target, ", ".join(sorted(SUMO_ADAPTER))))

@@ -1,9 +1,10 @@
-// The major-road encounter (persuasion/MAJOR_ROAD.md): the AV at the minor
+// The major-road encounter (docs/beyond/major-road.md): the AV at the minor
 // road's stop line, the HV approaching on the major road with the right of way.
 // Every expected value is a closed form written out below (independently of the
 // library), the paper's worked numbers (Section V, c = 0), or a fraction worked by
 // hand from those closed forms in the comment next to it.
 #include "taebp/persuasion/major_road.h"
+#include "taebp/config/policies.h"
 
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/outcomes.h"
@@ -55,7 +56,7 @@ std::string Where(const MajorRoadParams& p, double theta = kNaN) {
          ", c = " + std::to_string(p.yield_cost) + ", theta = " + std::to_string(theta);
 }
 
-// ------------------------------------------------ the closed forms (MAJOR_ROAD.md)
+// ------------------------------------------------ the closed forms (docs/beyond/major-road.md)
 
 // p* = (2 + c) / (2 + r).
 double PStar(const MajorRoadParams& p) {
@@ -92,7 +93,7 @@ double TaebpDcRate(const MajorRoadParams& p, double theta) {
 struct Rates {
   double dc, collision, nudge, av_first;
 };
-// The four policies for the linear likelihood, lambda < p* (MAJOR_ROAD.md, "Rates").
+// The four policies for the linear likelihood, lambda < p* (docs/beyond/major-road.md, "Rates").
 Rates ClosedFormRates(Policy policy, const MajorRoadParams& p, double theta) {
   const double lambda = p.prior_go;
   const double ts = ThetaStar(p);
@@ -110,7 +111,7 @@ Rates ClosedFormRates(Policy policy, const MajorRoadParams& p, double theta) {
     default:
       break;
   }
-  ADD_FAILURE() << "no closed form for " << ToString(policy);
+  ADD_FAILURE() << "no closed form for " << taebp::PolicyName(policy);
   return {kNaN, kNaN, kNaN, kNaN};
 }
 
@@ -360,7 +361,7 @@ TEST(MajorRoadPaper, ZeroYieldCostEqualsThePaperGameEverywhere) {
           for (Policy policy : {Policy::kNoEbp, Policy::kNoTrust, Policy::kTaEbp, Policy::kFullReveal}) {
             const PredictedOutcome m = PredictMajorRoadOutcome(policy, major, theta, *model);
             const PredictedOutcome q = PredictOutcome(policy, paper, theta, *model);
-            EXPECT_EQ(m.dc_rate, q.dc_rate) << Where(major, theta) << " " << ToString(policy);
+            EXPECT_EQ(m.dc_rate, q.dc_rate) << Where(major, theta) << " " << taebp::PolicyName(policy);
             EXPECT_EQ(m.collision_rate, q.collision_rate);
             EXPECT_EQ(m.nudge_rate, q.nudge_rate);
             EXPECT_EQ(m.av_first_rate, q.av_first_rate);
@@ -488,7 +489,7 @@ TEST(MajorRoadOutcomes, FourPoliciesMatchTheClosedForms) {
         ++checked;
         const Rates want = ClosedFormRates(policy, p, theta);
         const PredictedOutcome got = PredictMajorRoadOutcome(policy, p, theta, linear);
-        const std::string where = Where(p, theta) + " " + ToString(policy);
+        const std::string where = Where(p, theta) + " " + taebp::PolicyName(policy);
         EXPECT_NEAR(got.dc_rate, want.dc, 1e-12) << where;
         EXPECT_NEAR(got.collision_rate, want.collision, 1e-12) << where;
         EXPECT_NEAR(got.nudge_rate, want.nudge, 1e-12) << where;
@@ -524,7 +525,7 @@ TEST(MajorRoadOutcomes, AbovePStarNoEbpYieldsFromThePrior) {
 }
 
 // ------------------------------------------------------------------ invariants
-// Each one is proved in MAJOR_ROAD.md ("Comparative statics").
+// Each one is proved in docs/beyond/major-road.md ("Comparative statics").
 
 TEST(MajorRoadInvariants, TaebpNeverCollides) {
   const LinearLikelihood linear(2.0);

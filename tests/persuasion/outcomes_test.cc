@@ -2,6 +2,7 @@
 // revelation), worked by hand for the paper's setting lambda = 0.2, r = 3,
 // theta = 0.6, linear likelihood with s_max = 2.
 #include "taebp/persuasion/outcomes.h"
+#include "taebp/config/policies.h"
 
 #include "test_util.h"
 
@@ -17,16 +18,6 @@ using ::testing::HasSubstr;
 using testing::InvalidArgumentMessage;
 
 const AvHvParams kPaper{0.2, 3.0};
-
-TEST(Policy, NamesRoundTrip) {
-  for (Policy p : {Policy::kNoEbp, Policy::kNoTrust, Policy::kTaEbp, Policy::kFullReveal}) {
-    EXPECT_EQ(ParsePolicy(ToString(p)), p);
-  }
-  EXPECT_STREQ(ToString(Policy::kTaEbp), "ta_ebp");
-  EXPECT_EQ(ParsePolicy("full_reveal"), Policy::kFullReveal);
-  EXPECT_THAT(InvalidArgumentMessage([] { ParsePolicy("bogus"); }), HasSubstr("policy 'bogus' is unknown"));
-  EXPECT_THAT(InvalidArgumentMessage([] { ParsePolicy("TA_EBP"); }), HasSubstr("policy 'TA_EBP' is unknown"));
-}
 
 TEST(CommitScheme, PaperSetting) {
   const LinearLikelihood linear(2.0);
@@ -183,7 +174,7 @@ TEST(HvPosteriorGoUnderScheme, SignallingReadsTheLikelihoodOtherwiseThePrior) {
         for (double theta : {0.0, 0.1, 0.6, 1.0}) {
           const CommittedScheme scheme = CommitScheme(policy, params, theta, *model);
           const bool signals = policy != Policy::kNoEbp && !(policy == Policy::kTaEbp && !scheme.av_may_go);
-          EXPECT_EQ(scheme.Signals(), signals) << ToString(policy) << " " << theta;
+          EXPECT_EQ(scheme.Signals(), signals) << taebp::PolicyName(policy) << " " << theta;
           for (double s : {0.0, 0.7, 2.0}) {
             const double p = HvPosteriorGo(scheme, params, theta, *model, s);
             EXPECT_EQ(p, signals ? HvPosteriorGo(params, theta, *model, s) : params.prior_go);

@@ -3,6 +3,7 @@
 // simulation of the Beta recursion (encounters drawn with the portable uniform,
 // the HV deciding through HvDrivesIfClear, not through OutcomeProbabilities).
 #include "taebp/persuasion/trust_dynamics.h"
+#include "taebp/config/policies.h"
 
 #include "taebp/persuasion/random.h"
 #include "test_util.h"
@@ -252,7 +253,7 @@ TEST(ExpectedStep, GainsAndTheExactMeanChangeTendToTheDrift) {
       EXPECT_NEAR(step.alpha, q, 1e-15);
       EXPECT_NEAR(step.beta, 3.0 * (1.0 - q), 1e-15);
       const double drift = MeanDrift(state.Mean(), {policy, {}}, kPaper, linear, rule, 1.0, 1.0);
-      EXPECT_NEAR(n * step.mean, drift, 1e-6) << ToString(policy) << " mean " << mean;
+      EXPECT_NEAR(n * step.mean, drift, 1e-6) << taebp::PolicyName(policy) << " mean " << mean;
     }
   }
 }
@@ -557,7 +558,7 @@ TEST(LongRunTrustSimulation, TaebpAndNoTrustConvergeToTheDerivedFixedPoint) {
     }
     const Sample s = Summarise(means);
     EXPECT_NEAR(s.mean, attractors[0], 4.0 * s.StandardError(replicas))
-        << ToString(c.rule.policy) << " sd " << s.sd;
+        << taebp::PolicyName(c.rule.policy) << " sd " << s.sd;
     EXPECT_LT(s.sd, 0.01);  // the replicas themselves have converged
   }
 }

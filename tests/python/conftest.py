@@ -37,8 +37,16 @@ def cli_error(*args):
 
 
 def readme():
-    with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as f:
-        return f.read()
+    """The manual's text: README.md and every page of the site (docs/**/*.md),
+    one after the other."""
+    import glob
+    texts = []
+    for path in [os.path.join(ROOT, "README.md")] + sorted(
+            glob.glob(os.path.join(ROOT, "docs", "**", "*.md"), recursive=True)):
+        if not os.path.islink(path):
+            with open(path, encoding="utf-8") as f:
+                texts.append(f.read())
+    return "\n".join(texts)
 
 
 @pytest.fixture

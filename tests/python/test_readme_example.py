@@ -1,4 +1,4 @@
-"""The README's Python example runs as written (extracted from README.md, run
+"""The manual's Python example runs as written (extracted from docs/python.md, run
 in a directory that has the repository's configs/), reproduces Table I as
 `taebp run` prints it and draws the trust-sweep plot."""
 import os
@@ -14,7 +14,7 @@ from conftest import ROOT, readme
 
 def example():
     m = re.search(r"<!-- python example -->\n```python\n(.*?)\n```", readme(), re.S)
-    assert m, "README.md has no '<!-- python example -->' python block"
+    assert m, "no page (README.md, docs/**/*.md) has a '<!-- python example -->' python block"
     return m.group(1)
 
 

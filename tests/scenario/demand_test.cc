@@ -88,6 +88,44 @@ TEST_F(DemandOnGrid, FringeIsTheEdgesFromAndToDeadEnds) {
               HasSubstr("scenario.demand"));
 }
 
+// The fringe by topology (issue 26): with its turnarounds (netgenerate's
+// default) netgenerate types a grid's dead ends with --default-junction-type
+// too; the entries and exits are still the edges from and to the junctions
+// with one neighbour where traffic can only turn around. The figure-8's loop
+// ends (one neighbour, traffic goes on) are no fringe.
+TEST(DemandFringe, IsFoundByTopologyWhateverTypeTheDeadEndsHave) {
+  TempDir dir("taebp_demand");
+  const std::string path = (dir.path() / "stops.net.xml").string();
+  ASSERT_EQ(test::Shell("netgenerate --grid --grid.number 3 --grid.attach-length 100 "
+                        "--default-junction-type priority_stop --tls.guess false "
+                        "--xml-validation never --output-file " + path,
+                        (dir.path() / "stops.log").string()),
+            0);
+  const net::NetFile net = net::NetFile::Load(path);
+  const FringeEdges f = FindFringe(net);
+  EXPECT_EQ(f.entries.size(), 12u);
+  EXPECT_EQ(f.exits.size(), 12u);
+  std::set<std::string> ends;
+  for (const std::string& e : f.entries) {
+    const net::Edge* edge = net.FindEdge(e);
+    ASSERT_NE(edge, nullptr);
+    EXPECT_EQ(net.FindJunction(edge->from)->type, "priority_stop") << e;
+    EXPECT_EQ(net.CarNeighbours().at(edge->from).size(), 1u) << e;
+    ends.insert(edge->from);
+  }
+  for (const std::string& e : f.exits) EXPECT_EQ(ends.count(net.FindEdge(e)->to), 1u) << e;
+  EXPECT_EQ(ends.size(), 12u);
+  EXPECT_EQ(net.FringeJunctions(), std::vector<std::string>(ends.begin(), ends.end()));
+  // Demand on it: every trip enters and leaves there.
+  const std::vector<Trip> trips = DemandTrips(net, DemandSpec{});
+  ASSERT_FALSE(trips.empty());
+  for (const Trip& t : trips) {
+    EXPECT_EQ(ends.count(net.FindEdge(t.from)->from), 1u) << t.id;
+    EXPECT_EQ(ends.count(net.FindEdge(t.to)->to), 1u) << t.id;
+  }
+  EXPECT_TRUE(net::NetFile::Load(DefaultNetworkPath()).FringeJunctions().empty());
+}
+
 bool SameTrips(const std::vector<Trip>& a, const std::vector<Trip>& b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i)

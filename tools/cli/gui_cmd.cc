@@ -104,13 +104,7 @@ const char* const kLegend[] = {
     "255,0,255=collision (both vehicles)",
 };
 
-std::string PolicyTitle(const std::string& p) {
-  if (p == "no_ebp") return "No EBP";
-  if (p == "no_trust") return "No Trust";
-  if (p == "ta_ebp") return "TA-EBP";
-  if (p == "full_reveal") return "Full reveal";
-  return p;
-}
+std::string PolicyTitle(const std::string& p) { return PolicyLabel(p); }  // config/policies.h
 
 // Composes `shot` with a legend strip into `out` (tools/snapshot_legend.py,
 // Debian's python3 and python3-pil): sumo-gui cannot draw a legend itself.
@@ -385,7 +379,7 @@ int Snapshot::Run(int argc, char** argv) {
   ExperimentConfig config = LoadExperimentConfig(o.config_path, o.overrides);
   // IsValid guarantees at least one policy.
   const std::string name = o.policy.empty() ? config.policies.front() : o.policy;
-  if (name != kSumoNative) persuasion::ParsePolicy(name);  // throws for an unknown name
+  if (name != SumoNative().name) ParseGamePolicy(name);  // throws for an unknown name
   const std::string policy = name;
   if (o.at > config.scenario.duration)
     throw persuasion::InvalidArgument("--at " + Seconds(o.at) + " s is beyond the scenario's end (" +

@@ -1,4 +1,5 @@
-// taebp: the command-line program. Subcommands: theory, solve, run, sweep, merge, snapshot.
+// taebp: the command-line program. Subcommands: theory, solve, run, sweep, merge, snapshot,
+// metrics, policies.
 #include "taebp/config/config.h"
 #include "taebp/controller/policy_run.h"
 #include "taebp/controller/network_controller.h"
@@ -6,6 +7,7 @@
 #include "taebp/rundir/output_dir.h"
 #include "taebp/report/metrics.h"
 #include "taebp/report/report.h"
+#include "taebp/runner/errors.h"
 #include "taebp/runner/runner.h"
 #include "taebp/runner/theory.h"
 #include "taebp/encounter/design.h"
@@ -13,6 +15,7 @@
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/lp.h"
 #include "taebp/persuasion/outcomes.h"
+#include "config_cmd.h"
 #include "gui_cmd.h"
 #include "sweep_cmd.h"
 
@@ -39,9 +42,8 @@ using nlohmann::ordered_json;
 namespace per = taebp::persuasion;
 namespace fs = std::filesystem;
 
-constexpr int kExitConfig = 2;
-constexpr int kExitSumo = 3;
-constexpr int kExitStall = 4;  // stall_action: error stopped a run; what ran is written
+using taebp::kExitConfig;  // report/exit_codes.h: the one list of exit codes
+using taebp::kExitFailed;
 
 // ------------------------------------------------------------------ theory
 struct TheoryOptions : taebp::TheoryRequest {
@@ -117,12 +119,12 @@ int Solve(const std::string& path, bool json) {
   if (json) {
     const ordered_json j = taebp::SolveResultJson(g, pc.trust, r);
     std::cout << j.dump(2) << "\n";
-    return r.status == per::LpResult::Status::kOptimal ? 0 : 1;
+    return r.status == per::LpResult::Status::kOptimal ? 0 : kExitFailed;
   }
   std::cout << std::setprecision(8) << "status: " << per::ToString(r.status) << "\n";
   if (r.status != per::LpResult::Status::kOptimal) {
     std::cout << r.message << "\n";
-    return 1;
+    return kExitFailed;
   }
   std::cout << "trust theta: " << pc.trust << "\nsender value: " << r.sender_value
             << "\n\nscheme pi(recommend action | state):\n" << std::left << std::setw(16) << "";
@@ -224,33 +226,15 @@ int RunExperimentCommand(const std::string& config_path, const std::vector<std::
 }
 
 // Runs `body`, turning an error into its message on stderr and the exit code
-// the README documents (2 bad configuration or argument, 3 SUMO, 4 stalled
-// under stall_action: error, 1 other).
+// the README documents (report/exit_codes.h; runner/errors.h classifies).
 template <typename F>
 int ReportErrors(F&& body) {
   try {
     return body();
-  } catch (const taebp::ConfigError& e) {
-    std::cerr << "taebp: config error: " << e.what() << "\n";
-    return kExitConfig;
-  } catch (const per::InvalidArgument& e) {
-    std::cerr << "taebp: invalid argument: " << e.what() << "\n";
-    return kExitConfig;
-  } catch (const taebp::OutputError& e) {
-    std::cerr << "taebp: " << e.what() << "\n";
-    return kExitConfig;
-  } catch (const taebp::SumoError& e) {
-    std::cerr << "taebp: " << e.what() << "\n";
-    return kExitSumo;
-  } catch (const taebp::StallError& e) {
-    std::cerr << "taebp: stalled: " << e.what() << "\n";
-    return kExitStall;
-  } catch (const taebp::Interrupted& e) {
-    std::cerr << "taebp: " << e.what() << "\n";
-    return e.exit_code();
-  } catch (const std::exception& e) {
-    std::cerr << "taebp: error: " << e.what() << "\n";
-    return 1;
+  } catch (...) {
+    const taebp::ErrorReport r = taebp::ReportOf(std::current_exception());
+    std::cerr << r.line << "\n";
+    return r.exit_code;
   }
 }
 
@@ -290,6 +274,15 @@ int PrintMetrics(const std::string& what) {
   return 0;
 }
 
+// `taebp policies`: the policy table of config/policies.h, as docs/policies.md's
+// table, the README's list or JSON (python's taebp.policies(), tools/plot).
+int PrintPolicies(const std::string& what) {
+  if (what == "markdown") std::cout << taebp::PoliciesMarkdown();
+  else if (what == "list") std::cout << taebp::PolicyListMarkdown();
+  else std::cout << taebp::PoliciesJson() << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -306,7 +299,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   theory->add_option("--trust", th.trust, "the HV's true trust theta in [0, 1]")->capture_default_str();
   theory->add_option("--assumed-trust", th.assumed_trust,
-                     "the trust theta_hat the AV designs for (default: --trust; no_trust uses 1)");
+                     "the trust theta_hat the AV designs for (default: --trust; " +
+                         std::string(taebp::PolicyOf(taebp::PolicyKind::kNoTrust).name) +
+                         " uses 1)");
   theory->add_option("--s-max", th.s_max, "largest nudge s_max (m) of the likelihood model")
       ->capture_default_str();
   theory->add_option("--likelihood", th.likelihood, "HV likelihood model: linear or logistic")
@@ -339,11 +334,13 @@ int main(int argc, char** argv) {
   std::vector<std::string> overrides;
   bool quiet = false;
   CLI::App* run = app.add_subcommand(
-      "run", "Run every listed policy of an experiment config in SUMO and write the results");
+      "run", "Run every listed policy of an experiment config in SUMO and write the results "
+             "(policies: " + taebp::PolicyChoices() + "; `taebp policies` says what each does)");
   run->add_option("CONFIG", config_path, "experiment YAML (e.g. configs/paper.yaml)")->required();
   run->add_option("--set", overrides,
                   "override a config key, KEY=VALUE with VALUE read as YAML (repeatable), "
-                  "e.g. --set scenario.duration=600 --set policies=[ta_ebp]");
+                  "e.g. --set scenario.duration=600 --set policies=[" +
+                      std::string(taebp::PolicyOf(taebp::PolicyKind::kTaEbp).name) + "]");
   run->add_option("--out", out_dir, "output directory (default: results/<config name>)");
   run->add_flag("--quiet", quiet, "no progress on stderr");
   std::string rss_log;
@@ -360,10 +357,21 @@ int main(int argc, char** argv) {
   CLI::App* metrics = app.add_subcommand(
       "metrics", "The result metrics: names, units, meaning and how sweeps pool them");
   metrics->add_option("--print", metrics_what,
-                      "markdown: the README's table; renames: CHANGELOG.md's list; json: the "
+                      "markdown: the manual's table (docs/metrics.md); renames: CHANGELOG.md's list; json: the "
                       "table as data")
       ->check(CLI::IsMember({"markdown", "renames", "json"}))
       ->capture_default_str();
+  std::string policies_what = "list";
+  CLI::App* policies = app.add_subcommand(
+      "policies", "The policies: names, labels, whether they play the game and the config keys "
+                  "they do not read");
+  policies->add_option("--print", policies_what,
+                       "list: one line each (the README's list); markdown: docs/policies.md's "
+                       "table; json: the table as data")
+      ->check(CLI::IsMember({"list", "markdown", "json"}))
+      ->capture_default_str();
+
+  taebp::cli::ConfigCommand config_command(app);  // config --reference
 
   if (const std::optional<int> code = ParseCommandLine(app, argc, argv)) return *code;
   return ReportErrors([&] {
@@ -384,6 +392,8 @@ int main(int argc, char** argv) {
       return RunExperimentCommand(config_path, overrides, out_dir, quiet, options);
     }
     if (*metrics) return PrintMetrics(metrics_what);
+    if (*policies) return PrintPolicies(policies_what);
+    if (config_command.Parsed()) return config_command.Run();
     if (snapshot.Parsed()) return snapshot.Run(argc, argv);
     if (sweep_commands.Parsed()) return sweep_commands.Run();
     return 0;

@@ -36,6 +36,10 @@ Commands::Commands(CLI::App& app, RunFunction run) : impl_(std::make_unique<Impl
                  "`taebp merge`)");
   sw->add_flag("--list", s.list, "print the tasks and exit");
   sw->add_flag("--quiet", s.quiet, "no progress on stderr");
+  sw->add_flag_callback("--no-reuse", [&s] { s.reuse = false; },
+               "run every policy at every point, also where an earlier run cannot differ "
+               "(measuring or checking the reuse; the tables are the same but reused_from)")
+      ->group("");  // hidden: for tests and benchmarks
   sw->add_flag("--exec-workers", s.exec,
                "start each task by exec'ing `taebp run` instead of forking (as under MPI)")
       ->group("");  // hidden: for debugging and benchmarks

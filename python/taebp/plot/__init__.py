@@ -17,7 +17,8 @@ import sys
 import textwrap
 
 from . import presets, tidy, view
-from .common import PlotError, Sweep, Theory, find_taebp, import_matplotlib, warn
+from .common import (PlotError, Sweep, Theory, find_taebp, import_matplotlib, load_policy_labels,
+                     warn)
 from .netmap import plot_map, queueing_delay, read_net  # noqa: F401 (tools/plot's API)
 from .runs import Runs, plot_runs
 
@@ -154,6 +155,7 @@ def main(argv=None):
         if not os.path.exists(args.sweep_dir):
             raise PlotError("%s: no such directory or file" % args.sweep_dir, 2)
         plt = import_matplotlib()
+        load_policy_labels(find_taebp(args.taebp))  # the labels of the one policy table
         if os.path.isdir(args.sweep_dir) and \
                 not os.path.isfile(os.path.join(args.sweep_dir, "aggregate.csv")) and \
                 os.path.isfile(os.path.join(args.sweep_dir, "summary.json")):

@@ -74,15 +74,18 @@ def save(fig, path, **kwargs):
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-POLICY_STYLE = {  # colour, label
-    "sumo_native": ("#000000", "SUMO native"),
-    "no_ebp": ("#7f7f7f", "No EBP"),
-    "no_trust": ("#d62728", "No Trust"),
-    "ta_ebp": ("#1f77b4", "TA-EBP"),
-    "full_reveal": ("#2ca02c", "Full reveal"),
-    "population_mean": ("#ff7f0e", "Population mean"),
-    "ta_ebp_learned": ("#9467bd", "TA-EBP learned"),
+POLICY_COLOUR = {
+    "sumo_native": "#000000",
+    "no_ebp": "#7f7f7f",
+    "no_trust": "#d62728",
+    "ta_ebp": "#1f77b4",
+    "full_reveal": "#2ca02c",
+    "population_mean": "#ff7f0e",
+    "ta_ebp_learned": "#9467bd",
 }
+# name -> label ("TA-EBP"), from the one table of policies (`taebp policies
+# --print json`, config/src/policies.cc); filled by load_policy_labels.
+POLICY_LABEL = {}
 EXTRA_COLOURS = ["#8c564b", "#e377c2", "#17becf", "#bcbd22"]
 
 
@@ -172,10 +175,24 @@ class Sweep:
         return ", ".join(parts)
 
 
+def load_policy_labels(binary):
+    """The policies' labels from `taebp policies --print json`; without a
+    binary the plots label policies by their names (and say so)."""
+    if binary is None:
+        warn("no taebp binary found: policies labelled by their names")
+        return
+    out = subprocess.run([binary, "policies", "--print", "json"], capture_output=True, text=True)
+    if out.returncode != 0:
+        warn("%s policies failed (%s): policies labelled by their names"
+             % (binary, out.stderr.strip()))
+        return
+    POLICY_LABEL.update({row["name"]: row["label"] for row in json.loads(out.stdout)})
+
+
 def style(policy, i):
-    if policy in POLICY_STYLE:
-        return POLICY_STYLE[policy]
-    return EXTRA_COLOURS[i % len(EXTRA_COLOURS)], policy
+    """(colour, label) of a policy."""
+    colour = POLICY_COLOUR.get(policy) or EXTRA_COLOURS[i % len(EXTRA_COLOURS)]
+    return colour, POLICY_LABEL.get(policy, policy)
 
 
 # --------------------------------------------------------------- theory

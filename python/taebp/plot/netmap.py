@@ -9,18 +9,34 @@ from .common import die, save, style
 
 def run_network_file(run_dir, summary):
     """The network a run ran on: the run folder's network.net.xml (generated or
-    patched), else the config's scenario.network (absolute, $SUMO_HOME, or
+    patched), else the config's scenario.network or the net-file of its
+    scenario.sumocfg (absolute since taebp writes the inputs so, $SUMO_HOME, or
     relative to the config file)."""
     kept = os.path.join(run_dir, "network.net.xml")
     if os.path.isfile(kept):
         return kept
     prov = summary.get("provenance", {})
-    net = (prov.get("config", {}).get("scenario", {}) or {}).get("network") or ""
+    scenario = prov.get("config", {}).get("scenario", {}) or {}
+    home = os.environ.get("SUMO_HOME", "/usr/share/sumo")
+
+    def resolve(path, base):
+        path = path.replace("${SUMO_HOME}", home).replace("$SUMO_HOME", home)
+        return path if os.path.isabs(path) else os.path.join(base, path)
+    config_dir = os.path.dirname(prov.get("config_path", "") or ".")
+    net = scenario.get("network") or ""
+    if not net and scenario.get("sumocfg"):
+        import xml.etree.ElementTree as ET
+        cfg = resolve(scenario["sumocfg"], config_dir)
+        try:
+            node = ET.parse(cfg).getroot().find(".//net-file")
+        except (OSError, ET.ParseError):
+            return None
+        if node is None or not node.get("value"):
+            return None
+        net, config_dir = node.get("value").split(",")[0].strip(), os.path.dirname(cfg)
     if not net:
         return None
-    net = net.replace("$SUMO_HOME", os.environ.get("SUMO_HOME", "/usr/share/sumo"))
-    if not os.path.isabs(net):
-        net = os.path.join(os.path.dirname(prov.get("config_path", "") or "."), net)
+    net = resolve(net, config_dir)
     return net if os.path.isfile(net) else None
 
 

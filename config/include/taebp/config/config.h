@@ -5,6 +5,7 @@
 #pragma once
 
 #include "taebp/config/enums.h"
+#include "taebp/config/policies.h"
 
 #include <cstdint>
 #include <memory>
@@ -181,7 +182,7 @@ struct OutputsConfig {
 };
 
 // scenario.major_road (network scenarios; unset: off): the major-road
-// encounter of persuasion/MAJOR_ROAD.md at two-way stops (priority_stop). An
+// encounter of docs/beyond/major-road.md at two-way stops (priority_stop). An
 // AV waiting at a minor road's stop line and an HV approaching on a
 // conflicting major movement (right of way, not stopping) play the paper's
 // game at the effective penalty r_eff = 2 (r - c) / (2 + c), when
@@ -357,6 +358,9 @@ struct TrustSpec {
   bool IsValid(const std::string& key, std::string* why) const;
   std::string ToString() const;  // compact, for tables and file names
 };
+// The keys of a `model.trust` distribution map besides `dist` (the loader
+// accepts these and no others; the generated reference lists them).
+std::vector<std::string> TrustDistKeys(TrustDist dist);
 
 // model.trust_dynamics: each HV's trust is a Beta(alpha, beta) state whose
 // mean it uses, updated after every AV-HV encounter it is in (Guo & Yang;
@@ -531,8 +535,6 @@ inline constexpr double kMaxDuration = 1e7;      // s (~116 simulated days)
 inline constexpr int kMaxVehicles = 10000;
 inline constexpr double kMaxSteps = 1e9;
 
-// The baseline policy without a controller: SUMO's own junction logic.
-inline constexpr const char* kSumoNative = "sumo_native";
 
 // outputs: the time series written by runs beyond the paper (timeseries.csv,
 // hv_trust.csv), sampled every `interval` simulated seconds (>= 1: the
@@ -551,7 +553,7 @@ struct OutputConfig {
 struct ExperimentConfig {
   ScenarioConfig scenario;
   ModelConfig model;
-  std::vector<std::string> policies = {"no_ebp", "no_trust", "ta_ebp"};
+  std::vector<std::string> policies = DefaultPolicies();  // config/policies.h
   std::optional<SweepConfig> sweep;  // only `taebp sweep` uses it
   OutputConfig outputs;
 

@@ -65,7 +65,7 @@ const char* ToString(BothProceed p);
 // than the second reaches before its rear leaves the junction.)
 // A reach >= 0: only that many metres ahead of the vehicle's front (0: where
 // it is now: a vehicle standing still).
-// The major-road encounter (persuasion/MAJOR_ROAD.md, "When is an approach the
+// The major-road encounter (docs/beyond/major-road.md, "When is an approach the
 // game"): where on `m`'s path its body can touch `other` on its way through
 // the junction. `first`..`last`: the arcs of m's front at which its body (as
 // in BothProceedCollide) overlaps some body of `other` between other.front

@@ -69,7 +69,7 @@
 //   at the lines a meeting looks at nor inside where the new moves' ways are
 //   checked); the encounter is recorded when both have left the junction.
 // - The major-road encounter (Timing::major_road, two-way stops only;
-//   persuasion/MAJOR_ROAD.md). An AV waiting (standing) at a minor stop line
+//   docs/beyond/major-road.md). An AV waiting (standing) at a minor stop line
 //   and an HV approaching on a major movement that conflicts with it (the
 //   front of its approach lane, driven by SUMO) meet when no encounter runs
 //   here and EncounterModel::MajorRoad says the approach is the game now

@@ -2,7 +2,7 @@
 // stop line, an HV approaches on a conflicting MAJOR movement (it has the right
 // of way and does not stop). The AV (intent Go with prior lambda, or Stop)
 // commits to a scheme and nudges to signal; the HV yields (DC: slows down so the
-// AV can go first) or keeps its way at speed (DR). See persuasion/MAJOR_ROAD.md.
+// AV can go first) or keeps its way at speed (DR). See docs/beyond/major-road.md.
 //
 // The HV's utility (rows Go, Stop; columns DR, DC), c >= 0 the cost of the
 // yielding manoeuvre itself (braking from speed and getting back to it):
@@ -79,7 +79,7 @@ PredictedOutcome PredictMajorRoadOutcome(Policy policy, const MajorRoadParams& p
                                          std::optional<double> theta_hat = std::nullopt);
 
 // ---------------------------------------------------------------------------
-// When is an approach the game at all (MAJOR_ROAD.md, "When is it a game").
+// When is an approach the game at all (docs/beyond/major-road.md, "When is it a game").
 // Times run from the decision instant t = 0: the HV has the AV's signal in view
 // and the AV, if it goes, starts then. Distances along the HV's path, metres;
 // speeds m/s; seconds.

@@ -1,6 +1,6 @@
 // Perception noise: the HV reads the AV's displacement with noise and a bias,
 // and a noise-aware TA-EBP design that still persuades with probability
-// 1 - delta. See persuasion/BEYOND.md, "Perception noise".
+// 1 - delta. See docs/beyond/derivations.md, "Perception noise".
 //
 // The HV reads r = clamp(d + bias + eps, 0, s_max) for a realised displacement
 // d (what SUMO reports) and decides with eq:pp at r, as if r were the nudge: it

@@ -45,12 +45,8 @@ namespace taebp::persuasion {
 enum class Policy {
   kNoEbp, kNoTrust, kTaEbp, kFullReveal, kPopulationMean, kTaEbpLearned, kAlwaysNudge
 };
-const char* ToString(Policy policy);
-// Accepts "no_ebp", "no_trust", "ta_ebp", "full_reveal", "population_mean",
-// "ta_ebp_learned", "always_nudge"; throws otherwise.
-Policy ParsePolicy(const std::string& name);
-// The names above, in that order (messages, validation).
-const std::vector<Policy>& AllPolicies();
+// Their names, labels and the rest are the config's (config/policies.h: the
+// one table of policies); the math knows them by this enum only.
 
 // What the AV commits to for one policy.
 struct CommittedScheme {

@@ -1,6 +1,6 @@
 // Dynamic trust on the HV side: trust as a Beta distribution updated by each
 // AV-HV encounter (Guo & Yang 2021), and its long-run behaviour under each
-// policy. Pure math; see persuasion/BEYOND.md, "Dynamic trust".
+// policy. Pure math; see docs/beyond/derivations.md, "Dynamic trust".
 //
 // State: theta ~ Beta(alpha, beta); the HV uses the mean theta = alpha / (alpha + beta).
 // After an encounter with quality q in [0, 1] (how well the AV's signal matched
@@ -55,7 +55,7 @@ EncounterOutcome ParseEncounterOutcome(const std::string& name);
 // a nudge of distance 0 is standing still.
 EncounterOutcome ClassifyEncounter(bool nudged, bool av_went, bool collision, bool near_miss);
 
-// q for each outcome. Defaults (reasoning in BEYOND.md): the signal told the
+// q for each outcome. Defaults (reasoning in docs/beyond/derivations.md): the signal told the
 // truth -> 1; it told the opposite of what the AV did, or the encounter ended
 // in a collision or a near miss -> 0.
 struct OutcomeQuality {

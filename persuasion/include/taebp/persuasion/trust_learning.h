@@ -1,6 +1,6 @@
 // Learned trust on the AV side: a posterior over one HV's trust from censored
 // observations of its responses, a safe (delta-bounded) TA-EBP design from it,
-// and regret against the oracle that knows theta. See persuasion/BEYOND.md,
+// and regret against the oracle that knows theta. See docs/beyond/derivations.md,
 // "Learned trust".
 //
 // The HV's response is deterministic given its trust: after a reading s it
@@ -130,7 +130,7 @@ class FleetTrustBeliefs {
 //   eps_m = min(delta, decay / (m + 1)).
 // delta bounds the probability that a nudge fails to persuade in any encounter;
 // decay = +infinity keeps eps = delta (a failure rate of delta for ever, regret
-// linear in T); a finite decay > 1/2 gives regret O(log T) (BEYOND.md).
+// linear in T); a finite decay > 1/2 gives regret O(log T) (docs/beyond/derivations.md).
 struct ExplorationSchedule {
   double delta = 0.01;  // in (0, 1)
   double decay = 1.0;   // > 0, may be +infinity

@@ -72,6 +72,15 @@ struct Metric {
 
 // The table, in output order.
 const std::vector<Metric>& RunMetrics();
+
+// Whether a policy plays the paper's game (every policy but sumo_native,
+// SUMO's own junction logic). Only these have a theory (kPrediction).
+bool PlaysGame(const std::string& policy);
+// Whether metric `m` is undefined (null, an empty cell) for a run of `policy`
+// in which what it is per (`m.per`) counted `per`: a rate or mean over no
+// encounter (no nudge, no held vehicle, ...), or a prediction of a policy that
+// plays no game. summary.json, junctions.csv and a sweep's tables all ask here.
+bool MetricUndefined(const Metric& m, const std::string& policy, double per);
 // The metric named `name`, or nullptr.
 const Metric* FindMetric(const std::string& name);
 

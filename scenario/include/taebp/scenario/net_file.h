@@ -7,6 +7,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,15 @@ class NetFile {
   const std::vector<std::string>& Predecessors(const std::string& lane) const;
   // A normal edge cars may use: one of its lanes lets class passenger drive.
   bool IsCarEdge(const Edge& e) const;
+  // Each junction's neighbours for cars: the other junctions its normal car
+  // edges lead to or come from (a junction without a car edge is absent).
+  std::map<std::string, std::set<std::string>> CarNeighbours() const;
+  // The network's fringe for cars: the junctions whose car edges (in or out)
+  // lead to exactly one other junction and where a vehicle can only turn
+  // around (a dead end by topology, whatever type netgenerate or netconvert
+  // gave it: netgenerate types a grid's dead ends with its turnarounds
+  // --default-junction-type), and those typed dead_end. Sorted.
+  std::vector<std::string> FringeJunctions() const;
   // The junction at the end of a normal edge ("" if unknown).
   std::string EdgeEnd(const std::string& edge) const;
   // The network's bounding box (convBoundary).

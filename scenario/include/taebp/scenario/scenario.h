@@ -73,6 +73,12 @@ struct Scenario {
 // fit the figure-8.
 Scenario BuildScenario(const ExperimentConfig& config, const std::string& config_dir);
 
+// `config` with its input files (scenario.network, scenario.sumocfg,
+// scenario.routes, scenario.additional) named by absolute paths: relative ones
+// resolved against `config_dir` (and the working directory), $SUMO_HOME/...
+// kept. A run folder's config.yaml is this, so it reruns from any directory.
+ExperimentConfig WithAbsoluteInputs(ExperimentConfig config, const std::string& config_dir);
+
 // Non-fatal remarks about a config (e.g. a nudge that can reach into the
 // crossing path), for stderr and summary.json.
 std::vector<std::string> ScenarioWarnings(const ExperimentConfig& config);

@@ -23,6 +23,7 @@ struct SweepOptions {
   std::vector<std::string> overrides;
   int jobs = 0;
   bool quiet = false, list = false, mpi = false, exec = false;
+  bool reuse = true;  // false (--no-reuse): run every policy at every point
 };
 
 struct MergeOptions {

@@ -35,6 +35,14 @@ struct Task {
   int point = 0;
   int replicate = 0;
   std::uint64_t seed = 0;
+  // Never simulate the same thing twice: the point's policies this task runs
+  // in SUMO, and those it reuses (policy -> the index of the earlier task
+  // whose run it takes): a policy whose run at this task would differ from an
+  // earlier task's in no config key it reads (config/policies.h
+  // PolicyReads), with the same seed, is not run again. Empty `runs`: the
+  // task runs nothing (no worker, no task folder).
+  std::vector<std::string> runs;
+  std::map<std::string, int> reused_from;
 };
 
 struct Plan {
@@ -48,22 +56,36 @@ struct Plan {
   std::vector<Point> points;             // Cartesian product, last axis fastest
   int replicates = 1;
   std::vector<Task> tasks;               // point-major, replicate fastest
+  bool reuse = true;                     // ExpandSweep's `reuse`
 
   // The --set overrides of a point: the user's, then the point's values.
   std::vector<std::string> PointOverrides(const Point& point) const;
-  // Those of a task: its point's, then scenario.seed.
+  // Those of a task: its point's, then scenario.seed (and `policies` when
+  // it reuses some of the point's policies).
   std::vector<std::string> TaskOverrides(const Task& task) const;
+  // Policy runs in SUMO the plan makes, and those it reuses instead.
+  std::size_t Runs() const;
+  std::size_t Reused() const;
 };
 
 // Builds the plan from the config text and the user's --set overrides. Throws
 // ConfigError naming the key for a missing `sweep:` section, a zipped value of
 // the wrong length, empty values or a key given twice.
+// `reuse` false: every task runs every policy of its point (Task::runs), to
+// measure the reuse or check it (the tables are the same but reused_from).
 Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
-                 const std::vector<std::string>& overrides);
+                 const std::vector<std::string>& overrides, bool reuse = true);
 
 // Splits a YAML flow sequence "[a, [b, c], {d: e}]" into its top-level items'
 // text. Returns false if `text` is not a flow sequence.
 bool SplitFlowSequence(const std::string& text, std::vector<std::string>* items);
+
+// What decides `policy`'s run under `config` (whose policies are the run's):
+// the config as JSON without the keys the policy does not read, the
+// `policies` list and the sweep section, with whether the run writes the
+// columns beyond the paper. Two runs with the same identity and seed give
+// the same results.
+std::string RunIdentity(const ExperimentConfig& config, const std::string& policy);
 
 // 16 hex digits identifying the resolved sweep: the config with the user's
 // overrides and the grid, but not sweep.replicates (so a sweep can be extended
