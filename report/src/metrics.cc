@@ -83,7 +83,8 @@ MetricFacts JunctionFacts(const PolicyRun& r, const JunctionRun& j) {
   return f;
 }
 
-bool PlaysGame(const std::string& policy) { return policy != "sumo_native"; }
+// PlaysGame: the one table of policies (config/policies.cc); metrics.h declares
+// it for the report's readers.
 
 bool MetricUndefined(const Metric& m, const std::string& policy, double per) {
   if (m.pool == Pool::kPrediction) return !PlaysGame(policy);
