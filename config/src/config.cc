@@ -400,6 +400,21 @@ bool ExperimentConfig::IsValid(std::string* why) const {
            Num(2.0 / (2.0 + m.collision_penalty)) +
            ": every HV drives if clear without persuasion, so " +
            PolicyOf(PolicyKind::kTaEbpLearned).name + " has nothing to learn");
+  if (m.experience) {
+    c.Model("model.experience.", ToModel(*m.experience));
+    if (m.trust_dynamics || m.noise || m.learning || s.major_road)
+      c.Fail("model.experience is modelled alone: not with model.trust_dynamics, model.noise, "
+             "model.learning or scenario.major_road (their theories assume an HV whose reading "
+             "of a nudge never changes)");
+    for (const std::string& p : policies) {
+      const PolicyInfo* info = FindPolicy(p);
+      if (info && info->plays_game &&
+          (info->game == persuasion::Policy::kPopulationMean ||
+           info->game == persuasion::Policy::kTaEbpLearned))
+        c.Fail("policies: '" + p + "' is not modelled with model.experience (use " +
+               PolicyOf(PolicyKind::kTaEbp).name + ")");
+    }
+  }
   if (!(std::isfinite(outputs.interval) && outputs.interval >= 1.0))
     c.Fail("outputs.interval = " + Num(outputs.interval) +
            " must be >= 1 s (the time series are sampled once a simulated second)");
@@ -425,7 +440,7 @@ bool ExperimentConfig::IsValid(std::string* why) const {
 }
 
 bool ExperimentConfig::BeyondPaper() const {
-  if (model.trust_dynamics || model.noise || model.learning) return true;
+  if (model.trust_dynamics || model.noise || model.learning || model.experience) return true;
   for (const std::string& p : policies) {
     const PolicyInfo* info = FindPolicy(p);
     if (info && info->beyond_paper) return true;

@@ -124,6 +124,10 @@ const std::vector<KeyDoc>& ConfigKeyDocs() {
       {"model.learning.prior.beta", "beta: β", "> 0"},
       {"model.learning.prior.values", "discrete: the trusts", "each in [0, 1], not empty"},
       {"model.learning.prior.weights", "discrete: their weights (default: equal)", ">= 0, as many as values, sum > 0"},
+      {"model.experience", "beyond the paper: HVs who learn, per signal level, how often the AV then went (docs/influence.md)", "not with trust_dynamics, noise, learning, major_road, nor the policies designing for another trust than the HV's own"},
+      {"model.experience.strength", "k: the intuitive posterior's weight, in readings: p_E = (k q + g) / (k + n)", "> 0, finite"},
+      {"model.experience.bin_width", "one signal level: readings in [j w, (j+1) w) (m)", "> 0, finite"},
+      {"model.experience.design", "TA-EBP: guarded = designed for each HV's experience (b = 0 when a false alarm would break s*); paper = the paper's scheme whatever was learned", ""},
       // ---- policies, sweep, outputs
       {"policies", "the policies to run, each on the same vehicles and seed", "each once: sumo_native, no_ebp, no_trust, ta_ebp, full_reveal, population_mean, ta_ebp_learned"},
       {"sweep", "taebp sweep only: a grid over config keys times seed replicates", ""},

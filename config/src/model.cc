@@ -85,4 +85,11 @@ std::unique_ptr<per::LikelihoodModel> MakeLikelihood(const LikelihoodConfig& c) 
   return std::make_unique<per::LinearLikelihood>(c.s_max);
 }
 
+per::ExperienceRule ToModel(const ExperienceConfig& e) {
+  per::ExperienceRule r;
+  r.strength = e.strength;
+  r.bin_width = e.bin_width;
+  return r;
+}
+
 }  // namespace taebp

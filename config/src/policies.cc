@@ -66,6 +66,10 @@ const std::vector<PolicyInfo>& Table() {
        Policy::kTaEbpLearned, true, true, false, kKnowledge,
        "TA-EBP for a safe lower bound of each HV's trust, learned from its responses "
        "(model.learning)"},
+      {PolicyKind::kAlwaysNudge, "always_nudge", "Always nudge", true, Policy::kAlwaysNudge,
+       true, true, false, kLearning,
+       "nudges TA-EBP's s* in every encounter whatever its intent and goes on its Go intent "
+       "(the deterministic strategy of the paper's Section I; docs/influence.md)"},
   };
   return table;
 }

@@ -60,6 +60,11 @@ HvPopulation::HvPopulation(const ExperimentConfig& config, Policy policy)
   beyond_ = config.BeyondPaper();
   dynamic_ = m.trust_dynamics.has_value();
   learned_ = policy == Policy::kTaEbpLearned;
+  if (m.experience) {
+    experience_ = ToModel(*m.experience);
+    experience_->Validate();
+    guarded_ = policy == Policy::kTaEbp && m.experience->design == ExperienceDesign::kGuarded;
+  }
   next_sample_ = config.scenario.warmup;
   if (m.noise) {
     noise_ = ToModel(*m.noise);
@@ -132,9 +137,18 @@ per::PredictedOutcome HvPopulation::Predict(const per::CommittedScheme& scheme,
   return per::PredictOutcome(scheme, params_, theta, *model_);
 }
 
+per::ExperiencePath& HvPopulation::PathFor(double theta_hat, double theta) {
+  auto& slot = paths_[{theta_hat, theta}];
+  if (!slot)
+    slot = std::make_unique<per::ExperiencePath>(SchemeAt(theta_hat), params_, theta, *model_,
+                                                 experience_->strength, guarded_);
+  return *slot;
+}
+
 void HvPopulation::Add(const std::string& hv, double trust) {
   Hv h;
   h.trust0 = trust;
+  if (experience_) h.experience.emplace(experience_->bin_width);
   if (dynamic_) {
     const double strength = config_.model.trust_dynamics->strength;
     h.state = per::BetaTrust::FromMean(Inside01(trust), strength);
@@ -193,6 +207,18 @@ const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const st
     p.design_trust = h.design_trust;
     p.theory = h.theory;
     p.oracle = h.oracle;
+    if (experience_) {
+      // The expected outcome of this HV's encounter number h.encounters over
+      // its learning path; ta_ebp guarded: the design for what it learned.
+      p.theory = PathFor(h.design_trust, h.trust0).At(h.encounters);
+      if (guarded_) {
+        const per::SignalExperience& e = *h.experience;
+        p.scheme = per::DesignForExperience(h.scheme, params_, h.design_trust, *model_,
+                                            experience_->strength,
+                                            [&](double s) { return e.At(s); })
+                       .scheme;
+      }
+    }
   } else {
     p.design_trust = DesignTrustFor(p.trust);
     p.scheme = SchemeAt(p.design_trust);
@@ -212,6 +238,20 @@ HvReading HvPopulation::Read(const std::string& av, const std::string& hv, doubl
   if (it == pending_.end())
     throw std::logic_error("HvPopulation: no encounter of " + av + " and " + hv + " to read");
   Pending& p = it->second;
+  if (experience_) {
+    // What this HV learned of the level it read (SUMO's displacement).
+    const auto h = hvs_.find(hv);
+    if (h == hvs_.end() || !h->second.experience)
+      throw std::logic_error("HvPopulation: HV '" + hv + "' has no experience to read with");
+    HvReading r;
+    r.observed = observed;
+    p.reading = std::clamp(observed, 0.0, model_->SMax());
+    r.posterior = per::ExperiencedBelief(p.scheme, params_, p.trust, *model_, p.reading,
+                                         h->second.experience->At(p.reading),
+                                         experience_->strength);
+    r.drives_if_clear = per::HvDrivesIfClear(params_, r.posterior);
+    return r;
+  }
   if (!noise_) {
     const HvReading r = ReadNudge(p.scheme, params_, p.trust, *model_, observed);
     p.reading = std::clamp(observed, 0.0, model_->SMax());
@@ -272,6 +312,10 @@ void HvPopulation::Finish(const std::string& av, const std::string& hv, const Av
   if (hit != hvs_.end()) {
     Hv& h = hit->second;
     ++h.encounters;
+    // It saw what SUMO showed it: the displacement it read, then whether the
+    // AV took the right of way.
+    if (h.experience)
+      h.experience->Record(std::clamp(reading.observed, 0.0, model_->SMax()), draw.goes_first);
     if (h.state) {
       b.quality = rule_.quality.Of(outcome);
       h.state->Update(outcome, rule_);
@@ -378,7 +422,24 @@ BeyondRun HvPopulation::Results(double end) {
   out.oracle = ExpectedOver(m.trust, [&](double theta) {
     return Predict(OracleScheme(theta), theta);
   });
-  if (dynamic_ || learned_) theory_ = EncounterTheory();
+  if (dynamic_ || learned_ || experience_) theory_ = EncounterTheory();
+  if (experience_) {
+    // The long run of the learned beliefs (LongRunUnderExperience): guarded
+    // ta_ebp recovers the paper's rates (the guard binds on a vanishing share).
+    out.experience = true;
+    double dc = 0, coll = 0;
+    for (const auto& [theta, w] : TrustNodes(m.trust, 64)) {
+      const double hat = DesignTrustFor(theta);
+      const per::CommittedScheme sc = SchemeAt(hat);
+      const per::PredictedOutcome o =
+          guarded_ ? per::PredictOutcome(sc, params_, theta, *model_)
+                   : per::LongRunUnderExperience(sc, params_, theta, *model_).outcome;
+      dc += w * o.dc_rate;
+      coll += w * o.collision_rate;
+    }
+    out.long_run_dc = dc;
+    out.long_run_collision = coll;
+  }
 
   if (design_rule_) {
     // The long run: where the mean-field drift G of each HV's trust changes

@@ -41,6 +41,12 @@ CommittedScheme CommitScheme(Policy policy, const AvHvParams& params, double the
     case Policy::kPopulationMean:  // theta_hat: the population's mean trust
     case Policy::kTaEbpLearned:    // theta_hat: the learned lower bound
       return FromDesign(DesignTaebp(params, theta_hat, model));
+    case Policy::kAlwaysNudge: {
+      // The same s* in every encounter: the nudge carries no information.
+      CommittedScheme scheme = FromDesign(DesignTaebp(params, theta_hat, model));
+      if (scheme.av_may_go) scheme.b = 1.0;
+      return scheme;
+    }
     case Policy::kFullReveal: {
       // Nudge s_max iff Go: pi(s_max|Go) = 1, pi(s_max|Stop) = 0.
       CommittedScheme scheme;

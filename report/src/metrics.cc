@@ -134,6 +134,10 @@ double LastHourMean(const MetricFacts& f, double sum) {
 }
 const BeyondRun& B(const MetricFacts& f) { return f.run->beyond; }
 double Dynamics(const MetricFacts& f, double v) { return B(f).long_run ? v : kNaN; }
+// The long run of dynamic trust or of experience (model.experience).
+double LongRun(const MetricFacts& f, double v) {
+  return B(f).long_run || B(f).experience ? v : kNaN;
+}
 double Learning(const MetricFacts& f, double v) { return B(f).learning ? v : kNaN; }
 
 }  // namespace
@@ -407,12 +411,14 @@ const std::vector<Metric>& RunMetrics() {
      [](const MetricFacts& f) { return Dynamics(f, B(f).final_mean_field); }},
     {"long_run_theory_dc_rate", T::kReal, "", kP, S::kBeyond, Pool::kMean, nullptr, nullptr,
      "trust_dynamics.long_run_theory.dc_rate",
-     "predicted DC rate at the long-run trusts (dynamic trust only)",
-     [](const MetricFacts& f) { return Dynamics(f, B(f).long_run_dc); }},
+     "predicted DC rate at the long-run trusts (dynamic trust), or of the learned beliefs "
+     "(model.experience)",
+     [](const MetricFacts& f) { return LongRun(f, B(f).long_run_dc); }},
     {"long_run_theory_collision_rate", T::kReal, "", kP, S::kBeyond, Pool::kMean, nullptr,
      nullptr, "trust_dynamics.long_run_theory.collision_rate",
-     "predicted collision rate at the long-run trusts (dynamic trust only)",
-     [](const MetricFacts& f) { return Dynamics(f, B(f).long_run_collision); }},
+     "predicted collision rate at the long-run trusts (dynamic trust), or of the learned "
+     "beliefs (model.experience)",
+     [](const MetricFacts& f) { return LongRun(f, B(f).long_run_collision); }},
     {"oracle_dc_rate", T::kReal, "", kP, S::kBeyond, Pool::kWeighted, nullptr, "encounters",
      "oracle.dc_rate", "predicted DC rate of the oracle (TA-EBP for each HV's exact trust)",
      [](const MetricFacts& f) { return PerEncounter(f, f.beyond.oracle_dc); }},

@@ -448,6 +448,28 @@ struct LearningConfig {
   }
 };
 
+// model.experience (issue 29; docs/influence.md, persuasion/experience.h):
+// each HV remembers, per signal level (the displacement SUMO reported, in bins
+// of bin_width m), how often the AV then went, and reads a nudge with
+// p_E = (k q + g) / (k + n) in place of the intuitive posterior q (trust weighs
+// it as in eq:pp). Each HV learns from its own encounters only. design: what
+// ta_ebp commits to: guarded = TA-EBP for each HV's experienced belief (b = 0
+// when a false alarm would leave s* unpersuasive; DesignForExperience), paper
+// = the paper's scheme whatever the HV learned (to measure the knife edge).
+// Unset: the paper's HV, who never learns.
+struct ExperienceConfig {
+  double strength = 20.0;   // k > 0: readings' worth of trust in the intuitive model
+  double bin_width = 0.1;   // m > 0: one signal level
+  ExperienceDesign design = ExperienceDesign::kGuarded;
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("strength", &strength);
+    a->Visit("bin_width", &bin_width);
+    a->Visit("design", &design);
+  }
+};
+
 struct ModelConfig {
   double prior_go = 0.2;           // lambda
   double collision_penalty = 3.0;  // r
@@ -463,6 +485,7 @@ struct ModelConfig {
   std::optional<TrustDynamicsConfig> trust_dynamics;
   std::optional<NoiseConfig> noise;
   std::optional<LearningConfig> learning;
+  std::optional<ExperienceConfig> experience;
 
   template <typename Archive>
   void Serialize(Archive* a) {
@@ -475,6 +498,7 @@ struct ModelConfig {
     a->Visit("trust_dynamics", &trust_dynamics);
     a->Visit("noise", &noise);
     a->Visit("learning", &learning);
+    a->Visit("experience", &experience);
   }
   // trust_knowledge with the default resolved.
   TrustKnowledge Knowledge() const {

@@ -43,6 +43,8 @@ enum class TrustKnowledge { kExact, kPopulationMean, kAssumed };
 enum class NoiseKind { kNone, kGaussian, kUniform };
 // model.noise.design
 enum class NoiseDesign { kAware, kPaper };
+// model.experience.design: what ta_ebp commits to for an HV that learns.
+enum class ExperienceDesign { kGuarded, kPaper };
 
 #define TAEBP_ENUM_NAMES(E, ...)                                   \
   template <>                                                      \
@@ -72,6 +74,8 @@ TAEBP_ENUM_NAMES(TrustKnowledge, {TrustKnowledge::kExact, "exact"},
 TAEBP_ENUM_NAMES(NoiseKind, {NoiseKind::kNone, "none"}, {NoiseKind::kGaussian, "gaussian"},
                  {NoiseKind::kUniform, "uniform"});
 TAEBP_ENUM_NAMES(NoiseDesign, {NoiseDesign::kAware, "aware"}, {NoiseDesign::kPaper, "paper"});
+TAEBP_ENUM_NAMES(ExperienceDesign, {ExperienceDesign::kGuarded, "guarded"},
+                 {ExperienceDesign::kPaper, "paper"});
 #undef TAEBP_ENUM_NAMES
 
 // The name of a value, as the config writes it.

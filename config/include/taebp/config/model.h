@@ -8,6 +8,7 @@
 
 #include "taebp/config/config.h"
 #include "taebp/persuasion/av_hv.h"
+#include "taebp/persuasion/experience.h"
 #include "taebp/persuasion/likelihood.h"
 #include "taebp/persuasion/major_road.h"
 #include "taebp/persuasion/noise.h"
@@ -30,6 +31,8 @@ persuasion::PerceptionNoise ToModel(const NoiseConfig& noise);
 persuasion::TrustUpdateRule ToModel(const TrustDynamicsConfig& dynamics);
 // model.learning: delta, decay (infinite with constant_level), probe
 persuasion::ExplorationSchedule ToModel(const LearningConfig& learning);
+// model.experience: strength, bin_width (design belongs to the AV)
+persuasion::ExperienceRule ToModel(const ExperienceConfig& experience);
 // A trust distribution as the learner's population prior: Beta as it is;
 // fixed and discrete as atoms; uniform on [low, high] as a histogram of 1000
 // cells (exact when low and high are multiples of 1/1000).

@@ -13,7 +13,9 @@
 
 namespace taebp {
 
-enum class PolicyKind { kSumoNative, kNoEbp, kNoTrust, kTaEbp, kFullReveal, kPopulationMean, kTaEbpLearned };
+enum class PolicyKind {
+  kSumoNative, kNoEbp, kNoTrust, kTaEbp, kFullReveal, kPopulationMean, kTaEbpLearned, kAlwaysNudge
+};
 
 struct PolicyInfo {
   PolicyKind kind;

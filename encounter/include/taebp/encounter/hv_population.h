@@ -19,6 +19,7 @@
 
 #include "taebp/config/config.h"
 #include "taebp/encounter/encounter.h"
+#include "taebp/persuasion/experience.h"
 #include "taebp/persuasion/noise.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/trust_dynamics.h"
@@ -98,6 +99,8 @@ class HvPopulation {
     persuasion::CommittedScheme scheme;
     double design_trust = 0;
     persuasion::PredictedOutcome theory, oracle;
+    // model.experience: what this HV learned per signal level.
+    std::optional<persuasion::SignalExperience> experience;
   };
   struct Pending {
     persuasion::CommittedScheme scheme;
@@ -119,6 +122,9 @@ class HvPopulation {
   persuasion::CommittedScheme OracleScheme(double theta) const;
   persuasion::PredictedOutcome Predict(const persuasion::CommittedScheme& scheme,
                                        double theta) const;
+  // model.experience: the expected learning path of an HV of design trust
+  // theta_hat under this policy (one per theta_hat).
+  persuasion::ExperiencePath& PathFor(double theta_hat, double theta);
   void Design(Hv& h, double theta, Pending* p) const;
 
   const ExperimentConfig config_;  // a copy: callers may pass a temporary
@@ -127,6 +133,9 @@ class HvPopulation {
   std::unique_ptr<persuasion::LikelihoodModel> model_;
   bool beyond_ = false;
   bool dynamic_ = false, learned_ = false;
+  std::optional<persuasion::ExperienceRule> experience_;  // model.experience set
+  bool guarded_ = false;  // ta_ebp designs for each HV's experience
+  std::map<std::pair<double, double>, std::unique_ptr<persuasion::ExperiencePath>> paths_;
   std::optional<persuasion::PerceptionNoise> noise_;  // model.noise set
   bool noise_aware_ = false;
   double noise_delta_ = 0.01;

@@ -38,8 +38,13 @@ namespace taebp::persuasion {
 // for: population_mean (the mean trust of the HV population, one design for
 // every HV) and ta_ebp_learned (a safe lower bound of the HV's trust learned
 // from its responses; trust_learning.h). For both, CommitScheme is TA-EBP's
-// design for the theta_hat the caller passes.
-enum class Policy { kNoEbp, kNoTrust, kTaEbp, kFullReveal, kPopulationMean, kTaEbpLearned };
+// design for the theta_hat the caller passes. always_nudge (issue 29, the
+// deterministic strategy of the paper's Section I): nudges TA-EBP's s* for
+// theta_hat in every encounter whatever its intent (a = b = 1) and goes on its
+// Go intent, believing the nudge persuades, as No Trust's AV does.
+enum class Policy {
+  kNoEbp, kNoTrust, kTaEbp, kFullReveal, kPopulationMean, kTaEbpLearned, kAlwaysNudge
+};
 // Their names, labels and the rest are the config's (config/policies.h: the
 // one table of policies); the math knows them by this enum only.
 

@@ -180,6 +180,9 @@ struct BeyondRun {
   double expected_long_run_mean = kNoValue;        // over the trust distribution, each HV's attractor
   double long_run_dc = kNoValue, long_run_collision = kNoValue;  // theory at those attractors
   double final_mean_field = kNoValue;
+  // model.experience: long_run_dc / long_run_collision hold the learned
+  // beliefs' long run (persuasion/experience.h).
+  bool experience = false;
   // Learned trust.
   bool learning = false;
   long hvs_met = 0, observations = 0, contradictions = 0, probes = 0;

@@ -1,0 +1,164 @@
+// Beyond the paper: HVs who learn from experience what a signal meant
+// (issue 29; derivations in docs/influence.md). SUMO-free.
+//
+// The paper's HV reads a nudge s with its intuitive likelihood and never
+// revises what a nudge means. Here each HV also remembers, per signal level
+// (the displacement it read, in bins of `bin_width` metres), how many times it
+// read that level (n) and how many of those times the AV then went (g). Its
+// full-trust posterior for a reading s blends the intuitive posterior
+// q(s) = p_FT(Go|s) with that experience as a Beta-Bernoulli mean with prior
+// strength k:
+//     p_E(s) = (k q(s) + g) / (k + n),                          (ExperiencedPosterior)
+// and trust weighs it as in the paper (eq:pp with p_FT replaced by p_E):
+//     p_theta,E(Go|s) = (1 - theta) lambda + theta p_E(s).      (ExperiencedBelief)
+// k -> infinity (or n = 0) is the paper's HV. "The AV went" is what the HV
+// sees: the AV took the right of way (its intent was Go and its scheme lets it
+// go), whether or not the two then collided.
+//
+// Fixed points (LongRunUnderExperience): under a committed scheme, g/n at the
+// nudge's level converges to the scheme's own Bayes posterior of "the AV goes"
+// given the nudge, so p_E converges to it whatever k. TA-EBP at s* is the one
+// design whose Bayes posterior equals the intuitive one (Theorem 2's
+// consistency condition, L(s*) = pi(s*|Go)/pi(s*|Stop) = 1/b), so learning
+// changes nothing on average -- but that posterior sits exactly on the HV's
+// indifference point, and the count's sampling noise puts it below p* about
+// half of the time (the knife edge). DesignForExperience is the fix: TA-EBP
+// designed for the HV's experienced belief, from the public history of the
+// AV's own signals and actions.
+#pragma once
+
+#include "taebp/persuasion/av_hv.h"
+#include "taebp/persuasion/likelihood.h"
+#include "taebp/persuasion/outcomes.h"
+
+#include <functional>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace taebp::persuasion {
+
+// model.experience.
+struct ExperienceRule {
+  double strength = 20.0;   // k > 0: readings' worth of trust in the intuitive model
+  double bin_width = 0.1;   // m > 0: readings in [j w, (j+1) w) are one signal level
+  bool IsValid(std::string* why) const;
+  void Validate() const;  // throws InvalidArgument naming the field and value
+};
+
+// What one HV remembers of one signal level.
+struct SignalCounts {
+  long readings = 0;  // n: times it read a displacement in this level
+  long went = 0;      // g: of those, times the AV then went
+};
+
+// One HV's memory: counts per signal level.
+class SignalExperience {
+ public:
+  explicit SignalExperience(double bin_width);
+  long Level(double reading) const;  // floor(reading / bin_width), reading >= 0
+  SignalCounts At(double reading) const;
+  // The HV read `reading` (SUMO's displacement) and then saw the AV go or not.
+  void Record(double reading, bool av_went);
+  const std::map<long, SignalCounts>& Levels() const { return levels_; }
+  long Readings() const { return readings_; }
+
+ private:
+  double width_;
+  std::map<long, SignalCounts> levels_;
+  long readings_ = 0;
+};
+
+// (k q + g) / (k + n): the Beta(k q, k (1 - q)) prior's posterior mean.
+double ExperiencedPosterior(double intuitive_go, const SignalCounts& counts, double strength);
+
+// The HV's belief p(Go) after reading s (in [0, s_max]) with experience
+// `counts` at that level: (1 - theta) lambda + theta p_E(s), where q(s) is the
+// full-trust posterior HvPosteriorGo(scheme, params, 1, model, s) (the prior
+// lambda when the scheme does not signal).
+double ExperiencedBelief(const CommittedScheme& scheme, const AvHvParams& params, double theta,
+                         const LikelihoodModel& model, double s, const SignalCounts& counts,
+                         double strength);
+
+// ---------------------------------------------------------------- fixed points
+// Where a committed scheme's learned beliefs go (n -> infinity at each level
+// the scheme uses) and the rates that follow for an HV of trust theta.
+struct ExperienceLongRun {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  double went_after_nudge = kNaN;  // P(AV goes | nudge): the nudge level's fixed point
+  double went_after_still = kNaN;  // P(AV goes | still): the level 0's fixed point
+  double belief_after_nudge = kNaN;  // (1 - theta) lambda + theta went_after_nudge
+  // The learned belief after a nudge sits on p* (within the tie tolerance):
+  // the HV's choice is decided by the sign of a zero-mean random walk, DC in
+  // half of the encounters in the long run (the arcsine law's mean).
+  bool knife_edge = false;
+  double dc_after_nudge = kNaN;  // 1, 0, or 1/2 on the knife edge
+  PredictedOutcome outcome;      // dc_rate, collision_rate, nudge_rate, av_first_rate
+};
+// Requires a scheme that signals with a in {0, 1} (the AV never stands still
+// on a Go it acts on) or does not signal at all.
+ExperienceLongRun LongRunUnderExperience(const CommittedScheme& scheme, const AvHvParams& params,
+                                         double theta, const LikelihoodModel& model);
+
+// ---------------------------------------------------------------- the fix
+// TA-EBP for an HV that learns (DesignForExperience). The AVs know the public
+// history of their own signals and actions, hence each HV's counts. `paper` is
+// the paper's design for the HV's trust (s*, a = 1, b from eq:b). Per encounter,
+// committed before the intent is drawn:
+//   kPaper:    (s*, 1, b) when a false alarm now (nudge, then Stop) would
+//              still leave s* persuasive for this HV: eq:b's "largest b that
+//              keeps the nudge persuasive", applied to the experienced belief;
+//   kGuard:    (s*, 1, 0) when it would not, but s* persuades now;
+//   kStronger: (s_max, 1, 0) when s* does not persuade now but s_max does;
+//   kYield:    always yield (no signal) when neither does.
+// Invariant: an HV persuaded by s* stays persuaded by s* (a Go after the
+// nudge only raises p_E), so with the paper's s* (p_E = q(s*) at n = 0) no
+// nudge is ever read as DR and no Go collides. In the long run the guard binds
+// on a vanishing share of encounters and DC -> lambda + (1 - lambda) b: the
+// paper's rate, which is also the most any scheme keeps against a learner
+// (its nudge's go-frequency must stay >= the HV's threshold, so
+// P(nudge) <= lambda / that threshold = lambda + (1 - lambda) b).
+struct ExperiencedDesign {
+  enum class Mode { kPaper, kGuard, kStronger, kYield };
+  Mode mode = Mode::kYield;
+  CommittedScheme scheme;
+};
+const char* ToString(ExperiencedDesign::Mode mode);
+ExperiencedDesign DesignForExperience(const CommittedScheme& paper, const AvHvParams& params,
+                                      double theta, const LikelihoodModel& model,
+                                      double strength,
+                                      const std::function<SignalCounts(double)>& counts_at);
+
+// ---------------------------------------------------------------- mean field
+// The expected learning path of one HV of trust theta whose AVs commit to
+// `scheme` (guarded: DesignForExperience around it): At(t) is the expected
+// outcome of the HV's encounter t (t = 0: the first), exact over the
+// binomial experience at the nudge level (the distribution of (n, g) after t
+// encounters, propagated encounter by encounter; states below 1e-15 are
+// dropped). The response to standing still is fixed (the scheme has a = 1 or
+// does not signal: nothing goes after a still AV, so its level only confirms
+// what the intuitive model says). Readings are taken at the commanded nudge.
+class ExperiencePath {
+ public:
+  ExperiencePath(const CommittedScheme& scheme, const AvHvParams& params, double theta,
+                 const LikelihoodModel& model, double strength, bool guarded);
+  PredictedOutcome At(long t);
+  long Computed() const { return static_cast<long>(path_.size()); }
+
+ private:
+  void Step();
+  CommittedScheme scheme_;
+  AvHvParams params_;
+  double theta_, strength_;
+  bool guarded_;
+  double q_nudge_ = 0, q_max_ = 0, s_max_ = 0;
+  bool dc_still_ = false;
+  // dist_[n][g - lo_[n]]: P(n nudge readings, g of them followed by a Go).
+  std::vector<std::vector<double>> dist_;
+  std::vector<long> lo_;
+  std::vector<PredictedOutcome> path_;
+  const LikelihoodModel* model_;
+};
+
+}  // namespace taebp::persuasion

@@ -1,0 +1,307 @@
+// HVs who learn what a signal meant: the learning rule, its fixed points, the
+// design against the knife edge and the exact mean-field path
+// (experience.h; derivations in docs/influence.md).
+#include "taebp/persuasion/experience.h"
+
+#include "internal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace taebp::persuasion {
+
+using internal::Num;
+
+bool ExperienceRule::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& m) {
+    if (why) *why = m;
+    return false;
+  };
+  if (!(strength > 0.0 && std::isfinite(strength)))
+    return fail("strength k = " + Num(strength) + " must be > 0 and finite");
+  if (!(bin_width > 0.0 && std::isfinite(bin_width)))
+    return fail("bin_width = " + Num(bin_width) + " must be > 0 and finite");
+  return true;
+}
+
+void ExperienceRule::Validate() const {
+  std::string why;
+  if (!IsValid(&why)) throw InvalidArgument(why);
+}
+
+SignalExperience::SignalExperience(double bin_width) : width_(bin_width) {
+  if (!(bin_width > 0.0 && std::isfinite(bin_width)))
+    throw InvalidArgument("bin_width = " + Num(bin_width) + " must be > 0 and finite");
+}
+
+long SignalExperience::Level(double reading) const {
+  if (!(reading >= 0.0 && std::isfinite(reading)))
+    throw InvalidArgument("reading = " + Num(reading) + " must be >= 0 and finite");
+  return static_cast<long>(std::floor(reading / width_));
+}
+
+SignalCounts SignalExperience::At(double reading) const {
+  const auto it = levels_.find(Level(reading));
+  return it == levels_.end() ? SignalCounts{} : it->second;
+}
+
+void SignalExperience::Record(double reading, bool av_went) {
+  SignalCounts& c = levels_[Level(reading)];
+  ++c.readings;
+  c.went += av_went ? 1 : 0;
+  ++readings_;
+}
+
+double ExperiencedPosterior(double intuitive_go, const SignalCounts& c, double strength) {
+  if (!(intuitive_go >= 0.0 && intuitive_go <= 1.0))
+    throw InvalidArgument("intuitive posterior q = " + Num(intuitive_go) + " is outside [0, 1]");
+  if (!(strength > 0.0))
+    throw InvalidArgument("strength k = " + Num(strength) + " must be > 0");
+  if (c.readings < 0 || c.went < 0 || c.went > c.readings)
+    throw InvalidArgument("experience counts (n = " + std::to_string(c.readings) +
+                          ", g = " + std::to_string(c.went) + ") need 0 <= g <= n");
+  if (std::isinf(strength)) return intuitive_go;
+  return (strength * intuitive_go + static_cast<double>(c.went)) /
+         (strength + static_cast<double>(c.readings));
+}
+
+double ExperiencedBelief(const CommittedScheme& scheme, const AvHvParams& params, double theta,
+                         const LikelihoodModel& model, double s, const SignalCounts& counts,
+                         double strength) {
+  internal::CheckTrust(theta);
+  const double q = HvPosteriorGo(scheme, params, 1.0, model, s);
+  return (1.0 - theta) * params.prior_go +
+         theta * ExperiencedPosterior(q, counts, strength);
+}
+
+namespace {
+
+bool Nudges(const CommittedScheme& s) { return s.nudge > 0.0 && s.Signals(); }
+
+void CheckAOneOrNoSignal(const CommittedScheme& s, const char* who) {
+  if (s.Signals() && s.nudge > 0.0 && !(s.a == 0.0 || s.a == 1.0))
+    throw InvalidArgument(std::string(who) + ": scheme a = " + Num(s.a) +
+                          " must be 0 or 1 (the still level's learning is not modelled)");
+}
+
+}  // namespace
+
+ExperienceLongRun LongRunUnderExperience(const CommittedScheme& scheme, const AvHvParams& params,
+                                         double theta, const LikelihoodModel& model) {
+  params.Validate();
+  if (Nudges(scheme)) model.PiGo(scheme.nudge);  // the nudge is a signal of this model
+  internal::CheckTrust(theta);
+  CheckAOneOrNoSignal(scheme, "LongRunUnderExperience");
+  const double lambda = params.prior_go;
+  const double go = scheme.av_may_go ? 1.0 : 0.0;
+  ExperienceLongRun out;
+  const bool nudges = Nudges(scheme);
+  const double a = nudges ? scheme.a : 0.0, b = nudges ? scheme.b : 0.0;
+  const double p_nudge = lambda * a + (1.0 - lambda) * b;
+  const double p_still = 1.0 - p_nudge;
+  const double p_star = AvHvPStar(params.collision_penalty);
+  double dc_nudge = 0.0, dc_still = 0.0;
+  if (p_nudge > 0.0) {
+    out.went_after_nudge = lambda * a * go / p_nudge;
+    out.belief_after_nudge = (1.0 - theta) * lambda + theta * out.went_after_nudge;
+    out.knife_edge = std::abs(out.belief_after_nudge - p_star) <= kTieTolerance;
+    dc_nudge = out.knife_edge ? 0.5 : (HvDrivesIfClear(params, out.belief_after_nudge) ? 1.0 : 0.0);
+    out.dc_after_nudge = dc_nudge;
+  }
+  if (p_still > 0.0) {
+    out.went_after_still = lambda * (1.0 - a) * go / p_still;
+    dc_still =
+        HvDrivesIfClear(params, (1.0 - theta) * lambda + theta * out.went_after_still) ? 1.0 : 0.0;
+  }
+  PredictedOutcome& o = out.outcome;
+  o.dc_rate = p_nudge * dc_nudge + p_still * dc_still;
+  o.nudge_rate = p_nudge;
+  o.collision_rate = lambda * go * (a * (1.0 - dc_nudge) + (1.0 - a) * (1.0 - dc_still));
+  o.av_first_rate = lambda * go * (a * dc_nudge + (1.0 - a) * dc_still);
+  return out;
+}
+
+const char* ToString(ExperiencedDesign::Mode mode) {
+  switch (mode) {
+    case ExperiencedDesign::Mode::kPaper: return "paper";
+    case ExperiencedDesign::Mode::kGuard: return "guard";
+    case ExperiencedDesign::Mode::kStronger: return "stronger";
+    case ExperiencedDesign::Mode::kYield: return "yield";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// The HV's decision at the nudge level from its intuitive posterior q there
+// and its counts: the one rule behind DesignForExperience and the mean field.
+bool DcAt(const AvHvParams& params, double theta, double q, const SignalCounts& c, double k) {
+  return HvDrivesIfClear(params,
+                         (1.0 - theta) * params.prior_go + theta * ExperiencedPosterior(q, c, k));
+}
+// Would a false alarm now (nudge, then Stop) leave the nudge persuasive?
+bool FalseAlarmAffordable(const AvHvParams& params, double theta, double q, const SignalCounts& c,
+                          double k) {
+  return DcAt(params, theta, q, SignalCounts{c.readings + 1, c.went}, k);
+}
+
+}  // namespace
+
+ExperiencedDesign DesignForExperience(const CommittedScheme& paper, const AvHvParams& params,
+                                      double theta, const LikelihoodModel& model,
+                                      double strength,
+                                      const std::function<SignalCounts(double)>& counts_at) {
+  internal::CheckTrust(theta);
+  ExperiencedDesign out;
+  if (!paper.av_may_go || !Nudges(paper)) return out;  // the paper's fallback: yield
+  const double s = paper.nudge;
+  const SignalCounts c = counts_at(s);
+  const double q = HvPosteriorGo(paper, params, 1.0, model, s);
+  if (DcAt(params, theta, q, c, strength)) {
+    out.scheme = paper;
+    out.mode = ExperiencedDesign::Mode::kPaper;
+    if (!FalseAlarmAffordable(params, theta, q, c, strength)) {
+      out.scheme.b = 0.0;
+      out.mode = ExperiencedDesign::Mode::kGuard;
+    }
+    return out;
+  }
+  CommittedScheme strong;
+  strong.av_may_go = true;
+  strong.nudge = model.SMax();
+  strong.a = 1.0;
+  strong.b = 0.0;
+  const double q_max = HvPosteriorGo(strong, params, 1.0, model, strong.nudge);
+  if (DcAt(params, theta, q_max, counts_at(strong.nudge), strength)) {
+    out.scheme = strong;
+    out.mode = ExperiencedDesign::Mode::kStronger;
+  }
+  return out;
+}
+
+ExperiencePath::ExperiencePath(const CommittedScheme& scheme, const AvHvParams& params,
+                               double theta, const LikelihoodModel& model, double strength,
+                               bool guarded)
+    : scheme_(scheme),
+      params_(params),
+      theta_(theta),
+      strength_(strength),
+      guarded_(guarded),
+      model_(&model) {
+  params.Validate();
+  internal::CheckTrust(theta);
+  CheckAOneOrNoSignal(scheme, "ExperiencePath");
+  if (!(strength > 0.0)) throw InvalidArgument("strength k = " + Num(strength) + " must be > 0");
+  s_max_ = model.SMax();
+  if (Nudges(scheme)) q_nudge_ = HvPosteriorGo(scheme, params, 1.0, model, scheme.nudge);
+  dc_still_ = HvDrivesIfClear(params, HvPosteriorGo(scheme, params, theta, model, 0.0));
+  dist_ = {{1.0}};
+  lo_ = {0};
+}
+
+PredictedOutcome ExperiencePath::At(long t) {
+  if (t < 0) throw InvalidArgument("encounter index t = " + std::to_string(t) + " must be >= 0");
+  while (static_cast<long>(path_.size()) <= t) Step();
+  return path_[static_cast<std::size_t>(t)];
+}
+
+void ExperiencePath::Step() {
+  const double lambda = params_.prior_go;
+  const bool nudges = Nudges(scheme_);
+  const std::size_t rows = dist_.size();
+  std::vector<std::vector<double>> next(rows + 1);
+  std::vector<long> next_lo(rows + 1, 0);
+  // The range of g each new row can hold: its own (no reading) and the row
+  // below's shifted by 0 or 1 (a nudge reading, Stop or Go).
+  for (std::size_t n = 0; n <= rows; ++n) {
+    long lo = 0, hi = -1;
+    bool any = false;
+    auto take = [&](long l, long h) {
+      if (h < l) return;
+      lo = any ? std::min(lo, l) : l;
+      hi = any ? std::max(hi, h) : h;
+      any = true;
+    };
+    if (n < rows && !dist_[n].empty())
+      take(lo_[n], lo_[n] + static_cast<long>(dist_[n].size()) - 1);
+    if (n > 0 && !dist_[n - 1].empty())
+      take(lo_[n - 1], lo_[n - 1] + static_cast<long>(dist_[n - 1].size()));
+    if (any) {
+      next_lo[n] = lo;
+      next[n].assign(static_cast<std::size_t>(hi - lo + 1), 0.0);
+    }
+  }
+  auto add = [&](std::size_t n, long g, double p) {
+    next[n][static_cast<std::size_t>(g - next_lo[n])] += p;
+  };
+  PredictedOutcome o;
+  const double dc_still = dc_still_ ? 1.0 : 0.0;
+  for (std::size_t n = 0; n < rows; ++n) {
+    for (std::size_t i = 0; i < dist_[n].size(); ++i) {
+      const double p = dist_[n][i];
+      if (p == 0.0) continue;
+      const long g = lo_[n] + static_cast<long>(i);
+      const SignalCounts c{static_cast<long>(n), g};
+      CommittedScheme sc = scheme_;
+      const bool dc_now = nudges && DcAt(params_, theta_, q_nudge_, c, strength_);
+      bool yield = false;
+      if (guarded_ && nudges && sc.av_may_go) {
+        // DesignForExperience with these counts at s* and none elsewhere:
+        // not persuaded now -> s_max or yield (s_max's level is not tracked;
+        // the invariant keeps both unused from n = 0, tested; counted as a
+        // yield if they ever happen); else b unless a false alarm breaks it.
+        if (!dc_now) {
+          yield = true;
+        } else if (!FalseAlarmAffordable(params_, theta_, q_nudge_, c, strength_)) {
+          sc.b = 0.0;
+        }
+      }
+      if (yield || !nudges) {
+        // No nudge: the still response; the AV goes on Go iff it may.
+        const double go = (!yield && sc.av_may_go) ? lambda : 0.0;
+        o.dc_rate += p * dc_still;
+        o.collision_rate += p * go * (1.0 - dc_still);
+        o.av_first_rate += p * go * dc_still;
+        add(n, g, p);
+        continue;
+      }
+      const double dc_nudge = dc_now ? 1.0 : 0.0;
+      const double may_go = sc.av_may_go ? 1.0 : 0.0;
+      const double go_nudge = lambda * sc.a, go_still = lambda * (1.0 - sc.a);
+      const double stop_nudge = (1.0 - lambda) * sc.b, stop_still = (1.0 - lambda) * (1.0 - sc.b);
+      o.dc_rate += p * ((go_nudge + stop_nudge) * dc_nudge + (go_still + stop_still) * dc_still);
+      o.nudge_rate += p * (go_nudge + stop_nudge);
+      o.collision_rate +=
+          p * may_go * (go_nudge * (1.0 - dc_nudge) + go_still * (1.0 - dc_still));
+      o.av_first_rate += p * may_go * (go_nudge * dc_nudge + go_still * dc_still);
+      add(n + 1, g + (sc.av_may_go ? 1 : 0), p * go_nudge);
+      add(n + 1, g, p * stop_nudge);
+      add(n, g, p * (go_still + stop_still));
+    }
+  }
+  // Drop the negligible tails of each row.
+  constexpr double kDrop = 1e-15;
+  for (std::size_t n = 0; n < next.size(); ++n) {
+    std::vector<double>& row = next[n];
+    std::size_t first = 0, last = row.size();
+    while (first < last && row[first] < kDrop) ++first;
+    while (last > first && row[last - 1] < kDrop) --last;
+    if (first == last) {
+      row.clear();
+      continue;
+    }
+    next_lo[n] += static_cast<long>(first);
+    row = std::vector<double>(row.begin() + static_cast<long>(first),
+                              row.begin() + static_cast<long>(last));
+  }
+  while (!next.empty() && next.back().empty()) {
+    next.pop_back();
+    next_lo.pop_back();
+  }
+  dist_ = std::move(next);
+  lo_ = std::move(next_lo);
+  path_.push_back(o);
+}
+
+}  // namespace taebp::persuasion

@@ -1,0 +1,109 @@
+// HVs who learn what a signal meant (model.experience, issue 29) on the
+// figure-8 in SUMO, through the runner as `taebp run configs/influence.yaml`
+// does it: every HV decision replayed from the records alone (the displacement
+// SUMO reported and whether the AV then went, per HV in encounter order)
+// through the library's learning rule; always_nudge unlearned within the
+// hour; guarded ta_ebp never colliding, its DC rate inside the 99.9 % Wilson
+// interval of the mean-field path; the paper's scheme on the knife edge.
+#include "taebp/config/config.h"
+#include "taebp/persuasion/av_hv.h"
+#include "taebp/persuasion/experience.h"
+#include "taebp/persuasion/likelihood.h"
+#include "taebp/persuasion/outcomes.h"
+#include "taebp/report/report.h"
+#include "taebp/runner/runner.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace taebp {
+namespace {
+
+namespace per = persuasion;
+const std::string kInfluence = std::string(TAEBP_SOURCE_DIR) + "/configs/influence.yaml";
+
+struct Tally {
+  long n = 0, dc = 0, collisions = 0, dr_after_nudge = 0, nudges = 0;
+  double theory_dc = 0, theory_collisions = 0;
+};
+
+// Replays each HV's encounters through SignalExperience / ExperiencedBelief
+// from what the records say SUMO showed it; every decision must match.
+Tally Replay(const PolicyRun& run) {
+  const per::LinearLikelihood model(2.0);
+  const per::AvHvParams params{0.2, 3.0};
+  std::map<std::string, per::SignalExperience> seen;
+  Tally t;
+  std::vector<EncounterRecord> recs = run.encounters;
+  std::stable_sort(recs.begin(), recs.end(),
+                   [](const EncounterRecord& a, const EncounterRecord& b) { return a.decided_at < b.decided_at; });
+  for (const EncounterRecord& e : recs) {
+    per::SignalExperience& x = seen.try_emplace(e.hv, 0.1).first->second;
+    const double reading = std::clamp(e.observed, 0.0, 2.0);
+    const double belief = per::ExperiencedBelief(run.scheme.Signals() ? run.scheme : per::CommittedScheme{},
+                                                 params, 0.6, model, reading, x.At(reading), 20.0);
+    EXPECT_NEAR(e.posterior, belief, 1e-12) << run.policy << " " << e.hv << " at " << e.time;
+    EXPECT_EQ(e.hv_dc, per::HvDrivesIfClear(params, belief)) << run.policy << " " << e.hv;
+    x.Record(reading, e.av_first);
+    ++t.n;
+    t.dc += e.hv_dc;
+    t.collisions += e.collision;
+    t.nudges += e.commanded > 0;
+    t.dr_after_nudge += e.commanded > 0 && !e.hv_dc;
+    t.theory_dc += e.theory_dc;
+    t.theory_collisions += e.theory_collision;
+  }
+  return t;
+}
+
+bool Inside999(long k, long n, double p) {
+  const Interval ci = Wilson(k, n, 3.2905267314919255);
+  return ci.low <= p && p <= ci.high;
+}
+
+TEST(ExperienceInSumo, HvsLearnFromSumosDisplacementAlwaysNudgeIsUnlearnedGuardedTaebpNeverCollides) {
+  const ExperimentResult r =
+      RunExperiment(kInfluence, {"scenario.duration=3600", "scenario.seed=3",
+                                 "policies=[always_nudge, ta_ebp]"});
+  ASSERT_EQ(r.runs.size(), 2u);
+  const Tally nudge = Replay(r.runs[0]);
+  const Tally ta = Replay(r.runs[1]);
+  ASSERT_GT(nudge.n, 300);
+  ASSERT_GT(ta.n, 300);
+  // always_nudge: every HV's first encounter is DC (the tie), then the nudge
+  // is learned as meaning the prior: few DC, collisions near lambda.
+  EXPECT_LT(static_cast<double>(nudge.dc) / nudge.n, 0.1);
+  EXPECT_GE(nudge.dc, 8);
+  EXPECT_TRUE(Inside999(nudge.collisions, nudge.n, nudge.theory_collisions / nudge.n));
+  EXPECT_TRUE(Inside999(nudge.dc, nudge.n, nudge.theory_dc / nudge.n));
+  // Guarded ta_ebp: no nudge is ever read as DR, no collision.
+  EXPECT_EQ(ta.dr_after_nudge, 0);
+  EXPECT_EQ(ta.collisions, 0);
+  EXPECT_EQ(ta.theory_collisions, 0.0);
+  EXPECT_TRUE(Inside999(ta.dc, ta.n, ta.theory_dc / ta.n))
+      << ta.dc << "/" << ta.n << " vs " << ta.theory_dc / ta.n;
+  EXPECT_GT(static_cast<double>(ta.dc) / ta.n, 0.25);
+  EXPECT_NEAR(r.runs[1].beyond.long_run_dc, 0.375, 1e-12);
+  EXPECT_NEAR(r.runs[0].beyond.long_run_collision, 0.2, 1e-12);
+}
+
+TEST(ExperienceInSumo, ThePapersSchemeAgainstALearnerSitsOnTheKnifeEdge) {
+  const ExperimentResult r =
+      RunExperiment(kInfluence, {"scenario.duration=3600", "scenario.seed=3", "policies=[ta_ebp]",
+                                 "model.experience.design=paper"});
+  const Tally t = Replay(r.runs[0]);
+  ASSERT_GT(t.n, 300);
+  EXPECT_GT(t.dr_after_nudge, t.nudges / 5);  // about half in the long run
+  EXPECT_GT(t.collisions, 0);
+  EXPECT_TRUE(Inside999(t.collisions, t.n, t.theory_collisions / t.n));
+  EXPECT_TRUE(Inside999(t.dc, t.n, t.theory_dc / t.n));
+  EXPECT_NEAR(r.runs[0].beyond.long_run_collision, 0.1, 1e-12);
+}
+
+}  // namespace
+}  // namespace taebp

@@ -1,0 +1,124 @@
+// HvPopulation with model.experience (issue 29): each HV learns, per level of
+// the displacement SUMO reported, how often the AV then went; ta_ebp designs
+// for what it learned (persuasion/experience.h). Driven with made-up
+// encounters (no SUMO).
+#include "taebp/config/config.h"
+#include "taebp/encounter/encounter.h"
+#include "taebp/encounter/hv_population.h"
+#include "taebp/persuasion/av_hv.h"
+#include "taebp/persuasion/experience.h"
+#include "taebp/persuasion/likelihood.h"
+#include "taebp/persuasion/outcomes.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+
+namespace taebp {
+namespace {
+
+namespace per = persuasion;
+using per::Policy;
+
+ExperimentConfig Config(const std::string& yaml) { return ParseExperimentConfig(yaml, "test.yaml"); }
+
+// One encounter with a given draw and the displacement "SUMO" reported.
+HvReading Play(HvPopulation& pop, const std::string& hv, const AvDraw& draw, double observed) {
+  pop.Commit("av", hv);
+  const HvReading r = pop.Read("av", hv, observed);
+  EncounterRecord rec;
+  pop.Finish("av", hv, draw, r, draw.goes_first && !r.drives_if_clear, true, &rec);
+  return r;
+}
+
+AvDraw Draw(bool go, double nudge) {
+  AvDraw d;
+  d.intent_go = go;
+  d.nudge = nudge > 0;
+  d.nudge_distance = nudge;
+  d.goes_first = go;
+  return d;
+}
+
+// An HV who keeps seeing the AV stop after a nudge learns that the nudge means
+// Stop, and from then on drives recklessly after it; a fresh HV is still
+// persuaded (the intuitive model), and a paper HV (no experience) never learns.
+TEST(HvExperience, AnHvTaughtThatANudgeMeansStopDrivesRecklessly) {
+  const ExperimentConfig c = Config("model: {experience: {strength: 20}}\npolicies: [always_nudge]");
+  HvPopulation pop(c, Policy::kAlwaysNudge);
+  const double s = pop.PopulationScheme().nudge;
+  ASSERT_GT(s, 1.6);
+  pop.Add("taught", 0.6);
+  pop.Add("fresh", 0.6);
+  EXPECT_TRUE(Play(pop, "taught", Draw(false, s), s + 1e-6).drives_if_clear);  // the tie: DC
+  for (int i = 0; i < 10; ++i) Play(pop, "taught", Draw(false, s), s + 1e-6);
+  const HvReading taught = Play(pop, "taught", Draw(false, s), s + 1e-6);
+  EXPECT_FALSE(taught.drives_if_clear);
+  const per::LinearLikelihood model(2.0);
+  const double q = per::HvPosteriorGo(per::AvHvParams{0.2, 3.0}, 1.0, model, s + 1e-6);
+  EXPECT_NEAR(taught.posterior, 0.4 * 0.2 + 0.6 * (20 * q) / (20 + 11), 1e-12);
+  EXPECT_TRUE(Play(pop, "fresh", Draw(false, s), s + 1e-6).drives_if_clear);
+
+  const ExperimentConfig paper = Config("policies: [always_nudge]");
+  HvPopulation never(paper, Policy::kAlwaysNudge);
+  never.Add("hv", 0.6);
+  for (int i = 0; i < 12; ++i) EXPECT_TRUE(Play(never, "hv", Draw(false, s), s + 1e-6).drives_if_clear);
+}
+
+// The HV learns from the displacement SUMO reported, not from what the AV
+// commanded: a commanded s* that SUMO realised as 0.55 m is remembered at 0.55.
+TEST(HvExperience, LearnsAtTheReportedDisplacementNotTheCommandedNudge) {
+  const ExperimentConfig c = Config("model: {experience: {strength: 5}}\npolicies: [always_nudge]");
+  HvPopulation pop(c, Policy::kAlwaysNudge);
+  const double s = pop.PopulationScheme().nudge;
+  pop.Add("hv", 0.6);
+  for (int i = 0; i < 30; ++i) Play(pop, "hv", Draw(true, s), 0.55);  // the AV went every time
+  // 0.55 now reads as Go (g = n = 30): DC; s* was never read: still the tie.
+  const per::LinearLikelihood model(2.0);
+  const per::AvHvParams params{0.2, 3.0};
+  const double q = per::HvPosteriorGo(params, 1.0, model, 0.55);
+  HvReading r = Play(pop, "hv", Draw(false, s), 0.55);
+  EXPECT_NEAR(r.posterior, 0.08 + 0.6 * (5 * q + 30) / 35.0, 1e-12);
+  EXPECT_TRUE(r.drives_if_clear);
+  for (int i = 0; i < 5; ++i) r = Play(pop, "hv", Draw(false, s), s + 1e-6);
+  // Four Stops at s*'s own level before this reading: (5 q* + 0) / 9 < q*: DR.
+  EXPECT_FALSE(r.drives_if_clear);
+}
+
+// ta_ebp guarded: the first encounter's design is the guard (b = 0: one false
+// alarm would break the tie), and over many encounters no nudge is ever read
+// as DR; with design: paper the knife edge shows.
+TEST(HvExperience, GuardedTaebpNeverLetsANudgeReadAsDr) {
+  const per::LinearLikelihood model(2.0);
+  const per::AvHvParams params{0.2, 3.0};
+  const per::CommittedScheme paper = per::CommitScheme(Policy::kTaEbp, params, 0.6, model);
+  for (const char* design : {"guarded", "paper"}) {
+    const ExperimentConfig c = Config(std::string("model: {experience: {design: ") + design + "}}");
+    HvPopulation pop(c, Policy::kTaEbp);
+    pop.Add("hv", 0.6);
+    const per::CommittedScheme& first = pop.Commit("av", "hv");
+    EXPECT_EQ(first.b, std::string(design) == "guarded" ? 0.0 : paper.b) << design;
+    EncounterRecord rec;
+    const AvDraw d0 = Draw(false, 0.0);
+    pop.Finish("av", "hv", d0, pop.Read("av", "hv", 0.0), false, true, &rec);
+    std::mt19937_64 rng(7);
+    long nudges = 0, dr_after_nudge = 0;
+    for (int i = 0; i < 1000; ++i) {
+      const AvDraw d = DrawAv(pop.Commit("av", "hv"), 0.2, rng);
+      const HvReading r = pop.Read("av", "hv", d.nudge_distance > 0 ? d.nudge_distance + 1e-6 : 0.0);
+      pop.Finish("av", "hv", d, r, d.goes_first && !r.drives_if_clear, true, &rec);
+      nudges += d.nudge;
+      dr_after_nudge += d.nudge && !r.drives_if_clear;
+    }
+    EXPECT_GT(nudges, 200) << design;
+    if (std::string(design) == "guarded") {
+      EXPECT_EQ(dr_after_nudge, 0);
+    } else {
+      EXPECT_GT(dr_after_nudge, nudges / 10) << "the knife edge";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace taebp

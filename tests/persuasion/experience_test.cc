@@ -1,0 +1,249 @@
+// HVs who learn what a signal meant (experience.h): the learning rule, the
+// fixed points of each policy, the knife edge, the design against it and the
+// exact mean-field path, against closed forms (docs/influence.md).
+#include "taebp/persuasion/experience.h"
+
+#include "taebp/persuasion/av_hv.h"
+#include "taebp/persuasion/outcomes.h"
+#include "test_util.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace taebp::persuasion {
+namespace {
+
+using ::testing::HasSubstr;
+
+const AvHvParams kPaper{0.2, 3.0};
+constexpr double kTheta = 0.6;
+
+// Binomial pmf by lgamma (exact to ~1e-13 relative for these sizes).
+double Pmf(long n, long k, double p) {
+  if (k < 0 || k > n) return 0.0;
+  if (p == 0.0) return k == 0 ? 1.0 : 0.0;
+  if (p == 1.0) return k == n ? 1.0 : 0.0;
+  return std::exp(std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0) +
+                  k * std::log(p) + (n - k) * std::log1p(-p));
+}
+
+CommittedScheme AlwaysNudge(double s) {
+  CommittedScheme sc;
+  sc.av_may_go = true;
+  sc.nudge = s;
+  sc.a = 1.0;
+  sc.b = 1.0;
+  return sc;
+}
+
+TEST(ExperiencedPosterior, BetaBernoulliMeanAndItsLimits) {
+  EXPECT_DOUBLE_EQ(ExperiencedPosterior(0.4, {0, 0}, 20.0), 0.4);
+  EXPECT_DOUBLE_EQ(ExperiencedPosterior(0.4, {10, 3}, 20.0), (20 * 0.4 + 3) / 30.0);
+  EXPECT_DOUBLE_EQ(ExperiencedPosterior(0.4, {10, 3}, std::numeric_limits<double>::infinity()),
+                   0.4);
+  // k -> 0: the frequency.
+  EXPECT_NEAR(ExperiencedPosterior(0.4, {10, 3}, 1e-12), 0.3, 1e-12);
+  EXPECT_THAT(testing::InvalidArgumentMessage([] { ExperiencedPosterior(0.4, {2, 3}, 1.0); }),
+              HasSubstr("g = 3"));
+  EXPECT_THAT(testing::InvalidArgumentMessage([] { ExperiencedPosterior(0.4, {2, 1}, 0.0); }),
+              HasSubstr("strength k = 0"));
+}
+
+TEST(ExperiencedBelief, IsEqPpWithTheExperiencedPosterior) {
+  const LinearLikelihood model(2.0);
+  const CommittedScheme sc = CommitScheme(Policy::kTaEbp, kPaper, kTheta, model);
+  // No experience: exactly the paper's HV.
+  for (double s : {0.0, 0.5, sc.nudge, 2.0})
+    EXPECT_NEAR(ExperiencedBelief(sc, kPaper, kTheta, model, s, {}, 20.0),
+                HvPosteriorGo(sc, kPaper, kTheta, model, s), 1e-15);
+  const double q = HvPosteriorGo(kPaper, 1.0, model, 1.0);
+  EXPECT_DOUBLE_EQ(ExperiencedBelief(sc, kPaper, kTheta, model, 1.0, {5, 1}, 10.0),
+                   0.4 * 0.2 + 0.6 * (10 * q + 1) / 15.0);
+  // A scheme that does not signal: the intuitive posterior is the prior.
+  const CommittedScheme none;
+  EXPECT_DOUBLE_EQ(ExperiencedBelief(none, kPaper, kTheta, model, 0.0, {4, 0}, 4.0),
+                   0.4 * 0.2 + 0.6 * (4 * 0.2) / 8.0);
+}
+
+TEST(SignalExperience, CountsPerLevelOfTheReading) {
+  SignalExperience e(0.1);
+  EXPECT_EQ(e.Level(0.0), 0);
+  EXPECT_EQ(e.Level(1.6406), 16);
+  e.Record(1.6406, true);
+  e.Record(1.6499, false);
+  e.Record(1.45, false);
+  EXPECT_EQ(e.At(1.61).readings, 2);
+  EXPECT_EQ(e.At(1.61).went, 1);
+  EXPECT_EQ(e.At(1.45).readings, 1);
+  EXPECT_EQ(e.At(0.0).readings, 0);
+  EXPECT_EQ(e.Readings(), 3);
+  EXPECT_THAT(testing::InvalidArgumentMessage([&] { e.Level(-0.1); }), HasSubstr("reading"));
+}
+
+// Theorem 2's consistency condition, exactly: the scheme's Bayes posterior
+// after s*, lambda / (lambda + b (1 - lambda)), equals the intuitive one, i.e.
+// L(s*) = pi(s*|Go) / pi(s*|Stop) = 1 / b, for every trust in (theta*, 1].
+TEST(ExperienceFixedPoints, TaebpAtSStarIsConsistentAndSitsOnTheKnifeEdge) {
+  const LinearLikelihood model(2.0);
+  for (double theta : {0.3, 0.45, 0.6, 0.8, 1.0}) {
+    const TaebpDesign d = DesignTaebp(kPaper, theta, model);
+    ASSERT_TRUE(d.persuadable);
+    EXPECT_NEAR(model.Ratio(d.s_star), 1.0 / d.b, 1e-9 / d.b) << theta;
+    const CommittedScheme sc = CommitScheme(Policy::kTaEbp, kPaper, theta, model);
+    const ExperienceLongRun lr = LongRunUnderExperience(sc, kPaper, theta, model);
+    EXPECT_NEAR(lr.went_after_nudge, HvPosteriorGo(kPaper, 1.0, model, d.s_star), 1e-12);
+    EXPECT_NEAR(lr.belief_after_nudge, AvHvPStar(3.0), 1e-12);
+    EXPECT_TRUE(lr.knife_edge) << theta;
+    EXPECT_EQ(lr.dc_after_nudge, 0.5);
+    EXPECT_DOUBLE_EQ(lr.went_after_still, 0.0);
+    const double nu = 0.2 + 0.8 * d.b;
+    EXPECT_NEAR(lr.outcome.dc_rate, nu / 2, 1e-12);
+    EXPECT_NEAR(lr.outcome.collision_rate, 0.2 / 2, 1e-12);
+  }
+}
+
+TEST(ExperienceFixedPoints, AlwaysNudgeNoTrustFullRevealNoEbp) {
+  const LinearLikelihood model(2.0);
+  const double s_star = MinimalNudge(kPaper, kTheta, model);
+  // Always nudging: the nudge's go-frequency is lambda; the HV drives
+  // recklessly and every Go the AV acts on collides.
+  ExperienceLongRun lr = LongRunUnderExperience(AlwaysNudge(s_star), kPaper, kTheta, model);
+  EXPECT_DOUBLE_EQ(lr.went_after_nudge, 0.2);
+  EXPECT_FALSE(lr.knife_edge);
+  EXPECT_DOUBLE_EQ(lr.outcome.dc_rate, 0.0);
+  EXPECT_DOUBLE_EQ(lr.outcome.collision_rate, 0.2);
+  EXPECT_DOUBLE_EQ(lr.outcome.nudge_rate, 1.0);
+  // No Trust (designed for theta = 1): consistent at its own nudge (p*), which
+  // an HV of trust 0.6 reads as 0.08 + 0.6 * 0.4 = 0.32 < p*: what it always did.
+  lr = LongRunUnderExperience(CommitScheme(Policy::kNoTrust, kPaper, 1.0, model), kPaper, kTheta,
+                              model);
+  EXPECT_NEAR(lr.went_after_nudge, 0.4, 1e-12);
+  EXPECT_NEAR(lr.belief_after_nudge, 0.32, 1e-12);
+  EXPECT_DOUBLE_EQ(lr.outcome.dc_rate, 0.0);
+  EXPECT_DOUBLE_EQ(lr.outcome.collision_rate, 0.2);
+  // Full revelation: s_max always means Go.
+  lr = LongRunUnderExperience(CommitScheme(Policy::kFullReveal, kPaper, kTheta, model), kPaper,
+                              kTheta, model);
+  EXPECT_DOUBLE_EQ(lr.went_after_nudge, 1.0);
+  EXPECT_DOUBLE_EQ(lr.outcome.dc_rate, 0.2);
+  EXPECT_DOUBLE_EQ(lr.outcome.collision_rate, 0.0);
+  // No EBP: the AV never goes; nothing to learn but that.
+  lr = LongRunUnderExperience(CommitScheme(Policy::kNoEbp, kPaper, kTheta, model), kPaper, kTheta,
+                              model);
+  EXPECT_TRUE(std::isnan(lr.went_after_nudge));
+  EXPECT_DOUBLE_EQ(lr.went_after_still, 0.0);
+  EXPECT_DOUBLE_EQ(lr.outcome.dc_rate, 0.0);
+  EXPECT_DOUBLE_EQ(lr.outcome.collision_rate, 0.0);
+}
+
+// The mean field of always-nudge: the nudge level's g after t encounters is
+// Binomial(t, lambda); the HV drives if clear at encounter t iff
+// k q + g >= q_thr (k + t), q_thr = (p* - (1 - theta) lambda) / theta.
+TEST(ExperiencePath, AlwaysNudgeIsABinomialTail) {
+  const LinearLikelihood model(2.0);
+  const double k = 10.5, s = 2.0;  // q(s_max) = 1: a high start; 8 t - 73.5 never / 15
+  ExperiencePath path(AlwaysNudge(s), kPaper, kTheta, model, k, /*guarded=*/false);
+  const double q_thr = (0.4 - 0.4 * 0.2) / 0.6;
+  for (long t : {0L, 1L, 5L, 10L, 17L, 30L, 60L, 120L}) {
+    const double need = q_thr * (k + t) - k * 1.0;
+    ASSERT_GT(std::abs(need - std::round(need)), 1e-6) << "a tie at t = " << t;
+    double tail = 0.0;
+    for (long g = std::max(0L, static_cast<long>(std::ceil(need))); g <= t; ++g)
+      tail += Pmf(t, g, 0.2);
+    const PredictedOutcome o = path.At(t);
+    EXPECT_NEAR(o.dc_rate, tail, 1e-12) << t;
+    EXPECT_NEAR(o.collision_rate, 0.2 * (1.0 - tail), 1e-12) << t;
+    EXPECT_NEAR(o.nudge_rate, 1.0, 1e-12);  // the DP drops states below 1e-15
+  }
+  EXPECT_DOUBLE_EQ(path.At(0).dc_rate, 1.0);  // the intuitive model is persuaded
+  EXPECT_LT(path.At(200).dc_rate, 1e-6);      // and unlearns it
+}
+
+// The paper's TA-EBP against a learner: DC at encounter t iff the nudge
+// level's walk g - q* n is >= 0 (tie included: 15 g >= 8 n at the paper point),
+// n ~ Binomial(t, nu), g | n ~ Binomial(n, q*).
+TEST(ExperiencePath, PaperTaebpIsAZeroMeanWalkAroundPStar) {
+  const LinearLikelihood model(2.0);
+  const CommittedScheme sc = CommitScheme(Policy::kTaEbp, kPaper, kTheta, model);
+  const double nu = 0.2 + 0.8 * sc.b;  // 0.375
+  const double q = 8.0 / 15.0;
+  ExperiencePath path(sc, kPaper, kTheta, model, 20.0, false);
+  for (long t : {0L, 3L, 20L, 60L, 150L}) {
+    double p_dc = 0.0;  // P(DC after a nudge at t)
+    for (long n = 0; n <= t; ++n) {
+      double tail = 0.0;
+      for (long g = 0; g <= n; ++g)
+        if (15 * g >= 8 * n) tail += Pmf(n, g, q);
+      p_dc += Pmf(t, n, nu) * tail;
+    }
+    const PredictedOutcome o = path.At(t);
+    EXPECT_NEAR(o.dc_rate, nu * p_dc, 1e-10) << t;
+    EXPECT_NEAR(o.collision_rate, 0.2 * (1.0 - p_dc), 1e-10) << t;
+  }
+  // Half the nudges read as DR in the long run: the arcsine law's mean.
+  const PredictedOutcome late = path.At(1000);
+  EXPECT_NEAR(late.dc_rate, nu / 2, 0.01);
+  EXPECT_NEAR(late.collision_rate, 0.1, 0.01);
+}
+
+TEST(DesignForExperience, GuardsTheNudgeAgainstAFalseAlarm) {
+  const LinearLikelihood model(2.0);
+  const CommittedScheme paper = CommitScheme(Policy::kTaEbp, kPaper, kTheta, model);
+  const double k = 20.0;
+  auto at = [&](SignalCounts c) {
+    return [c](double) { return c; };
+  };
+  // n = 0: persuaded (the tie), but one false alarm would leave it at
+  // k q / (k + 1) < q: guard (b = 0).
+  ExperiencedDesign d = DesignForExperience(paper, kPaper, kTheta, model, k, at({0, 0}));
+  EXPECT_EQ(d.mode, ExperiencedDesign::Mode::kGuard);
+  EXPECT_EQ(d.scheme.b, 0.0);
+  EXPECT_EQ(d.scheme.nudge, paper.nudge);
+  // g >= q (n + 1): a false alarm keeps it at or above q: the paper's b.
+  d = DesignForExperience(paper, kPaper, kTheta, model, k, at({14, 8}));  // 8 >= 8/15 * 15
+  EXPECT_EQ(d.mode, ExperiencedDesign::Mode::kPaper);
+  EXPECT_EQ(d.scheme.b, paper.b);
+  d = DesignForExperience(paper, kPaper, kTheta, model, k, at({15, 8}));  // 8 < 8/15 * 16
+  EXPECT_EQ(d.mode, ExperiencedDesign::Mode::kGuard);
+  // Not persuaded by s* (an HV taught otherwise): s_max if that persuades.
+  d = DesignForExperience(paper, kPaper, kTheta, model, k, [](double s) {
+    return s < 1.9 ? SignalCounts{40, 0} : SignalCounts{};
+  });
+  EXPECT_EQ(d.mode, ExperiencedDesign::Mode::kStronger);
+  EXPECT_EQ(d.scheme.nudge, 2.0);
+  EXPECT_EQ(d.scheme.b, 0.0);
+  d = DesignForExperience(paper, kPaper, kTheta, model, k, at({40, 0}));
+  EXPECT_EQ(d.mode, ExperiencedDesign::Mode::kYield);
+  EXPECT_FALSE(d.scheme.av_may_go);
+  EXPECT_FALSE(d.scheme.Signals());
+}
+
+// The guarded design never lets a nudge be read as DR (no collision at any
+// t), and its DC rate climbs from lambda to the paper's lambda + (1 - lambda) b.
+TEST(ExperiencePath, GuardedTaebpNeverCollidesAndRecoversThePaperRate) {
+  const LinearLikelihood model(2.0);
+  const CommittedScheme paper = CommitScheme(Policy::kTaEbp, kPaper, kTheta, model);
+  const double target = 0.2 + 0.8 * paper.b;
+  for (double k : {5.0, 20.0}) {
+    ExperiencePath path(paper, kPaper, kTheta, model, k, true);
+    EXPECT_NEAR(path.At(0).dc_rate, 0.2, 1e-15);  // guard at n = 0
+    double last = 0.0;
+    for (long t = 0; t <= 1000; ++t) {
+      const PredictedOutcome o = path.At(t);
+      ASSERT_EQ(o.collision_rate, 0.0) << t;
+      ASSERT_LE(o.dc_rate, target + 1e-12) << t;
+      if (t % 100 == 0) {
+        EXPECT_GE(o.dc_rate, last - 1e-12) << t;  // sampled: non-decreasing
+        last = o.dc_rate;
+      }
+    }
+    EXPECT_GT(path.At(1000).dc_rate, target - 0.02) << k;
+  }
+}
+
+}  // namespace
+}  // namespace taebp::persuasion
