@@ -634,7 +634,7 @@ std::string MetricsMarkdown() {
     if (m.per && (m.pool == Pool::kRate || m.pool == Pool::kWeighted ||
                   (m.pool == Pool::kMean)))
       meaning += std::string("; empty where `") + m.per + "` is 0";
-    if (m.pool == Pool::kPrediction) meaning += "; empty for sumo_native (it plays no game)";
+    if (m.pool == Pool::kPrediction) meaning += std::string("; empty for ") + SumoNative().name + " (it plays no game)";
     out << "| " << name << " | " << m.unit << " | " << where << " | " << Pooled(m) << " | "
         << meaning << " |\n";
   }
