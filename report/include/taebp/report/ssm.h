@@ -3,7 +3,7 @@
 // no SUMO and no config (the caller passes the rules).
 //
 // A conflict is one pair of vehicles over one stretch of time: SUMO's device
-// on each equipped vehicle writes its own <conflict ego foe> record, so with
+// on each equipped vehicle writes its own conflict record (ego, foe), so with
 // every vehicle equipped most conflicts appear twice (ego and foe swapped,
 // their spans and values not always equal). Records of the same unordered
 // pair whose [begin, end] overlap are one conflict, with the worst value of
@@ -56,7 +56,7 @@ struct SsmRun {
   SsmTally network;                         // every conflict in the network
   SsmTally at_junctions;                    // those at a controlled junction
   std::map<std::string, SsmTally> junction; // by controlled junction id
-  long records = 0;                         // <conflict> records SUMO wrote (all times)
+  long records = 0;                         // conflict elements SUMO wrote (all times)
   // The device's warnings (a collision it saw; "Cannot compute SSM due to bad
   // internal lane geometry at junction J": crossings there go unmeasured).
   long device_warnings = 0;
