@@ -11,8 +11,8 @@ from conftest import ROOT, cli
 
 
 def readme_codes():
-    """code -> meaning from the README's "Exit codes" table."""
-    with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as f:
+    """code -> meaning from the manual's "Exit codes" table (docs/cli.md)."""
+    with open(os.path.join(ROOT, "docs", "cli.md"), encoding="utf-8") as f:
         text = f.read()
     table = text[text.index("Exit codes, for every subcommand"):]
     table = table[:table.index("\n\n", table.index("| code |"))]

@@ -82,6 +82,7 @@ POLICY_COLOUR = {
     "full_reveal": "#2ca02c",
     "population_mean": "#ff7f0e",
     "ta_ebp_learned": "#9467bd",
+    "always_nudge": "#17becf",
 }
 # name -> label ("TA-EBP"), from the one table of policies (`taebp policies
 # --print json`, config/src/policies.cc); filled by load_policy_labels.
