@@ -317,6 +317,7 @@ const char* ToString(Premise p) {
     case Premise::kNoCollision: return "no_collision";
     case Premise::kUncertainMerge: return "uncertain_merge";
     case Premise::kNudgeInHvWay: return "nudge_in_hv_way";
+    case Premise::kGrazing: return "grazing";
   }
   return "?";
 }

@@ -179,6 +179,25 @@ PolicyRun RunOn(const std::string& policy, double duration,
   return RunPolicy(cfg, policy, BuildScenario(cfg, ""));
 }
 
+// SUMO's collision check against the prediction at the HV's decision, on a
+// pair where both proceeded. A grazing verdict (Premise::kGrazing: it turns
+// within half the HV's step) is held to neither, and must stay rare: a
+// prediction that called every pair grazing would otherwise pass.
+struct BothProceeded {
+  long pairs = 0, grazing = 0;
+  void Check(const EncounterRecord& e, const std::string& where) {
+    ++pairs;
+    if (e.premise == Premise::kGrazing) {
+      ++grazing;
+      return;
+    }
+    EXPECT_EQ(e.collision, e.both_proceed_collides) << "both proceeded, " << where;
+  }
+  ~BothProceeded() {
+    EXPECT_LE(grazing * 10, pairs) << grazing << " of " << pairs << " both-proceed pairs grazing";
+  }
+};
+
 void ExpectInside(long k, long n, double p, const std::string& what) {
   ASSERT_GT(n, 0) << what;
   if (p == 0.0) {
@@ -204,6 +223,7 @@ TEST(MajorRoad, SumoCollidesExactlyWherePredictedAndRatesAgreeWithTheTheory) {
     SCOPED_TRACE(policy);
     const PolicyRun r = RunOn(policy, 7200);
     long n = 0, dc = 0, collisions = 0, after_handback = 0;
+    BothProceeded held;
     for (const EncounterRecord& e : r.encounters) {
       const std::string where = e.av + "/" + e.hv + " at " + std::to_string(e.time);
       EXPECT_TRUE(e.major_road) << where;
@@ -214,8 +234,7 @@ TEST(MajorRoad, SumoCollidesExactlyWherePredictedAndRatesAgreeWithTheTheory) {
       if (e.av_first && !e.hv_dc) {
         ++both;
         both_collide += e.both_proceed_collides;
-        EXPECT_EQ(e.collision, e.both_proceed_collides)
-            << "both proceeded: SUMO against the prediction, " << where;
+        held.Check(e, where);
       } else {
         EXPECT_FALSE(e.collision) << "a yielding HV or a waiting AV collided, " << where;
       }
@@ -247,11 +266,15 @@ TEST(MajorRoad, SumoCollidesExactlyWherePredictedAndRatesAgreeWithTheTheory) {
 TEST(MajorRoad, WithAllPairsSumoCollidesExactlyWherePredicted) {
   for (const bool both_ways : {false, true}) {
     SCOPED_TRACE(both_ways ? "two-way major road" : "one-way major road");
+    // Two hours on the two-way road: the window taken from every policy's
+    // nudge (the earliest entry, the latest exit) leaves fewer approaches on
+    // which the AV clears first there (7 in one hour).
     const PolicyRun r =
-        RunOn("no_trust", 3600,
+        RunOn("no_trust", both_ways ? 7200 : 3600,
               {"scenario.encounter_pairs=all", "model.trust=0.0", "model.prior_go=0.45"},
               both_ways);
     std::map<std::string, long> n;
+    BothProceeded held;
     for (const EncounterRecord& e : r.encounters) {
       const std::string where = e.av + "/" + e.hv + " at " + std::to_string(e.time) + ", " +
                                 ToString(e.premise);
@@ -259,7 +282,7 @@ TEST(MajorRoad, WithAllPairsSumoCollidesExactlyWherePredicted) {
       EXPECT_FALSE(e.hv_dc) << "trust 0: the HV always keeps its way, " << where;
       ++n[std::string(ToString(e.premise)) + (e.av_first ? " go" : " wait")];
       if (e.av_first) {
-        EXPECT_EQ(e.collision, e.both_proceed_collides) << "both proceeded, " << where;
+        held.Check(e, where);
       } else if (e.premise == Premise::kHolds) {
         EXPECT_FALSE(e.collision) << "the AV waited, " << where;
       }
@@ -315,6 +338,7 @@ TEST(MajorRoad, AnHvStillUpstreamOfAShortApproachLaneIsMet) {
     SCOPED_TRACE(c.policy + (c.more.empty() ? "" : " with all pairs"));
     const PolicyRun r = RunOnShortApproach(c.policy, 1800, c.more);
     std::map<std::string, long> n;
+    BothProceeded held;
     for (const EncounterRecord& e : r.encounters) {
       const std::string where = e.av + "/" + e.hv + " at " + std::to_string(e.time) + ", " +
                                 ToString(e.premise);
@@ -322,7 +346,7 @@ TEST(MajorRoad, AnHvStillUpstreamOfAShortApproachLaneIsMet) {
       EXPECT_EQ(e.hv_movement.substr(0, 2), "PC") << where;
       ++n[std::string(ToString(e.premise)) + (e.av_first ? " go" : " wait")];
       if (e.av_first && !e.hv_dc) {
-        EXPECT_EQ(e.collision, e.both_proceed_collides) << "both proceeded, " << where;
+        held.Check(e, where);
       } else {
         EXPECT_FALSE(e.collision) << "a yielding HV or a waiting AV collided, " << where;
       }
@@ -355,11 +379,12 @@ TEST(MajorRoad, AnHvOnAnUpstreamNodesInternalLaneIsNotInsideTheJunction) {
     SCOPED_TRACE(policy);
     const PolicyRun r = RunOnShortApproach(policy, 1800, {}, true);
     long collisions = 0;
+    BothProceeded held;
     for (const EncounterRecord& e : r.encounters) {
       const std::string where = e.av + "/" + e.hv + " at " + std::to_string(e.time);
       EXPECT_TRUE(e.major_road) << where;
       if (e.av_first && !e.hv_dc) {
-        EXPECT_EQ(e.collision, e.both_proceed_collides) << "both proceeded, " << where;
+        held.Check(e, where);
       } else {
         EXPECT_FALSE(e.collision) << "a yielding HV or a waiting AV collided, " << where;
       }
@@ -402,6 +427,7 @@ TEST(MajorRoad, OnATwoWayGridWithTurnsSumoAgreesWithThePredictionOnEveryPair) {
     SCOPED_TRACE(policy);
     const PolicyRun r = RunPolicy(cfg, policy, sc);
     long collisions = 0, kinds[2] = {0, 0};
+    BothProceeded held;
     for (const EncounterRecord& e : r.encounters) {
       const std::string where = e.junction + " " + e.av_movement + " (AV) / " + e.hv_movement +
                                 (e.major_road ? " major road" : " stop lines") + " at " +
@@ -410,7 +436,11 @@ TEST(MajorRoad, OnATwoWayGridWithTurnsSumoAgreesWithThePredictionOnEveryPair) {
       collisions += e.collision;
       if (e.av_first && !e.hv_dc) {
         ++both;
-        EXPECT_EQ(e.collision, e.both_proceed_collides) << where;
+        if (e.major_road) {
+          held.Check(e, where);
+        } else {
+          EXPECT_EQ(e.collision, e.both_proceed_collides) << where;
+        }
       } else {
         EXPECT_FALSE(e.collision) << where;
       }
