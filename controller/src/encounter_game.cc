@@ -76,6 +76,9 @@ Premise FromPrediction(junction::BothProceed p) {
 // 0 to `largest` every kNudgeGrid m (the bodies' own resolution) and
 // `largest` itself.
 constexpr double kNudgeGrid = 0.25;  // m
+// How far the major-road HV's front may be off for a verdict to count
+// (MajorPremiseNow): two of the bodies' resolution steps.
+constexpr double kGrazingBand = 2 * kNudgeGrid;  // m
 std::vector<double> GoPositions(double largest) {
   std::vector<double> out;
   for (int k = 0; k * kNudgeGrid < largest; ++k) out.push_back(k * kNudgeGrid);
@@ -231,16 +234,15 @@ Premise EncounterGame::MajorPremiseNow(int av, int hv) const {
   const std::optional<double> hf =
       info.movements[g.hv_movement].PathArc(s_.sumo.LaneID(h.id), s_.sumo.LanePosition(h.id));
   if (ma.front < 0 || !hf) return Premise::kNoCollision;
-  // The verdict must not turn within half the HV's step (its front's
-  // resolution in SUMO) either side: at a grazing pass SUMO's collision
-  // check and these boxes can differ by centimetres (measured: a pair
-  // predicted to collide that SUMO had pass 0.2 m apart; the HV 0.3 m
-  // further back, the prediction was clear too). Such a pair is recorded as
-  // unpredictable, not held to SUMO's check either way.
+  // The verdict must not turn within kGrazingBand either side of the HV's
+  // front: at a grazing pass SUMO's collision check and these boxes can
+  // differ by centimetres (measured: a pair predicted to collide that SUMO
+  // had pass 0.2 m apart; the HV 0.3 m further back, the prediction was
+  // clear too). Such a pair is recorded `grazing`, not held to SUMO's check
+  // either way.
   const junction::Mover mh = Cruising(g.hv, *hf, h.major_speed);
   const junction::BothProceed p = junction::PredictBothProceed(ma, mh, s_.dt);
-  const double band = 0.5 * h.major_speed * s_.dt;
-  for (const double shift : {-band, band}) {
+  for (const double shift : {-kGrazingBand, kGrazingBand}) {
     junction::Mover shifted = mh;
     shifted.front += shift;
     if (junction::PredictBothProceed(ma, shifted, s_.dt) != p) return Premise::kGrazing;

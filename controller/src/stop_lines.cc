@@ -261,8 +261,27 @@ bool StopLineEnvironment::ExitHasRoom(int movement, int vehicle) {
   return free - inflight * unit >= unit;
 }
 
+// An AV nudged past its line stands here on a movement in conflict with
+// `movement`: SUMO may hold that movement's vehicles for it.
+bool StopLineEnvironment::NudgedAvInConflictWith(int movement) {
+  for (const auto& [id, h] : s_.vehicles.in_network()) {
+    const Vehicle& v = s_.vehicles[h];
+    if (v.kind != VehicleKind::kAV || v.junction < 0 || v.movement < 0 ||
+        &s_.topo.junctions()[v.junction] != &info_)
+      continue;
+    if (v.state != State::kNudging && v.state != State::kNudged) continue;
+    if (info_.spec.Conflict(v.movement, movement) && PastLine(h)) return true;
+  }
+  return false;
+}
+
 // Two-way stops: no major vehicle inside or about to reach a conflicting
-// major movement within the critical gap.
+// major movement within the critical gap. Inside the junction a halted
+// vehicle is traffic too (a major left turn halted at its internal stop
+// point goes once the opposing road is clear, and a move released with
+// SUMO's right of way off would hit it: issue 30), unless an AV nudged past
+// its line stands in its way (SUMO holds it for that AV; waiting for it
+// would wait for ever). Approaching, a halted vehicle is not.
 bool StopLineEnvironment::MajorClear(int movement) {
   // A halted major vehicle is yielding (SUMO's rules, e.g. to the AV that
   // nudged into the junction): it starts only when SUMO sees the way clear,
@@ -273,7 +292,7 @@ bool StopLineEnvironment::MajorClear(int movement) {
     for (const std::string& in : mk.internal) {
       if (s_.sumo.LaneVehicleNumber(in) == 0) continue;
       for (const std::string& id : s_.sumo.LaneVehicleIDs(in))
-        if (moving(id)) return false;
+        if (moving(id) || !NudgedAvInConflictWith(k)) return false;
     }
     for (const auto& [lane, offset] : mk.feeders) {
       const std::vector<std::string> ids = s_.sumo.LaneVehicleIDs(lane);

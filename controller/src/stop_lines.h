@@ -44,6 +44,7 @@ class StopLineEnvironment : public junction::Environment {
  public:
   StopLineEnvironment(RunState& s, const JunctionState& j);
   bool WayClear(int vehicle, int partner) override;
+  bool NudgedAvInConflictWith(int movement);
   bool Standing(int vehicle) override;
   bool ExitHasRoom(int movement, int vehicle) override;
   bool MajorClear(int movement) override;

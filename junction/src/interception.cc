@@ -226,6 +226,13 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
       if (spec_.rule == Rule::kTwoWay) av_may = av_may && env.MajorClear(e.out.hv_movement);
       if (!av_may || !av_way || !hv_way) return out;
     }
+    // The HV drives recklessly while the AV waits: reckless toward the AV
+    // alone. At a two-way stop it waits for the major road's gap like every
+    // other move (released with SUMO's right of way off, it would enter in
+    // front of the major road's traffic: issue 30). The AV waits for it.
+    const bool reckless_alone = !av_goes && !hv_dc && !e.hv_released;
+    if (reckless_alone && spec_.rule == Rule::kTwoWay && !env.MajorClear(e.out.hv_movement))
+      return out;
     // The AV follows the HV once the HV is inside the junction (SUMO makes
     // it yield at the crossing point), unless its nudge took it past its own
     // line: once the HV has passed its way or left.

@@ -34,9 +34,10 @@ bool Inside(long k, long n, double p) {
   return p >= ci.low - 1e-12 && p <= ci.high + 1e-12;
 }
 
-// DISABLED: issue 30 item 1 is not met yet (docs/encounter-rules.md §1: with
-// mode 55, seed 1 has 2 game-move collisions with third vehicles under No EBP
-// and TA-EBP; the modes tried instead stalled the grid). Enable with the fix.
+// DISABLED: issue 30 item 1 is not fully met (docs/encounter-rules.md §1:
+// with the reckless HV gated by the major road's gap and halted vehicles
+// inside the junction counted as traffic, 2 game-move collisions with third
+// vehicles remain over 3 seeds x 3 policies, down from 11). Enable with the fix.
 TEST(Safety, DISABLED_GridTwoWayNoGameMoveHitsAThirdVehicleWhereSumoNativeHasNoCollision) {
   struct Pooled {
     long encounters = 0, collisions = 0, dc = 0;
