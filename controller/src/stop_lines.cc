@@ -283,9 +283,8 @@ bool StopLineEnvironment::NudgedAvInConflictWith(int movement) {
 // its line stands in its way (SUMO holds it for that AV; waiting for it
 // would wait for ever). Approaching, a halted vehicle is not.
 bool StopLineEnvironment::MajorClear(int movement) {
-  // A halted major vehicle is yielding (SUMO's rules, e.g. to the AV that
-  // nudged into the junction): it starts only when SUMO sees the way clear,
-  // so it counts as no traffic; waiting for it would wait for ever.
+  // A halted major vehicle approaching is yielding (SUMO's rules): it starts
+  // only when SUMO sees the way clear, so it counts as no traffic.
   auto moving = [&](const std::string& id) { return s_.sumo.Speed(id) >= kHaltSpeed; };
   for (int k : info_.movements[movement].major_foes) {
     const MovementInfo& mk = info_.movements[k];

@@ -44,7 +44,6 @@ class StopLineEnvironment : public junction::Environment {
  public:
   StopLineEnvironment(RunState& s, const JunctionState& j);
   bool WayClear(int vehicle, int partner) override;
-  bool NudgedAvInConflictWith(int movement);
   bool Standing(int vehicle) override;
   bool ExitHasRoom(int movement, int vehicle) override;
   bool MajorClear(int movement) override;
@@ -65,6 +64,9 @@ class StopLineEnvironment : public junction::Environment {
   std::vector<Inside> VehiclesInside();
   // The vehicle's path through the junction with its front where it is now.
   junction::Mover MoverNow(int vehicle);
+  // An AV nudged past its line stands here on a movement in conflict with
+  // `movement` (MajorClear).
+  bool NudgedAvInConflictWith(int movement);
 
   RunState& s_;
   const JunctionInfo& info_;

@@ -181,7 +181,7 @@ PolicyRun RunOn(const std::string& policy, double duration,
 
 // SUMO's collision check against the prediction at the HV's decision, on a
 // pair where both proceeded. A grazing verdict (Premise::kGrazing: it turns
-// within half the HV's step) is held to neither, and must stay rare: a
+// with the HV's front moved 0.5 m) is held to neither, and must stay rare: a
 // prediction that called every pair grazing would otherwise pass.
 struct BothProceeded {
   long pairs = 0, grazing = 0;

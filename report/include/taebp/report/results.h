@@ -45,9 +45,9 @@ inline constexpr double kNudgeOvershoot = 1e-6;  // m
 // the game: kNoCollision (both proceeding would not collide), kUncertainMerge
 // (a merge whose outcome depends on SUMO's car following), kNudgeInHvWay (the
 // AV standing nudged is in the way of the HV driving recklessly). Recorded at
-// a major-road HV's decision only, kGrazing: the verdict turns within half the
-// HV's step either side (a grazing pass SUMO's check and the prediction's
-// boxes may judge differently), so SUMO's check is held to neither.
+// a major-road HV's decision only, kGrazing: the verdict turns with the HV's
+// front moved 0.5 m either way (a grazing pass SUMO's check and the
+// prediction's boxes may judge differently), so SUMO's check is held to neither.
 enum class Premise { kHolds, kNoCollision, kUncertainMerge, kNudgeInHvWay, kGrazing };
 const char* ToString(Premise p);
 
