@@ -409,7 +409,8 @@ std::vector<int> StopLineEnvironment::Unblockable(int vehicle, int partner) {
   std::optional<junction::Mover> mine;
   for (const Inside& b : inside) {
     if (!b.still || b.vehicle < 0 || b.vehicle == vehicle || b.vehicle == partner) continue;
-    if (s_.vehicles[b.vehicle].state != State::kFree || b.mover.front < 0) continue;
+    const Vehicle& bv = s_.vehicles[b.vehicle];
+    if (bv.state != State::kFree || bv.unblocked || b.mover.front < 0) continue;  // let past already
     if (!info_.spec.Conflict(b.movement, movement)) continue;
     if (!mine) mine = MoverNow(vehicle);
     if (junction::PassedWay(b.mover, *mine, 0.0)) continue;  // not in its way

@@ -217,6 +217,10 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
         for (int b : env.Unblockable(e.out.hv, e.out.av))
           if (std::find(blockers.begin(), blockers.end(), b) == blockers.end()) blockers.push_back(b);
       for (int b : blockers) out.push_back({Command::Kind::kUnblock, b});
+      // They go first: a move of the game released in the same step would
+      // meet them on its way (at a two-way stop MajorClear took them for
+      // vehicles SUMO holds for the AV: issue 30, the left turn at C3).
+      if (!blockers.empty()) return out;
     }
     // The AV goes and the HV drives recklessly: the game's premise is that
     // both start together, so each waits with the other for both ways and,

@@ -5,8 +5,7 @@
 //   1-3): where sumo_native has no collision, no move of the game hits a third
 //   vehicle under any policy (other_collisions_game_move 0), and the
 //   encounters' collision and DC rates hold their theory inside 99.9 %
-//   intervals. Disabled until item 1 is fixed (2 of 3 seed-1 collisions with
-//   third vehicles under No EBP and TA-EBP today).
+//   intervals.
 // - A grid where the nudge reaches the HV's path (s_max 6 m): the first game
 //   is the same pair at the same time under No EBP, No Trust and TA-EBP, and
 //   some meetings are left to SUMO for it (the rule could fail).
@@ -34,11 +33,11 @@ bool Inside(long k, long n, double p) {
   return p >= ci.low - 1e-12 && p <= ci.high + 1e-12;
 }
 
-// DISABLED: issue 30 item 1 is not fully met (docs/encounter-rules.md §1:
-// with the reckless HV gated by the major road's gap and halted vehicles
-// inside the junction counted as traffic, 2 game-move collisions with third
-// vehicles remain over 3 seeds x 3 policies, down from 11). Enable with the fix.
-TEST(Safety, DISABLED_GridTwoWayNoGameMoveHitsAThirdVehicleWhereSumoNativeHasNoCollision) {
+// The reckless HV waits for the major road's gap; a vehicle halted inside
+// the junction is traffic unless a nudged AV holds it; the moves of the game
+// wait a step for the vehicles let past that AV (Unblockable), which then
+// move (docs/encounter-rules.md §1).
+TEST(Safety, GridTwoWayNoGameMoveHitsAThirdVehicleWhereSumoNativeHasNoCollision) {
   struct Pooled {
     long encounters = 0, collisions = 0, dc = 0;
     double theory_collisions = 0, theory_dc = 0;

@@ -412,6 +412,30 @@ TEST(Interception, VehiclesStoppedForANudgedAvInTheWayOfAMoveAreLetPastIt) {
   }
 }
 
+// Those let past the nudged AV go first: in the step they are let past, no
+// move of the game is released, though its own way is clear (at a two-way
+// stop MajorClear took them for vehicles SUMO holds for the AV; released in
+// the same step, the reckless HV met the major left turn let past: issue 30).
+TEST(Interception, MovesOfTheGameWaitAStepForTheVehiclesLetPastTheNudgedAv) {
+  for (Rule rule : {Rule::kAllWay, Rule::kTwoWay}) {
+    SCOPED_TRACE(ToString(rule));
+    Interception logic(B1(rule), Timing{1.0});
+    FakeEnv env;
+    FakeModel model;
+    model.draws[kAv] = Draw(false, 1.0);  // nudges, stays; the HV drives recklessly
+    const std::vector<AtLine> at = {Wait(kAv, kAV, kWs, 0), Wait(kHv, kHV, kSs, 0)};
+    logic.Step(0.0, at, env, model);
+    logic.NudgeDone(kAv, 1.0, 1.0, model);
+    env.past_line = {kAv};
+    env.way_blocked = {kAv};  // the third vehicle stands in the still AV's way
+    env.unblockable[kAv] = {kThird};
+    EXPECT_EQ(Simple(logic.Step(1.0, {}, env, model)), std::vector<Cmd>{Unblock(kThird)})
+        << "the HV's way is clear, yet it waits a step";
+    env.unblockable.clear();  // let past already
+    EXPECT_EQ(Simple(logic.Step(1.1, {}, env, model)), std::vector<Cmd>{Rel(kHv)});
+  }
+}
+
 // Every release of an encounter vehicle says so: the controller watches it
 // out of the junction.
 TEST(Interception, EncounterReleasesAreMarkedSoTheControllerWatchesThem) {
