@@ -209,7 +209,8 @@ bool StopLineEnvironment::Standing(int h) {
 
 // Every vehicle inside the junction on a movement conflicting with the
 // vehicle's own (SUMO's foes: crossing or merging) has passed its way, or
-// stands still clear of it (its body where it stands). Vehicles ahead on its
+// stands still clear of it (its body where it stands) and was not let past
+// a nudged AV. Vehicles ahead on its
 // own movement are its leaders: car-following keeps it behind them, whatever
 // its speed mode.
 bool StopLineEnvironment::WayClear(int vehicle, int partner) {
@@ -220,7 +221,11 @@ bool StopLineEnvironment::WayClear(int vehicle, int partner) {
     if (!info_.spec.Conflict(x.movement, movement)) continue;
     if (x.vehicle < 0 || x.mover.front < 0) return false;
     if (!mine) mine = MoverNow(vehicle);
-    if (!junction::PassedWay(x.mover, *mine, x.still ? 0.0 : -1.0)) return false;
+    // One let past a nudged AV (Unblockable) goes though it stands yet: it
+    // may start any step (issue 30: the left turn at D1 let past at 341.8 s
+    // still stood when the HV was released, then went into it).
+    const bool stays = x.still && !s_.vehicles[x.vehicle].unblocked;
+    if (!junction::PassedWay(x.mover, *mine, stays ? 0.0 : -1.0)) return false;
   }
   return true;
 }

@@ -86,6 +86,24 @@ TEST(Safety, GridTwoWayNoGameMoveHitsAThirdVehicleWhereSumoNativeHasNoCollision)
   }
 }
 
+// A vehicle let past the nudged AV (Unblockable) is traffic for the moves of
+// the game until it has passed, though it stands yet: the two-way study's
+// point where TA-EBP's careful HV (d270, released at t = 341.9 s) met the
+// left turn let past the AV a step before (d247 at D1, which stood 0.8 s
+// more and then went). Seed 2 of flow 200, AV share 0.25, 1200 s: about 5 s.
+TEST(Safety, AVehicleLetPastTheNudgedAvIsTrafficUntilItHasPassed) {
+  const ExperimentConfig cfg = LoadExperimentConfig(
+      kSource + "/configs/grid_two_way.yaml",
+      {"scenario.seed=2", "scenario.demand.flow=200", "scenario.av_share=0.25"});
+  const Scenario sc = BuildScenario(cfg, "");
+  const PolicyRun r = RunPolicy(cfg, "ta_ebp", sc);
+  std::cout << r.encounters.size() << " encounters, " << r.unblocked << " let past a nudged AV, "
+            << r.other_collisions << " other collisions, " << r.other_collisions_game_move
+            << " of a game move\n";
+  ASSERT_GT(r.unblocked, 0) << "nobody was let past a nudged AV: the test checks nothing";
+  EXPECT_EQ(r.other_collisions_game_move, 0) << "a move of the game hit a vehicle let past the AV";
+}
+
 // A 3x3 all-way grid with a nudge long enough (s_max 6 m) to reach the
 // HV's path from many stop lines: before the rule was policy-independent,
 // No EBP (no nudge) formed games No Trust and TA-EBP refused.
