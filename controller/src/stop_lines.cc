@@ -210,9 +210,8 @@ bool StopLineEnvironment::Standing(int h) {
 // Every vehicle inside the junction on a movement conflicting with the
 // vehicle's own (SUMO's foes: crossing or merging) has passed its way, or
 // stands still clear of it (its body where it stands) and was not let past
-// a nudged AV. Vehicles ahead on its
-// own movement are its leaders: car-following keeps it behind them, whatever
-// its speed mode.
+// a nudged AV. Vehicles ahead on its own movement are its leaders:
+// car-following keeps it behind them, whatever its speed mode.
 bool StopLineEnvironment::WayClear(int vehicle, int partner) {
   const int movement = s_.vehicles[vehicle].movement;
   std::optional<junction::Mover> mine;  // read once someone is inside
