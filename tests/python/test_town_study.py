@@ -16,7 +16,7 @@ import sys
 import pytest
 
 import taebp
-from conftest import ROOT
+from conftest import CLI, ROOT
 
 SUMO_HOME = os.environ.get("SUMO_HOME", "/usr/share/sumo")
 POLICIES = ["sumo_native", "no_ebp", "no_trust", "ta_ebp", "population_mean"]
@@ -148,3 +148,28 @@ def test_what_cannot_be_drawn_exits_non_zero_naming_what_can(study):
     assert "collision_rate" in r.stderr and "served_flow" in r.stderr
     r = subprocess.run([plot, s.out, "--x", "scenario.demand.flow"], capture_output=True, text=True)
     assert r.returncode != 0 and "--x one of scenario.av_share, model.trust" in r.stderr
+
+
+def test_a_task_folder_reruns_itself_and_plots_its_map_from_another_directory(study, tmp_path):
+    """A sweep point's folder is a run folder: its saved config.yaml names its
+    inputs (absolute paths), so `taebp run TASK/config.yaml` from elsewhere
+    gives the same encounters byte for byte, and `tools/plot TASK` draws that
+    point's map (the network found from the saved config)."""
+    _, s = study
+    task = os.path.join(s.out, "tasks", "1-0")  # av_share 0.25, the wide Beta: sumo_native reused
+    assert os.path.isfile(os.path.join(task, "config.yaml"))
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    r = subprocess.run([CLI, "run", os.path.join(task, "config.yaml"), "--out", "again",
+                        "--quiet"], cwd=str(elsewhere), capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    with open(os.path.join(task, "encounters.csv"), "rb") as a, \
+            open(elsewhere / "again" / "encounters.csv", "rb") as b:
+        first, second = a.read(), b.read()
+    assert first.count(b"\n") > 1, "the point played games"
+    assert first == second
+    r = subprocess.run([os.path.join(ROOT, "tools", "plot"), task], cwd=str(elsewhere),
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    std, ink = _png_pixels(os.path.join(task, "network_map.png"))
+    assert std > 0.05 and ink > 0.01, (std, ink)  # the net's lanes and the junction markers
