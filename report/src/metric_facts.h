@@ -51,6 +51,8 @@ bool InScope(MetricScope s, const PolicyRun& r);
 std::vector<Metric> SsmMetricRows();
 
 double Rate(long k, long n);
+// Whether any of the runs is beyond the paper (its extra columns and rows).
+bool AnyBeyond(const std::vector<PolicyRun>& runs);
 double PerHour(double count, double seconds);
 
 }  // namespace taebp

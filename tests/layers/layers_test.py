@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""The house's layers, checked on the includes: no arrow runs back up.
+"""The house's layers, checked on the includes: no arrow runs back up; and
+no file in sweep/ or controller/ (nor report/src/report.cc) over 500 lines.
 
 Each library folder may include its own headers and those of the layers listed
 for it below, nothing else; libsumo and libtraci only in the SUMO adapter.
@@ -32,6 +33,11 @@ ALLOWED = {
 ONLY = {("report", "config"): {"taebp/config/policies.h"},
         ("rundir", "config"): {"taebp/config/policies.h"}}
 SUMO_ADAPTER = {"controller/src/sumo_adapter.cc", "controller/src/sumo_adapter_libtraci.cc"}
+# Files that do one job (issue 27): no source file in these folders, and not
+# these files, over MAX_LINES lines.
+MAX_LINES = 500
+SIZE_FOLDERS = ("sweep", "controller")
+SIZE_FILES = ("report/src/report.cc",)
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]')
 
 
@@ -63,6 +69,19 @@ def main():
                         if parts[0] in ("libsumo", "libtraci") and rel not in SUMO_ADAPTER:
                             problems.append("%s:%d: %s outside the SUMO adapter (%s)" % (
                                 rel, n, target, ", ".join(sorted(SUMO_ADAPTER))))
+    sized = 0
+    for rel in SIZE_FILES + tuple(
+            os.path.relpath(os.path.join(base, name), ROOT)
+            for folder in SIZE_FOLDERS for base, _, files in os.walk(os.path.join(ROOT, folder))
+            for name in files if name.endswith((".h", ".cc", ".inc"))):
+        sized += 1
+        with open(os.path.join(ROOT, rel), encoding="utf-8") as f:
+            lines = sum(1 for _ in f)
+        if lines > MAX_LINES:
+            problems.append("%s: %d lines, over %d: split it into files that do one job each" % (
+                rel, lines, MAX_LINES))
+    if sized < 20:
+        problems.append("only %d files checked for size: wrong root?" % sized)
     if checked < 50:
         problems.append("only %d source files found under %s: wrong root?" % (checked, ROOT))
     for p in problems:

@@ -1,0 +1,214 @@
+// A sweep folder's state and tables (sweep_folder.h).
+#include "sweep_folder.h"
+
+#include "workers.h"
+#include "taebp/config/config.h"
+#include "taebp/report/report.h"
+#include "taebp/rundir/output_dir.h"
+#include "taebp/rundir/synced_file.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <unistd.h>
+
+namespace taebp::sweep::internal {
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string NoSpaceIn(const fs::path& dir) {
+  const fs::path probe = dir / (".taebp-space-probe." + std::to_string(::getpid()));
+  std::string why;
+  try {
+    WriteSynced(probe.string(), std::string(256 * 1024, '\0'));
+  } catch (const std::exception& e) {
+    const std::string message = e.what();
+    for (const int err : {ENOSPC, EDQUOT})
+      if (why.empty() && message.find(std::strerror(err)) != std::string::npos)
+        why = std::string(std::strerror(err)) + " in " + dir.string();
+  }
+  std::error_code ec;
+  fs::remove(probe, ec);
+  return why;
+}
+
+void ParseShard(const std::string& text, int* index, int* count) {
+  *index = 0;
+  *count = 1;
+  if (text.empty()) return;
+  const auto slash = text.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("");
+    std::size_t a = 0, b = 0;
+    *index = std::stoi(text.substr(0, slash), &a);
+    *count = std::stoi(text.substr(slash + 1), &b);
+    if (a != slash || b != text.size() - slash - 1) throw std::invalid_argument("");
+  } catch (const std::exception&) {
+    throw ConfigError("--shard " + text + ": expected I/N, e.g. --shard 0/4");
+  }
+  if (*count < 1 || *index < 0 || *index >= *count)
+    throw ConfigError("--shard " + text + ": expected I/N with 0 <= I < N");
+}
+
+std::string SumoVersionOf(const Journal& journal) {
+  for (const auto& [i, e] : journal.entries) {
+    const std::string v = e.value("sumo_version", "");
+    if (!v.empty()) return v;
+  }
+  return "";
+}
+
+// encounters.csv of the sweep: every ok task's encounters.csv rows, with the
+// task's point, replicate, seed and swept values in front. Streamed (a large
+// grid's rows need not fit in memory) into a temporary file renamed into place.
+namespace {
+
+void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal& journal) {
+  auto join = [](const std::vector<std::string>& cols) {
+    std::string h;
+    for (const std::string& c : cols) h += (h.empty() ? "" : ",") + c;
+    return h;
+  };
+  // The header line of each ok task's encounters.csv, read once.
+  std::vector<std::string> headers;
+  for (const Task& t : plan.tasks) {
+    const auto it = journal.entries.find(t.index);
+    if (it == journal.entries.end() || !IsOk(it->second) || t.runs.empty()) continue;
+    std::ifstream in(TaskDir(out, t) / "encounters.csv", std::ios::binary);
+    std::string line;
+    if (in && std::getline(in, line)) headers.push_back(line);
+  }
+  // A network scenario's tasks have its column (EncounterCsvColumns(..., true)),
+  // the first readable task says which. A task of a run beyond the paper has
+  // the extra columns (EncounterCsvColumns(true, ...)); when any has, the
+  // pooled file has them and the other tasks' rows get empty cells.
+  const bool network = !headers.empty() && (headers[0] == join(EncounterCsvColumns(false, true)) ||
+                                            headers[0] == join(EncounterCsvColumns(true, true)));
+  const std::string paper_header = join(EncounterCsvColumns(false, network));
+  const std::string beyond_header = join(EncounterCsvColumns(true, network));
+  const std::string padding(
+      EncounterCsvColumns(true, network).size() - EncounterCsvColumns(false, network).size(), ',');
+  const bool any_beyond =
+      std::find(headers.begin(), headers.end(), beyond_header) != headers.end();
+  const std::string task_header = any_beyond ? beyond_header : paper_header;
+  const fs::path tmp = out / ("encounters.csv.tmp." + std::to_string(::getpid()));
+  std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+  errno = 0;
+  if (!f) throw std::runtime_error("cannot write " + tmp.string());
+  f << "point,replicate,seed";
+  for (const std::string& c : plan.columns) f << ',' << CsvCell(c);
+  f << ',' << task_header << '\n';
+  for (const Task& t : plan.tasks) {
+    const auto it = journal.entries.find(t.index);
+    if (it == journal.entries.end() || !IsOk(it->second) || t.runs.empty()) continue;
+    const fs::path file = TaskDir(out, t) / "encounters.csv";
+    std::ifstream in(file, std::ios::binary);
+    std::string line;
+    const bool read = in && std::getline(in, line);
+    const bool pad = any_beyond && read && line == paper_header;
+    if (!read || (line != task_header && !pad)) {
+      std::fprintf(stderr, "taebp sweep: warning: %s %s; its encounters are not in %s\n",
+                   file.c_str(), in ? "has other columns (another taebp version?)" : "is missing",
+                   (out / "encounters.csv").c_str());
+      continue;
+    }
+    std::string prefix = std::to_string(t.point) + ',' + std::to_string(t.replicate) + ',' +
+                         std::to_string(t.seed);
+    for (const std::string& v : plan.points[static_cast<std::size_t>(t.point)].values)
+      prefix += ',' + CsvCell(v);
+    while (std::getline(in, line))
+      if (!line.empty()) f << prefix << ',' << line << (pad ? padding : std::string()) << '\n';
+  }
+  f.flush();
+  if (!f) {
+    const int err = errno;  // set by the failed write (ENOSPC on a full disk)
+    f.close();
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw std::runtime_error("cannot write " + tmp.string() + ": " +
+                             (err != 0 ? std::strerror(err) : "the stream failed (disk full?)"));
+  }
+  f.close();
+  fs::rename(tmp, out / "encounters.csv");
+}
+
+}  // namespace
+
+void WriteOutputs(const fs::path& out, const Plan& plan, const Journal& journal, Json header) {
+  WritePooledEncounters(out, plan, journal);
+  header["sumo_version"] = SumoVersionOf(journal);
+  WriteFilesAtomically(out.string(), {{"results.csv", ResultsCsv(plan, journal)},
+                                      {"results.jsonl", ResultsJsonl(plan, journal)},
+                                      {"aggregate.csv", AggregateCsv(plan, journal)},
+                                      {"sweep.json", Dump(header, 2) + "\n"}});
+}
+
+std::string ShardName(const std::string& shard) {
+  return shard.empty() ? "the unsharded sweep" : "shard " + shard;
+}
+
+void CheckHeader(const fs::path& dir, const std::string& hash, bool check_shard,
+                 const std::string& shard) {
+  const fs::path p = dir / "sweep.json";
+  if (!fs::exists(p)) return;
+  Json h;
+  try {
+    h = Json::parse(ReadText(p));
+    if (!h.is_object()) throw std::runtime_error("not a JSON object");
+  } catch (const std::exception& e) {
+    throw ConfigError(p.string() + ": unreadable (" + e.what() + "); remove it or use another --out");
+  }
+  const std::string other =
+      h.contains("config_hash") && h["config_hash"].is_string() ? h["config_hash"].get<std::string>() : "";
+  if (other != hash)
+    throw ConfigError(p.string() + ": " + dir.string() + " holds a different sweep (config hash " +
+                      other + ", this one " + hash +
+                      "): the config, its grid or the --set overrides differ; use another --out "
+                      "or remove that directory");
+  if (!check_shard) return;
+  const std::string held = h.contains("shard") && h["shard"].is_string() ? h["shard"].get<std::string>() : "";
+  if (held != shard)
+    throw ConfigError(p.string() + ": " + dir.string() + " holds " + ShardName(held) +
+                      " of this sweep, and this is " + ShardName(shard) +
+                      ": use another --out (shards go to their own folders; `taebp merge` "
+                      "joins them)");
+}
+
+bool HasTaskOutputs(const fs::path& task_dir) {
+  std::error_code ec;
+  return fs::is_regular_file(task_dir / "summary.json", ec);
+}
+
+void WarnCorrupt(const Journal& journal, const char* who) {
+  for (const std::string& c : journal.corrupt)
+    std::fprintf(stderr, "taebp %s: warning: skipping a corrupt journal line: %s\n", who, c.c_str());
+}
+
+std::vector<Task> Pending(const std::vector<Task>& scope, const Journal& j, const fs::path& out,
+                          int* lost) {
+  std::vector<Task> pending;
+  *lost = 0;
+  for (const Task& t : scope) {
+    const auto it = j.entries.find(t.index);
+    if (it == j.entries.end() || !IsOk(it->second)) {
+      pending.push_back(t);
+    } else if (!t.runs.empty() && !HasTaskOutputs(TaskDir(out, t))) {
+      pending.push_back(t);
+      ++*lost;
+    }
+  }
+  return pending;
+}
+
+}  // namespace taebp::sweep::internal
