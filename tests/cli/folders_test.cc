@@ -3,7 +3,8 @@
 // - a sweep or merge into a run's folder is refused, the run untouched (1);
 // - a lock file that is a symbolic link is refused, its target untouched (2);
 // - a folder or file named like a run's that no run of ours wrote is refused
-//   and kept (3); a rerun says in one line what it replaced (issue 26);
+//   and kept, also a user's file in a policy's folder a run wrote (3); a
+//   rerun says in one line what it replaced (issue 26);
 // - YAML 1.1 octal and a second YAML document are refused (5, 6);
 // - a config asking for more vehicles than a run can handle is refused (7);
 // - SIGTERM and SIGHUP on a sweep: 143 and 129, tables written (10);
@@ -153,6 +154,25 @@ TEST(Folders, WhatNoRunOfOursWroteIsRefusedAndKeptWhatARunWroteIsReplacedInOneLi
   }
   // With the user's files gone, the rerun works again.
   EXPECT_EQ(RunCli(RunArgs(base, run_dir)).exit_code, 0);
+
+  // The issue's reproduction: a policy's folder that a run did write (SUMO's
+  // queue output in R/ta_ebp/), a user's notes.txt added to it, the same run
+  // again: refused, naming the file, and the folder as it was.
+  const std::vector<std::string> with_outputs = {
+      "run", base, "--set", "scenario.outputs={queue: true}", "--out", run_dir.string(), "--quiet"};
+  const CliResult wrote = RunCli(with_outputs);
+  ASSERT_EQ(wrote.exit_code, 0) << wrote.Describe();
+  ASSERT_TRUE(fs::is_regular_file(run_dir / "ta_ebp" / "queue.xml"))
+      << "the run wrote no ta_ebp folder: the case would prove nothing";
+  const fs::path notes = run_dir / "ta_ebp" / "notes.txt";
+  dir.Write(fs::relative(notes, dir.path()).string(), "n\n");
+  const auto before = Tree(run_dir);
+  const CliResult rerun = RunCli(with_outputs);
+  EXPECT_EQ(rerun.exit_code, 2) << rerun.Describe();
+  EXPECT_THAT(rerun.err, HasSubstr("ta_ebp/notes.txt")) << rerun.Describe();
+  EXPECT_THAT(rerun.err, HasSubstr("no taebp run wrote")) << rerun.Describe();
+  EXPECT_EQ(Tree(run_dir), before) << "the folder changed";
+  EXPECT_EQ(ReadText(notes), "n\n");
 }
 
 // ------------------------------------------------------------------ items 5, 6, 7, 14
