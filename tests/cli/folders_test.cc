@@ -7,7 +7,8 @@
 //   rerun says in one line what it replaced (issue 26);
 // - YAML 1.1 octal and a second YAML document are refused (5, 6);
 // - a config asking for more vehicles than a run can handle is refused (7);
-// - SIGTERM and SIGHUP on a sweep: 143 and 129, tables written (10);
+// - SIGTERM and SIGHUP on a sweep: 143 and 129, tables written, the same
+//   command resumes it (10);
 // - a shard folder given twice to merge says so (11);
 // - a killed table write's temporary is removed by the next sweep there (13);
 // - a run into a sweep's task folder, an out-of-range or huge value, a
@@ -18,10 +19,12 @@
 #include "cli_support.h"
 #include "test_support.h"
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <map>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -278,27 +281,61 @@ TEST(Folders, MergeNamesAShardGivenTwiceAndASweepRemovesAKilledWritesTemporaries
 
 // ------------------------------------------------------------------ item 10
 
+// Each task's status in a sweep's results.csv, in its rows' order.
+std::vector<std::string> TaskStatuses(const fs::path& results_csv) {
+  std::istringstream in(ReadText(results_csv));
+  std::string line;
+  std::vector<std::string> statuses;
+  std::size_t column = std::string::npos;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    if (column == std::string::npos) {
+      column = static_cast<std::size_t>(std::find(cells.begin(), cells.end(), "status") -
+                                        cells.begin());
+      continue;
+    }
+    statuses.push_back(column < cells.size() ? cells[column] : "?");
+  }
+  return statuses;
+}
+
 TEST(Folders, SigtermAndSighupOnASweepExit143And129WithItsTablesAndItResumes) {
   for (const int sig : {SIGTERM, SIGHUP}) {
     SCOPED_TRACE(sig == SIGTERM ? "SIGTERM" : "SIGHUP");
     TempDir dir;
+    // 12000 simulated seconds: about 1.5 s of work per task here, so the
+    // first task cannot finish in the moment between its start and the signal.
     const std::string sweep = dir.Write(
         "sweep.yaml",
-        "scenario: {avs: 2, hvs: 2, stop_distance: 3.0, duration: 3000, seed: 5}\n"
+        "scenario: {avs: 2, hvs: 2, stop_distance: 3.0, duration: 12000, seed: 5}\n"
         "policies: [ta_ebp]\n"
         "sweep:\n  replicates: 1\n  grid:\n    model.trust: [0.3, 0.9]\n");
     const fs::path out = dir.path() / "S";
-    Process p(kCli, {"sweep", sweep, "--out", out.string(), "--jobs", "1"});
+    const std::vector<std::string> command = {"sweep", sweep, "--out", out.string(), "--jobs", "1"};
+    Process p(kCli, command);
+    // The signal as soon as the first task has started (its worker opened
+    // its stderr.log).
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     while (!fs::exists(out / "tasks" / "0-0" / "stderr.log") &&
            std::chrono::steady_clock::now() < deadline)
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    ASSERT_TRUE(fs::exists(out / "tasks" / "0-0" / "stderr.log")) << "the first task never started";
     ::kill(p.pid(), sig);
     const CliResult r = p.Wait();
     EXPECT_EQ(r.exit_code, 128 + sig) << r.Describe();
     EXPECT_THAT(r.err, HasSubstr("interrupted; the same command resumes the sweep")) << r.Describe();
-    EXPECT_TRUE(fs::exists(out / "results.csv")) << r.Describe();
+    ASSERT_TRUE(fs::exists(out / "results.csv")) << r.Describe();
+    const std::vector<std::string> interrupted = TaskStatuses(out / "results.csv");
+    ASSERT_LT(std::count(interrupted.begin(), interrupted.end(), "ok"), 2)
+        << "both tasks finished before the signal: the resume would prove nothing\n"
+        << r.Describe();
+    // The same command resumes it: every task ok.
+    const CliResult resumed = RunCli(command);
+    EXPECT_EQ(resumed.exit_code, 0) << resumed.Describe();
+    EXPECT_EQ(TaskStatuses(out / "results.csv"), (std::vector<std::string>{"ok", "ok"}))
+        << ReadText(out / "results.csv");
   }
 }
 
