@@ -71,7 +71,11 @@ InvalidArgument = _taebp.InvalidArgument  # a parameter out of range (ValueError
 SumoError = _taebp.SumoError              # SUMO failed (RuntimeError)
 BusyError = _taebp.SimulationBusy         # a second simulation in this process (RuntimeError)
 OutputError = _taebp.OutputError          # an out= folder not usable, a sweep's, in use (OSError)
-Interrupted = _taebp.Interrupted          # Ctrl-C / SIGTERM during a run (KeyboardInterrupt)
+# A KeyboardInterrupt: Ctrl-C during run() (exit_code 130); SIGTERM or SIGHUP during
+# run() or sweep() once Python's own handler for it has returned (143, 129: by
+# default that handler ends the process instead). Ctrl-C in sweep() raises a plain
+# KeyboardInterrupt.
+Interrupted = _taebp.Interrupted
 for _e in (ConfigError, InvalidArgument, OutputError, SumoError, BusyError, Interrupted):
     _e.__module__ = __name__
 # Every exception's `exit_code`: the code `taebp` exits with for the same error
