@@ -291,3 +291,46 @@ TEST(RunGui, SameResultsAsTheInProcessRun) {
 }
 
 }  // namespace
+
+namespace {
+
+// xvfb-run exits 5 when its clean-up cannot remove its temporary folder (seen
+// once in CI: "problem while cleaning up temporary directory"), replacing the
+// exit code of the command it ran. The snapshot's outcome must not depend on
+// that: an xvfb-run that runs the real one and then always fails its clean-up.
+TEST(Snapshot, TheOutcomeSurvivesAnXvfbRunWhoseCleanUpFails) {
+  REQUIRE_GUI();
+  TempDir tmp;
+  const fs::path bin = tmp.path() / "bin";
+  fs::create_directories(bin);
+  const std::string real = "/usr/bin/xvfb-run";
+  ASSERT_TRUE(fs::exists(real));
+  {
+    std::ofstream fake(bin / "xvfb-run");
+    fake << "#!/bin/sh\n" << real << " \"$@\"\n"
+         << "echo 'xvfb-run: error: problem while cleaning up temporary directory' >&2\nexit 5\n";
+  }
+  fs::permissions(bin / "xvfb-run", fs::perms::owner_all);
+  const std::string env = "env -u DISPLAY PATH=" + bin.string() + ":\"$PATH\" ";
+  // A network SUMO refuses: SUMO's failure (3), not xvfb-run's 5.
+  std::string net = ReadFile(fs::path(kCli).parent_path() / "sumo_net/figure8.net.xml");
+  const std::size_t at = net.find("speed=\"");
+  ASSERT_NE(at, std::string::npos);
+  net.replace(at, net.find('"', at + 7) - at + 1, "speed=\"fast\"");
+  const std::string bad = (tmp.path() / "bad_speed.net.xml").string();
+  std::ofstream(bad) << net;
+  const fs::path png = tmp.path() / "x.png";
+  Result r = Shell(env + kCli + " snapshot " + kPaper + " --out " + png.string() +
+                       " --at 5 --set scenario.network=" + bad,
+                   tmp.path() / "log.txt");
+  EXPECT_THAT(r.output, HasSubstr("problem while cleaning up")) << "the fake xvfb-run was not used";
+  EXPECT_EQ(r.code, 3) << r.output;
+  EXPECT_FALSE(fs::exists(png));
+  // A good snapshot: 0 and its picture.
+  r = Shell(env + kCli + " snapshot " + kPaper + " --out " + png.string() + " --at 2",
+            tmp.path() / "log.txt");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_GT(fs::exists(png) ? fs::file_size(png) : 0u, 0u) << r.output;
+}
+
+}  // namespace

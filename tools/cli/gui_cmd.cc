@@ -35,8 +35,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Set in the environment of the re-execution under xvfb-run (no second try).
+// Set in the environment of the re-execution under xvfb-run (no second try):
+// the file the copy writes its exit code into (Snapshot::HandBack).
 constexpr const char* kUnderXvfbEnv = "TAEBP_SNAPSHOT_UNDER_XVFB";
+constexpr const char* kExitCodeFile = "taebp-exit-code";
 constexpr const char* kXvfbScreen = "-screen 0 1280x1024x24";
 // The sumo-gui window for snapshots: the view inside it is about 1270 x 535
 // pixels, the figure-8's aspect ratio (about 2.4 : 1).
@@ -321,7 +323,7 @@ int RunUnderXvfb(std::vector<std::string> args) {
     ::setpgid(0, 0);
     InterruptGuard::ResetInChild();
     ::setenv("TMPDIR", scratch.c_str(), 1);
-    ::setenv(kUnderXvfbEnv, "1", 1);
+    ::setenv(kUnderXvfbEnv, (scratch / kExitCodeFile).c_str(), 1);
     ::execv(cargs[0], cargs.data());
     static const char msg[] = "taebp: cannot run xvfb-run\n";
     ssize_t ignored = ::write(STDERR_FILENO, msg, sizeof msg - 1);
@@ -345,9 +347,14 @@ int RunUnderXvfb(std::vector<std::string> args) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   ::kill(-pid, SIGKILL);  // whatever of the group is left (Xvfb, sumo-gui)
+  // The copy's own exit code where it handed one back: xvfb-run exits with it
+  // too, unless its clean-up failed (then 5, which would hide the outcome).
+  int handed_back = -1;
+  if (std::ifstream in{scratch / kExitCodeFile}; !(in >> handed_back)) handed_back = -1;
   std::error_code ec;
   fs::remove_all(scratch, ec);
   if (PendingInterrupt()) throw Interrupted(PendingInterrupt());
+  if (handed_back >= 0) return handed_back;
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
@@ -355,6 +362,12 @@ int RunUnderXvfb(std::vector<std::string> args) {
 }  // namespace
 
 bool Snapshot::Parsed() const { return impl_->cmd->parsed(); }
+
+void Snapshot::HandBack(int exit_code) {
+  const char* file = std::getenv(kUnderXvfbEnv);
+  if (!file || !*file) return;
+  std::ofstream(file, std::ios::trunc) << exit_code << '\n';
+}
 
 int Snapshot::Run(int argc, char** argv) {
   const Impl& o = *impl_;

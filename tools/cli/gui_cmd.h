@@ -48,6 +48,11 @@ class Snapshot {
   // returns the exit code. `argc`/`argv` are main's, for the re-execution.
   // Throws ConfigError for a bad config, SumoError when SUMO fails.
   int Run(int argc, char** argv);
+  // In the copy re-executed under xvfb-run: hands `exit_code` (the code this
+  // process exits with) to the parent through a file, since xvfb-run's own
+  // clean-up may replace it (exit 5 when its temporary folder cannot be
+  // removed). Elsewhere it does nothing.
+  static void HandBack(int exit_code);
 
  private:
   struct Impl;

@@ -374,7 +374,7 @@ int main(int argc, char** argv) {
   taebp::cli::ConfigCommand config_command(app);  // config --reference
 
   if (const std::optional<int> code = ParseCommandLine(app, argc, argv)) return *code;
-  return ReportErrors([&] {
+  const int code = ReportErrors([&] {
     if (*theory) return Theory(th);
     if (*solve) return Solve(problem, solve_json);
     if (*run) {
@@ -398,4 +398,6 @@ int main(int argc, char** argv) {
     if (sweep_commands.Parsed()) return sweep_commands.Run();
     return 0;
   });
+  if (snapshot.Parsed()) taebp::gui::Snapshot::HandBack(code);
+  return code;
 }
