@@ -285,7 +285,8 @@ void ReadTripinfo(const std::string& path, const ScenarioConfig& sc, NetworkRun*
 
 // SUMO's SSM conflicts of this policy (scenario.outputs.ssm, report/ssm.h),
 // placed at the controlled junctions by their internal lanes.
-SsmRun ReadSsm(const fs::path& file, const ScenarioConfig& sc, const Scenario& scenario) {
+SsmRun ReadSsm(const fs::path& file, const ScenarioConfig& sc, const Scenario& scenario,
+               const std::vector<EncounterRecord>& encounters) {
   const SsmConfig& c = *sc.outputs.ssm;
   SsmRules rules;
   rules.on = {c.Measures("TTC"), c.Measures("DRAC"), c.Measures("PET")};
@@ -306,7 +307,10 @@ SsmRun ReadSsm(const fs::path& file, const ScenarioConfig& sc, const Scenario& s
     }
     areas.push_back(std::move(a));
   }
-  return ReadSsmOutput(file.string(), rules, areas);
+  std::vector<SsmGame> games;
+  games.reserve(encounters.size());
+  for (const EncounterRecord& e : encounters) games.push_back({e.av, e.hv, e.junction, e.time});
+  return ReadSsmOutput(file.string(), rules, areas, games);
 }
 
 }  // namespace
@@ -404,7 +408,7 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
       run.sumo_output_files.emplace_back(policy + "/" + name, (dir / name).string());
     }
     if (config.scenario.outputs.ssm) {
-      run.ssm = ReadSsm(dir / "ssm.xml", config.scenario, scenario);
+      run.ssm = ReadSsm(dir / "ssm.xml", config.scenario, scenario, run.encounters);
       run.ssm.device_warnings = warned.ssm;
     }
   }

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 namespace taebp {
 namespace {
@@ -115,7 +116,8 @@ void Add(const std::array<Extreme, kSsmMeasures>& m, int measure, SsmTally* t) {
 }  // namespace
 
 SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
-                     const std::vector<SsmJunctionArea>& areas) {
+                     const std::vector<SsmJunctionArea>& areas,
+                     const std::vector<SsmGame>& games) {
   pugi::xml_document doc;
   const pugi::xml_parse_result ok = doc.load_file(path.c_str());
   if (!ok) throw std::runtime_error(path + ": cannot read SUMO's SSM output (" + ok.description() + ")");
@@ -154,6 +156,31 @@ SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
       }
     }
     conflicts.push_back(std::move(r));
+  }
+
+  // The counted conflicts of each pair (for the games' conflicts).
+  std::map<std::pair<std::string, std::string>, std::vector<const Record*>> of_pair;
+  for (const Record& c : conflicts) {
+    if (c.begin < rules.warmup) continue;
+    bool counted = false;
+    for (int k = 0; k < kSsmMeasures; ++k) counted = counted || Passes(rules, k, c.m[k].value);
+    if (counted) of_pair[{c.a, c.b}].push_back(&c);
+  }
+  for (const SsmGame& g : games) {
+    const auto it = of_pair.find(g.av < g.hv ? std::make_pair(g.av, g.hv) : std::make_pair(g.hv, g.av));
+    if (it == of_pair.end()) continue;
+    bool any = false;
+    std::array<bool, kSsmMeasures> by{};
+    for (const Record* c : it->second) {
+      if (c->end < g.time - kSsmGameBefore || c->begin > g.time + kSsmGameAfter) continue;
+      any = true;
+      for (int k = 0; k < kSsmMeasures; ++k) by[k] = by[k] || Passes(rules, k, c->m[k].value);
+    }
+    if (!any) continue;
+    for (SsmTally* t : {&run.network, &run.junction[g.junction]}) {
+      ++t->games;
+      for (int k = 0; k < kSsmMeasures; ++k) t->games_by_measure[k] += by[k] ? 1 : 0;
+    }
   }
 
   for (const Record& c : conflicts) {
@@ -219,6 +246,22 @@ double ConflictsPer1000(const MetricFacts& f) {
   return n > 0 ? 1000.0 * Count(AtJunctions(f), f, kMeasure) / static_cast<double>(n) : kNaN;
 }
 
+// Games whose AV and HV had a conflict with each other (`measure` -1: any).
+double GameCount(const MetricFacts& f, int measure) {
+  const SsmTally& t = Tally(f);
+  if (measure < 0) return static_cast<double>(t.games);
+  return f.run->ssm.rules.on[measure] ? static_cast<double>(t.games_by_measure[measure]) : kNaN;
+}
+template <int kMeasure>
+double GameConflicts(const MetricFacts& f) {
+  return GameCount(f, kMeasure);
+}
+template <int kMeasure>
+double GameConflictRate(const MetricFacts& f) {
+  const double k = GameCount(f, kMeasure);
+  return std::isnan(k) ? kNaN : Rate(static_cast<long>(k), f.s.n);
+}
+
 constexpr int kAny = -1;
 constexpr int kTtc = static_cast<int>(SsmMeasure::kTtc);
 constexpr int kDrac = static_cast<int>(SsmMeasure::kDrac);
@@ -269,6 +312,28 @@ std::vector<Metric> SsmMetricRows() {
      nullptr, "crossings_all", nullptr,
      "PET conflicts at the controlled junctions per 1,000 vehicles through them",
      ConflictsPer1000<kPet>},
+    {"ssm_game_conflicts", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr, nullptr,
+     "games whose AV and HV had an SSM conflict with each other (any measure; over a span "
+     "from 30 s before the game formed to 60 s after; docs/ssm.md)", GameConflicts<kAny>},
+    {"ssm_game_conflict_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate, "ssm_game_conflicts",
+     "encounters", nullptr, "ssm_game_conflicts per encounter (empty without a game)",
+     GameConflictRate<kAny>},
+    {"ssm_game_ttc_conflicts", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr, nullptr,
+     "of ssm_game_conflicts, the games with a TTC conflict", GameConflicts<kTtc>},
+    {"ssm_game_ttc_conflict_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate,
+     "ssm_game_ttc_conflicts", "encounters", nullptr, "ssm_game_ttc_conflicts per encounter",
+     GameConflictRate<kTtc>},
+    {"ssm_game_drac_conflicts", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr,
+     nullptr, "of ssm_game_conflicts, the games with a DRAC conflict (a hard brake needed)",
+     GameConflicts<kDrac>},
+    {"ssm_game_drac_conflict_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate,
+     "ssm_game_drac_conflicts", "encounters", nullptr, "ssm_game_drac_conflicts per encounter",
+     GameConflictRate<kDrac>},
+    {"ssm_game_pet_conflicts", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr, nullptr,
+     "of ssm_game_conflicts, the games with a PET conflict", GameConflicts<kPet>},
+    {"ssm_game_pet_conflict_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate,
+     "ssm_game_pet_conflicts", "encounters", nullptr, "ssm_game_pet_conflicts per encounter",
+     GameConflictRate<kPet>},
     {"ssm_device_warnings", T::kCount, "", kPolicyLevel, S::kSsm, Pool::kSum, nullptr, nullptr,
      nullptr,
      "the SSM device's warnings, apart from sumo_warnings (a collision it saw; 'Cannot compute "

@@ -184,3 +184,63 @@ def test_the_device_leaves_the_game_and_sumos_traffic_unchanged(runs):
         assert without == s_off[policy], policy
         assert "ssm_conflicts" not in s_off[policy]
         assert not (off / policy / "ssm.xml").exists()
+
+
+GAME_BEFORE, GAME_AFTER = 30.0, 60.0  # s: a game's window (report/ssm.h)
+
+
+def games_expected(ssm_xml, encounters):
+    """Games whose AV and HV had a counted conflict with each other over a span
+    overlapping [formed - 30 s, formed + 60 s]: any measure and by measure,
+    network-wide and per game junction."""
+    keys = {"minTTC": "ssm_game_ttc_conflicts", "maxDRAC": "ssm_game_drac_conflicts",
+            "PET": "ssm_game_pet_conflicts"}
+    of_pair = {}
+    for c in conflicts_of(ssm_xml):
+        if c["begin"] < WARMUP:
+            continue
+        passed = {tag for tag in keys if passes(tag, c["m"][tag][0])}
+        if passed:
+            of_pair.setdefault(c["pair"], []).append((c["begin"], c["end"], passed))
+    net = {"ssm_game_conflicts": 0, **{k: 0 for k in keys.values()}}
+    per_j = {}
+    for e in encounters:
+        t = float(e["time"])
+        spans = [s for s in of_pair.get(tuple(sorted((e["av"], e["hv"]))), [])
+                 if s[1] >= t - GAME_BEFORE and s[0] <= t + GAME_AFTER]
+        if not spans:
+            continue
+        passed = set().union(*(s[2] for s in spans))
+        for tally in (net, per_j.setdefault(e["junction"], {k: 0 for k in net})):
+            tally["ssm_game_conflicts"] += 1
+            for tag, key in keys.items():
+                tally[key] += tag in passed
+    return net, per_j
+
+
+def test_the_games_own_conflicts_equal_sumos_file_and_sumo_native_has_no_rate(runs):
+    on = runs / "on"
+    summary = json.load(open(on / "summary.json"))
+    with open(on / "encounters.csv") as f:
+        encounters = list(csv.DictReader(f))
+    with open(on / "junctions.csv") as f:
+        rows = list(csv.DictReader(f))
+    games = 0
+    for policy in POLICIES:
+        p = summary["policies"][policy]
+        mine = [e for e in encounters if e["policy"] == policy]
+        net, per_j = games_expected(on / policy / "ssm.xml", mine)
+        for key, value in net.items():
+            assert p[key] == value, (policy, key, p[key], value)
+        if not mine:
+            assert p["ssm_game_conflict_rate"] is None, policy
+            assert net["ssm_game_conflicts"] == 0
+        else:
+            assert p["ssm_game_conflict_rate"] == pytest.approx(net["ssm_game_conflicts"] / len(mine))
+        for r in rows:
+            if r["policy"] == policy:
+                for key in net:
+                    assert int(r[key]) == per_j.get(r["junction"], {}).get(key, 0), (policy, r["junction"], key)
+        games += net["ssm_game_conflicts"]
+    assert summary["policies"]["sumo_native"]["encounters"] == 0
+    assert games > 0, "no game had a conflict: the test compares nothing"

@@ -108,5 +108,32 @@ TEST(SsmOutput, AMissingOrForeignFileIsAnErrorNamingIt) {
               HasSubstr("not SUMO's SSM output"));
 }
 
+// A game's conflicts: its AV's and HV's conflicts with each other over the
+// game's window [formed - 30 s, formed + 60 s], once per game and measure, at
+// the game's junction; other pairs' conflicts and the pair's other times not.
+TEST(SsmOutput, AGamesConflictsAreItsPairsInItsWindowOncePerGameAndMeasure) {
+  test::TempDir dir;
+  const std::string log = Log().substr(0, Log().rfind("</SSMLog>")) +
+                          // E and F: TTC 1.0, then DRAC 5.0 (no TTC) a little later.
+                          Conflict("E", "F", 100, 102, "1.00", "NA", "NA", "5.00,0.00") +
+                          Conflict("F", "E", 110, 112, "NA", "5.00", "NA", "5.00,0.00") +
+                          "</SSMLog>\n";
+  const std::vector<SsmGame> games = {
+      {"B", "A", "J", 12},    // A-B at 10-20 (TTC) and 40-45 (TTC, DRAC): both in its window
+      {"B", "C", "K", 100},   // B-C's DRAC conflict at 30-33 ends before 100 - 30
+      {"E", "F", "J", 105},   // TTC and DRAC in two conflicts
+      {"A", "D", "J", 50}};   // A-D: PET 2.5, not a conflict
+  const SsmRun r = ReadSsmOutput(dir.Write("ssm.xml", log), Rules(), kAreas, games);
+  EXPECT_EQ(r.network.games, 2);
+  EXPECT_EQ(r.network.games_by_measure[0], 2);  // TTC: A-B, E-F
+  EXPECT_EQ(r.network.games_by_measure[1], 2);  // DRAC: A-B, E-F (its second conflict)
+  EXPECT_EQ(r.network.games_by_measure[2], 0);
+  EXPECT_EQ(r.junction.at("J").games, 2);
+  EXPECT_EQ(r.junction.at("K").games, 0);
+  EXPECT_EQ(r.network.conflicts, 5) << "the games' conflicts are counted among all the others";
+  const SsmRun none = ReadSsmOutput(dir.Write("ssm2.xml", log), Rules(), kAreas);
+  EXPECT_EQ(none.network.games, 0);
+}
+
 }  // namespace
 }  // namespace taebp

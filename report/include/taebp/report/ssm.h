@@ -15,6 +15,10 @@
 // Its place is the point of the measure's extreme (TTC's, else DRAC's, else
 // PET's for the conflict itself): at the controlled junction whose internal
 // lanes pass nearest that point, within `junction_radius`.
+// A game's conflict: a conflict between the AV and the HV of one game (an
+// AV-HV encounter), over a span that overlaps the game's window (from
+// kSsmGameBefore s before it formed to kSsmGameAfter s after): the game's own
+// near miss, counted once per game (and per measure), at the game's junction.
 #pragma once
 
 #include <array>
@@ -42,12 +46,24 @@ struct SsmJunctionArea {
   std::vector<std::vector<std::array<double, 2>>> shapes;
 };
 
+// One game of the run: its two vehicles, its junction, when it formed (s).
+struct SsmGame {
+  std::string av, hv, junction;
+  double time = 0;
+};
+inline constexpr double kSsmGameBefore = 30;  // s
+inline constexpr double kSsmGameAfter = 60;   // s
+
 // Conflicts of one policy or one junction.
 struct SsmTally {
   long conflicts = 0;                           // any measure
   std::array<long, kSsmMeasures> by_measure{};  // TTC, DRAC, PET
   double ttc_min = std::numeric_limits<double>::quiet_NaN();   // over the TTC conflicts
   double drac_max = std::numeric_limits<double>::quiet_NaN();  // over the DRAC conflicts
+  // Games whose AV and HV had a conflict with each other: any measure, and by
+  // measure.
+  long games = 0;
+  std::array<long, kSsmMeasures> games_by_measure{};
 };
 
 struct SsmRun {
@@ -64,7 +80,9 @@ struct SsmRun {
 
 // Reads SUMO's SSM output `path`. Throws std::runtime_error naming the file
 // when it is missing or not an SSM log.
+// `games`: the run's games (after the warm-up), for the games' conflicts.
 SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
-                     const std::vector<SsmJunctionArea>& areas);
+                     const std::vector<SsmJunctionArea>& areas,
+                     const std::vector<SsmGame>& games = {});
 
 }  // namespace taebp
