@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 #include <utility>
 
@@ -270,6 +271,15 @@ constexpr unsigned kPJ = kPolicyLevel | kJunctionLevel;
 using T = MetricType;
 using S = MetricScope;
 
+// ssm_game_conflicts' sentence, its window from kSsmGameBefore / kSsmGameAfter.
+const char* GameConflictsSentence() {
+  static const std::string s =
+      "games whose AV and HV had an SSM conflict with each other (any measure; over a span "
+      "from " + std::to_string(static_cast<int>(kSsmGameBefore)) + " s before the game formed "
+      "to " + std::to_string(static_cast<int>(kSsmGameAfter)) + " s after; docs/ssm.md)";
+  return s.c_str();
+}
+
 }  // namespace
 
 std::vector<Metric> SsmMetricRows() {
@@ -313,8 +323,7 @@ std::vector<Metric> SsmMetricRows() {
      "PET conflicts at the controlled junctions per 1,000 vehicles through them",
      ConflictsPer1000<kPet>},
     {"ssm_game_conflicts", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr, nullptr,
-     "games whose AV and HV had an SSM conflict with each other (any measure; over a span "
-     "from 30 s before the game formed to 60 s after; docs/ssm.md)", GameConflicts<kAny>},
+     GameConflictsSentence(), GameConflicts<kAny>},
     {"ssm_game_conflict_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate, "ssm_game_conflicts",
      "encounters", nullptr, "ssm_game_conflicts per encounter (empty without a game)",
      GameConflictRate<kAny>},
