@@ -13,7 +13,7 @@ tests/python/test_stats.py).
 
 import math
 
-__all__ = ["Z95", "Z999", "wilson", "student_t_quantile", "mean_interval"]
+__all__ = ["Z95", "Z999", "wilson", "student_t_quantile", "mean_interval", "welch_interval"]
 
 # Two-sided standard normal quantiles: 95 % (what every output reports) and
 # 99.9 % (a measured rate against its theory, where a false alarm should be rare).
@@ -89,3 +89,22 @@ def mean_interval(values, level=0.95):
     sd = math.sqrt(sum((x - mean) ** 2 for x in xs) / (n - 1))
     half = student_t_quantile(n - 1, level) * sd / math.sqrt(n)
     return mean, mean - half, mean + half
+
+
+def welch_interval(a, b, level=0.95):
+    """(difference, low, high): mean(a) - mean(b) of two independent samples
+    (e.g. two policies' runs, not paired by seed) and its Welch interval, the
+    Welch-Satterthwaite degrees of freedom rounded down (a slightly wider,
+    conservative interval; student_t_quantile takes whole numbers). Needs at
+    least two values in each sample and some spread; (None, None, None) otherwise."""
+    xs, ys = [float(v) for v in a], [float(v) for v in b]
+    if len(xs) < 2 or len(ys) < 2:
+        return None, None, None
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    vx = sum((x - mx) ** 2 for x in xs) / (len(xs) - 1) / len(xs)
+    vy = sum((y - my) ** 2 for y in ys) / (len(ys) - 1) / len(ys)
+    if vx + vy == 0:
+        return None, None, None
+    df = (vx + vy) ** 2 / (vx ** 2 / (len(xs) - 1) + vy ** 2 / (len(ys) - 1))
+    half = student_t_quantile(max(1, int(math.floor(df + 1e-9))), level) * math.sqrt(vx + vy)
+    return mx - my, mx - my - half, mx - my + half

@@ -62,6 +62,21 @@ def test_mean_interval():
     assert stats.mean_interval([3, 3, 3]) == (3.0, 3.0, 3.0)
 
 
+def test_welch_interval_by_hand():
+    # a = 1, 2, 3 and b = 4, 5, 6: variances 1, standard error sqrt(2/3), and
+    # Welch-Satterthwaite df (2/3)^2 / (2 (1/3)^2 / 2) = 4; t(0.975, 4) = 2.776445
+    # from the printed table: -3 -+ 2.776445 * 0.816497.
+    d, lo, hi = stats.welch_interval([1, 2, 3], [4, 5, 6])
+    assert d == pytest.approx(-3.0)
+    assert lo == pytest.approx(-3.0 - 2.776445 * 0.8164966, abs=1e-5)
+    assert hi == pytest.approx(-3.0 + 2.776445 * 0.8164966, abs=1e-5)
+    # Unequal spread: df 1.07... rounds down to 1 (t = 12.7062), the conservative side.
+    d, lo, hi = stats.welch_interval([0, 10], [5, 5, 5.0001])
+    assert hi - d == pytest.approx(12.7062 * (50 / 2 + 0.0000000033 / 3) ** 0.5, rel=1e-4)
+    assert stats.welch_interval([1], [1, 2]) == (None, None, None)
+    assert stats.welch_interval([1, 1], [2, 2]) == (None, None, None)
+
+
 def test_small_samples_and_bad_counts():
     assert abs(stats.wilson(0, 1)[1] - 0.7935) < 5e-5
     assert abs(stats.wilson(1, 1)[0] - 0.2065) < 5e-5
