@@ -9,6 +9,7 @@
 //   stalls.h            the safety net
 //   figure8.h           every special case of the paper's track
 #include "taebp/controller/network_controller.h"
+#include "taebp/controller/sumo_adapter.h"
 
 #include "collisions.h"
 #include "encounter_game.h"
@@ -198,7 +199,7 @@ NetworkController::NetworkController(const ExperimentConfig& config,
                                      const Scenario& scenario, const net::NetFile& net,
                                      const ControllerOptions& options, SumoWorld* world)
     : impl_(std::make_unique<Impl>(config, policy, scenario, net, options,
-                                   world ? *world : LibsumoWorld())) {}
+                                   world ? *world : Sumo())) {}
 
 NetworkController::~NetworkController() = default;
 

@@ -6,8 +6,13 @@
 
 #include <libsumo/libtraci.h>
 
+#include <cstdio>
+#include <iostream>
 #include <sstream>
 #include <utility>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace taebp::sumo::libtraci_backend {
 namespace S = ::libtraci;

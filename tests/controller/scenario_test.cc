@@ -257,7 +257,7 @@ void ExpectAShortRunStillWorks() {
   const ExperimentConfig cfg = Config({"scenario.duration=60"});
   const PolicyRun run = RunOne(cfg, "ta_ebp");
   EXPECT_GT(run.crossings_av + run.crossings_hv, 0);
-  EXPECT_FALSE(sumo::IsLoaded());
+  EXPECT_FALSE(Sumo().IsLoaded());
 }
 
 TEST(ScenarioBadInput, MissingNetworkIsAConfigErrorNamingTheKey) {
@@ -486,7 +486,7 @@ TEST(ScenarioBadInput, TooManyVehiclesForTheTrackIsAConfigErrorAboutLoopLength) 
   const std::string run_msg = ErrorOf<ConfigError>([&] { BuildScenario(given, ""); });
   EXPECT_THAT(run_msg, HasSubstr("loop_length"));
   EXPECT_THAT(run_msg, HasSubstr("60"));
-  EXPECT_FALSE(sumo::IsLoaded());
+  EXPECT_FALSE(Sumo().IsLoaded());
   ExpectAShortRunStillWorks();
 }
 

@@ -127,7 +127,13 @@ TEST(Snapshot, BadArgumentsAreClearErrors) {
     EXPECT_EQ(r.code, 2) << at << ": " << r.output;
     EXPECT_THAT(r.output, HasSubstr("--at")) << at;
   }
-  if (!OnPath("sumo-gui")) return;  // checked before the config
+}
+
+// Checked once sumo-gui is found (tools/setup.sh installs it: missing fails).
+TEST(Snapshot, BadPolicyOrMissingOutIsAClearError) {
+  if (!OnPath("sumo-gui")) GTEST_FAIL() << "sumo-gui is missing (Debian package sumo)";
+  TempDir tmp;
+  const fs::path png = tmp.path() / "x.png";
   Result r = Shell(kCli + " snapshot " + kPaper + " --out " + png.string() + " --policy bogus",
                    tmp.path() / "log.txt");
   EXPECT_EQ(r.code, 2) << r.output;

@@ -254,25 +254,25 @@ TEST_F(DemandOnGrid, TheRoutesFileRunsInSumo) {
     ++lines;
   EXPECT_EQ(lines, written);
 
-  sumo::Start({"sumo", "-n", net_->path(), "-r", routes, "--no-step-log", "true",
+  Sumo().Start({"sumo", "-n", net_->path(), "-r", routes, "--no-step-log", "true",
                "--xml-validation", "never", "--step-length", "0.5"});
   std::map<std::string, double> departed;  // id -> time
   std::map<std::string, const Trip*> by_id;
   for (const Trip& t : trips) by_id[t.id] = &t;
-  while (sumo::Time() < 300) {
-    sumo::Step();
-    for (const std::string& id : sumo::DepartedIDs()) {
-      departed[id] = sumo::Time();
+  while (Sumo().Time() < 300) {
+    Sumo().Step();
+    for (const std::string& id : Sumo().DepartedIDs()) {
+      departed[id] = Sumo().Time();
       ASSERT_TRUE(by_id.count(id)) << id;
-      const std::vector<std::string> route = sumo::Route(id);
+      const std::vector<std::string> route = Sumo().Route(id);
       ASSERT_FALSE(route.empty());
       EXPECT_EQ(route.front(), by_id[id]->from) << id;
       EXPECT_EQ(route.back(), by_id[id]->to) << id;
-      EXPECT_EQ(sumo::TypeID(id), "car");
-      EXPECT_DOUBLE_EQ(sumo::Length(id), 4.5);
+      EXPECT_EQ(Sumo().TypeID(id), "car");
+      EXPECT_DOUBLE_EQ(Sumo().Length(id), 4.5);
     }
   }
-  sumo::Close();
+  Sumo().Close();
   // Every trip due by 240 s departed by 300 s, none before its time.
   long due = 0;
   for (const Trip& t : trips) {
@@ -340,14 +340,14 @@ TEST(DemandOnAnImport, OnlyCarEdgesAndReachableExits) {
 
   const std::string routes = (dir.path() / "demand.rou.xml").string();
   ASSERT_GT(WriteDemand(net, spec, routes), 0);
-  sumo::Start({"sumo", "-n", net_path, "-r", routes, "--no-step-log", "true", "--xml-validation",
+  Sumo().Start({"sumo", "-n", net_path, "-r", routes, "--no-step-log", "true", "--xml-validation",
                "never", "--step-length", "0.5", "--end", "700"});
   long departed = 0;
-  while (sumo::Time() < 700) {
-    sumo::Step();
-    departed += static_cast<long>(sumo::DepartedIDs().size());
+  while (Sumo().Time() < 700) {
+    Sumo().Step();
+    departed += static_cast<long>(Sumo().DepartedIDs().size());
   }
-  sumo::Close();
+  Sumo().Close();
   EXPECT_EQ(departed, static_cast<long>(trips.size()));
 }
 

@@ -331,13 +331,13 @@ struct CrossCheck {
 
 CrossCheck CompareWithLibsumo(const NetFile& net) {
   CrossCheck out;
-  sumo::Start({"sumo", "-n", net.path(), "--no-step-log", "true", "--xml-validation", "never",
+  Sumo().Start({"sumo", "-n", net.path(), "--no-step-log", "true", "--xml-validation", "never",
                "--no-warnings", "true"});
   std::map<std::string, std::set<std::string>> foes_of;
   auto internal_foes = [&](const std::string& lane) -> const std::set<std::string>& {
     auto it = foes_of.find(lane);
     if (it == foes_of.end()) {
-      const std::vector<std::string> f = sumo::LaneInternalFoes(lane);
+      const std::vector<std::string> f = Sumo().LaneInternalFoes(lane);
       it = foes_of.emplace(lane, std::set<std::string>(f.begin(), f.end())).first;
     }
     return it->second;
@@ -383,7 +383,7 @@ CrossCheck CompareWithLibsumo(const NetFile& net) {
       }
     }
   }
-  sumo::Close();
+  Sumo().Close();
   return out;
 }
 
@@ -432,9 +432,9 @@ TEST(NetFileAgainstLibsumo, MergesAreFoesInBothViews) {
   EXPECT_TRUE(b1->foes[0][4]);
   EXPECT_TRUE(b1->foes[0][8]);
   EXPECT_FALSE(b1->foes[0][1]);  // same lane
-  sumo::Start({"sumo", "-n", net.path(), "--no-step-log", "true", "--xml-validation", "never"});
-  const std::vector<std::string> f = sumo::LaneInternalFoes(":B1_0_0");
-  sumo::Close();
+  Sumo().Start({"sumo", "-n", net.path(), "--no-step-log", "true", "--xml-validation", "never"});
+  const std::vector<std::string> f = Sumo().LaneInternalFoes(":B1_0_0");
+  Sumo().Close();
   EXPECT_TRUE(Contains(f, ":B1_4_0"));
   EXPECT_TRUE(Contains(f, ":B1_8_0"));
   EXPECT_TRUE(Contains(f, ":B1_1_0"));  // same lane: listed by libsumo

@@ -221,10 +221,10 @@ void WriteGuiSettings(const fs::path& file, double exaggeration) {
 }  // namespace
 
 void FrameTrack() {
-  const auto [lo, hi] = sumo::NetBoundary();
+  const auto [lo, hi] = Sumo().NetBoundary();
   const double margin = FrameMargin(hi.x - lo.x, hi.y - lo.y);
-  sumo::gui::SetSchema("real world");
-  sumo::gui::SetBoundary({lo.x - margin, lo.y - margin}, {hi.x + margin, hi.y + margin});
+  Sumo().GuiSetSchema("real world");
+  Sumo().GuiSetBoundary({lo.x - margin, lo.y - margin}, {hi.x + margin, hi.y + margin});
 }
 
 // ------------------------------------------------------------------ run --gui
@@ -451,12 +451,12 @@ int Snapshot::Run(int argc, char** argv) {
     ro.after_start = FrameTrack;
     if (own_frame)
       ro.after_start = [&] {
-        sumo::gui::SetSchema("taebp");
-        sumo::gui::SetBoundary(framing.lo, framing.hi);
+        Sumo().GuiSetSchema("taebp");
+        Sumo().GuiSetBoundary(framing.lo, framing.hi);
       };
     ro.before_close = [&] {
-      sumo::gui::Screenshot(tmp.string());
-      sumo::Step();  // sumo-gui writes the picture during this step
+      Sumo().GuiScreenshot(tmp.string());
+      Sumo().Step();  // sumo-gui writes the picture during this step
     };
     run = RunPolicy(config, policy, scenario, ro);
     sumo::SetBackend(sumo::Backend::kLibsumo);

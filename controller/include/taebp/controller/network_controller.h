@@ -73,7 +73,7 @@ class NetworkController {
  public:
   // `policy` empty: sumo_native (SUMO's own junction logic; the controller
   // only observes and measures). `world`: the simulation it reads and
-  // commands (default: this process's SUMO, LibsumoWorld()); not owned.
+  // commands (default: this process's SUMO, Sumo() of sumo_adapter.h); not owned.
   NetworkController(const ExperimentConfig& config, std::optional<persuasion::Policy> policy,
                     const Scenario& scenario, const net::NetFile& net,
                     const ControllerOptions& options, SumoWorld* world = nullptr);
@@ -83,7 +83,7 @@ class NetworkController {
 
   // SUMO has started: vehicle types and the figure-8's vehicles.
   void Start();
-  // After each sumo::Step(). Throws StallError, NudgeError.
+  // After each Sumo().Step(). Throws StallError, NudgeError.
   void Step();
   // After the last step, SUMO still running: the totals so far.
   PolicyRun Finish();
