@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""Whole-process paired runs: the per-step cost of each policy against a
+baseline policy, as a researcher pays it (the process's start, libsumo's
+loading, the simulation and the controller, the writing of the results).
+
+    bench/paired_runs.py TAEBP CONFIG --policy P [--policy P]... [--pairs N]
+                         [--baseline P] [--set K=V]... [--target R]
+
+For each policy, N pairs
+of `TAEBP run CONFIG --set policies=[X] --quiet` processes, the two of a pair
+back to back and their order alternating from pair to pair (B A, A B, B A,
+...) so that a drift of the machine's speed hits both alike. Each run's CPU
+time (user + system of the process and its children, from wait4: what it
+costs, whatever else shares the machine) and wall time. Prints per policy the
+median CPU of each side and the ratio policy / baseline pair by pair: its
+median, with the min and max of the pairs as the spread. A benchmark, run by
+tools/bench on demand; never a timed test.
+
+--target R: exit 1 when a policy's median ratio is above R (its line says
+"missed"). The last line per policy is machine-readable:
+    pairs POLICY MEDIAN_RATIO MIN MAX N
+"""
+import argparse
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+
+def run_once(cmd):
+    """(cpu seconds, wall seconds) of one whole process; fails on a non-zero exit."""
+    start = time.monotonic()
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    _, status, usage = os.wait4(proc.pid, 0)
+    wall = time.monotonic() - start
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    err = proc.stderr.read().decode(errors="replace")
+    proc.stderr.close()
+    if proc.returncode != 0:
+        sys.exit("paired_runs: %s exited %d:\n%s" % (" ".join(cmd), proc.returncode, err[-2000:]))
+    return usage.ru_utime + usage.ru_stime, wall
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("taebp")
+    ap.add_argument("config")
+    ap.add_argument("--pairs", type=int, default=5)
+    ap.add_argument("--baseline", default="sumo_native")
+    ap.add_argument("--policy", action="append", default=[])
+    ap.add_argument("--set", action="append", default=[], metavar="K=V")
+    ap.add_argument("--target", type=float)
+    args = ap.parse_args()
+    if args.pairs < 1:
+        ap.error("--pairs must be at least 1 (got %d)" % args.pairs)
+    policies = args.policy
+    if not policies:
+        ap.error("name at least one policy to compare with the baseline (--policy P)")
+    scratch = tempfile.mkdtemp(prefix="paired_runs.")
+    sets = [a for kv in args.set for a in ("--set", kv)]
+
+    def command(policy, k):
+        out = os.path.join(scratch, "%s-%d" % (policy, k))
+        return [args.taebp, "run", args.config, *sets, "--set", "policies=[%s]" % policy,
+                "--out", out, "--quiet"]
+
+    missed = 0
+    try:
+        print("%s %s, %d pairs per policy, order alternating; CPU = user + system of the "
+              "whole process" % (os.path.basename(args.config), " ".join(args.set), args.pairs))
+        print("%-12s %10s %10s %8s %8s %8s %10s" % ("policy", "cpu base", "cpu pol", "ratio",
+                                                   "min", "max", "wall ratio"))
+        for policy in policies:
+            base, pol, ratios, walls = [], [], [], []
+            for k in range(args.pairs):
+                order = [(args.baseline, base), (policy, pol)]
+                if k % 2 == 0:
+                    order.reverse()
+                got = {}
+                for name, sink in order:
+                    cpu, wall = run_once(command(name, k))
+                    sink.append(cpu)
+                    got[name] = (cpu, wall)
+                ratios.append(got[policy][0] / got[args.baseline][0])
+                walls.append(got[policy][1] / got[args.baseline][1])
+            med = statistics.median(ratios)
+            verdict = ""
+            if args.target is not None:
+                verdict = "  met" if med <= args.target else "  missed"
+                missed += med > args.target
+            print("%-12s %10.3f %10.3f %8.3f %8.3f %8.3f %10.3f%s" % (
+                policy, statistics.median(base), statistics.median(pol), med, min(ratios),
+                max(ratios), statistics.median(walls), verdict))
+            print("pairs %s %.3f %.3f %.3f %d" % (policy, med, min(ratios), max(ratios), len(ratios)))
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+    return 1 if missed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
