@@ -862,6 +862,21 @@ TEST(ConfigBeyond, ShippedStudiesLoadAndThePaperIsNotBeyond) {
   EXPECT_TRUE(ParseExperimentConfig("model: {noise: {kind: none}}", "t.yaml").BeyondPaper());
 }
 
+// Every config the project ships (configs/*.yaml: the paper, the studies, the
+// benchmarks, the Bologna scenarios) loads under the one schema: a key renamed
+// or a range tightened without the shipped files following fails here, naming
+// the file.
+TEST(ConfigShipped, EveryShippedConfigLoads) {
+  int loaded = 0;
+  for (const auto& entry : fs::directory_iterator(std::string(TAEBP_SOURCE_DIR) + "/configs")) {
+    if (entry.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(entry.path().string());
+    EXPECT_NO_THROW(LoadExperimentConfig(entry.path().string()));
+    ++loaded;
+  }
+  EXPECT_GE(loaded, 15) << "the shipped configs moved?";
+}
+
 TEST(ConfigBeyond, DefaultsOfEachSection) {
   const ExperimentConfig c = ParseExperimentConfig(
       "model: {trust_dynamics: {}, noise: {}, learning: {}}\npolicies: [ta_ebp_learned]\n", "t.yaml");
