@@ -331,8 +331,9 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     return SumoError(control::ExplainSumoError(
         e.what(), policy, files, scenario.scratch ? scenario.scratch->path() : ""));
   };
+  SumoSimulation& sumo = Sumo();  // the backend selected for this run
   try {
-    Sumo().Start(SumoArgs(config, scenario, policy));
+    sumo.Start(SumoArgs(config, scenario, policy));
   } catch (const SumoError& e) {
     throw explained(e);
   }
@@ -348,12 +349,12 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     try {
       for (long k = 0; k < steps; ++k) {
         ThrowIfInterrupted();  // Ctrl-C, SIGTERM: unwind, scratch removed (interrupt.h)
-        Sumo().Step();
+        sumo.Step();
         controller.Step();
         if (options.every_minute && (k + 1) % minute == 0)
-          options.every_minute(policy, Sumo().Time());
+          options.every_minute(policy, sumo.Time());
         if (options.progress && ((k + 1) % progress_every == 0 || k + 1 == steps))
-          options.progress({policy, Sumo().Time(), config.scenario.duration,
+          options.progress({policy, sumo.Time(), config.scenario.duration,
                             controller.VehiclesNow(), controller.EncountersSoFar()});
       }
       if (options.before_close) options.before_close();
@@ -366,13 +367,13 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
       run.stall_error = e.what();
     }
   } catch (const SumoError& e) {
-    Sumo().Close();
+    sumo.Close();
     throw explained(e);
   } catch (...) {
-    Sumo().Close();
+    sumo.Close();
     throw;
   }
-  Sumo().Close();
+  sumo.Close();
   abort_guard.reset();
   const control::SumoWarnings warned = messages->Finish();
   messages.reset();
@@ -438,17 +439,18 @@ double RunBareSumo(const ExperimentConfig& config, const Scenario& scenario) {
         "circulating only through the controller's lap re-routing (compare against " +
         std::string(SumoNative().name) + " instead)");
   NetworkController controller(config, std::nullopt, scenario, *scenario.topology, {});
-  Sumo().Start(SumoArgs(config, scenario, SumoNative().name));
+  SumoSimulation& sumo = Sumo();
+  sumo.Start(SumoArgs(config, scenario, SumoNative().name));
   try {
     controller.Start();
     const long steps = std::lround(config.scenario.duration / config.scenario.step_length);
-    for (long k = 0; k < steps; ++k) Sumo().Step();
+    for (long k = 0; k < steps; ++k) sumo.Step();
   } catch (...) {
-    Sumo().Close();
+    sumo.Close();
     throw;
   }
-  const double t = Sumo().Time();
-  Sumo().Close();
+  const double t = sumo.Time();
+  sumo.Close();
   return t;
 }
 
