@@ -4,7 +4,8 @@ baseline policy, as a researcher pays it (the process's start, libsumo's
 loading, the simulation and the controller, the writing of the results).
 
     bench/paired_runs.py TAEBP CONFIG --policy P [--policy P]... [--pairs N]
-                         [--baseline P] [--set K=V]... [--target R]
+                         [--baseline P | --baseline-command CMD] [--set K=V]...
+                         [--target R]
 
 For each policy, N pairs
 of `TAEBP run CONFIG --set policies=[X] --quiet` processes, the two of a pair
@@ -16,12 +17,17 @@ median CPU of each side and the ratio policy / baseline pair by pair: its
 median, with the min and max of the pairs as the spread. A benchmark, run by
 tools/bench on demand; never a timed test.
 
+--baseline-command CMD: the baseline is the process CMD (split as a shell
+would, without a shell), e.g. the `sumo` binary on the same scenario, in
+place of `TAEBP run` with the baseline policy.
+
 --target R: exit 1 when a policy's median ratio is above R (its line says
 "missed"). The last line per policy is machine-readable:
     pairs POLICY MEDIAN_RATIO MIN MAX N
 """
 import argparse
 import os
+import shlex
 import shutil
 import statistics
 import subprocess
@@ -50,6 +56,7 @@ def main():
     ap.add_argument("config")
     ap.add_argument("--pairs", type=int, default=5)
     ap.add_argument("--baseline", default="sumo_native")
+    ap.add_argument("--baseline-command", metavar="CMD")
     ap.add_argument("--policy", action="append", default=[])
     ap.add_argument("--set", action="append", default=[], metavar="K=V")
     ap.add_argument("--target", type=float)
@@ -62,7 +69,16 @@ def main():
     scratch = tempfile.mkdtemp(prefix="paired_runs.")
     sets = [a for kv in args.set for a in ("--set", kv)]
 
+    baseline_cmd = (shlex.split(args.baseline_command)
+                    if args.baseline_command is not None else None)
+    if baseline_cmd == []:
+        ap.error("--baseline-command is empty")
+    if baseline_cmd and shutil.which(baseline_cmd[0]) is None:
+        ap.error("--baseline-command: %s is not a program on PATH" % baseline_cmd[0])
+
     def command(policy, k):
+        if baseline_cmd and policy is None:
+            return baseline_cmd
         out = os.path.join(scratch, "%s-%d" % (policy, k))
         return [args.taebp, "run", args.config, *sets, "--set", "policies=[%s]" % policy,
                 "--out", out, "--quiet"]
@@ -70,13 +86,15 @@ def main():
     missed = 0
     try:
         print("%s %s, %d pairs per policy, order alternating; CPU = user + system of the "
-              "whole process" % (os.path.basename(args.config), " ".join(args.set), args.pairs))
+              "whole process; baseline %s" % (
+                  os.path.basename(args.config), " ".join(args.set), args.pairs,
+                  " ".join(baseline_cmd) if baseline_cmd else args.baseline))
         print("%-12s %10s %10s %8s %8s %8s %10s" % ("policy", "cpu base", "cpu pol", "ratio",
                                                    "min", "max", "wall ratio"))
         for policy in policies:
             base, pol, ratios, walls = [], [], [], []
             for k in range(args.pairs):
-                order = [(args.baseline, base), (policy, pol)]
+                order = [(None if baseline_cmd else args.baseline, base), (policy, pol)]
                 if k % 2 == 0:
                     order.reverse()
                 got = {}
@@ -84,8 +102,9 @@ def main():
                     cpu, wall = run_once(command(name, k))
                     sink.append(cpu)
                     got[name] = (cpu, wall)
-                ratios.append(got[policy][0] / got[args.baseline][0])
-                walls.append(got[policy][1] / got[args.baseline][1])
+                b = None if baseline_cmd else args.baseline
+                ratios.append(got[policy][0] / got[b][0])
+                walls.append(got[policy][1] / got[b][1])
             med = statistics.median(ratios)
             verdict = ""
             if args.target is not None:

@@ -1,6 +1,7 @@
 #include "taebp/config/config.h"
 #include "taebp/config/model.h"
 
+#include "taebp/persuasion/number_text.h"
 #include "taebp/persuasion/outcomes.h"
 
 #include <boost/math/special_functions/beta.hpp>
@@ -22,12 +23,6 @@ std::string BeyondPaperPolicies() {
   return out;
 }
 
-std::string Num(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
 
 // Collects the first failure; keeps IsValid readable.
 class Checker {
@@ -47,16 +42,16 @@ class Checker {
     if (!model.IsValid(&why)) Fail(section + why);
   }
   void Positive(const char* key, double v) {
-    if (!(std::isfinite(v) && v > 0)) Fail(std::string(key) + " = " + Num(v) + " must be > 0");
+    if (!(std::isfinite(v) && v > 0)) Fail(std::string(key) + " = " + NumberText(v, 10) + " must be > 0");
   }
   void NonNegative(const char* key, double v) {
-    if (!(std::isfinite(v) && v >= 0)) Fail(std::string(key) + " = " + Num(v) + " must be >= 0");
+    if (!(std::isfinite(v) && v >= 0)) Fail(std::string(key) + " = " + NumberText(v, 10) + " must be >= 0");
   }
   void Closed01(const char* key, double v) {
-    if (!(v >= 0.0 && v <= 1.0)) Fail(std::string(key) + " = " + Num(v) + " is outside [0, 1]");
+    if (!(v >= 0.0 && v <= 1.0)) Fail(std::string(key) + " = " + NumberText(v, 10) + " is outside [0, 1]");
   }
   void Open01(const char* key, double v) {
-    if (!(v > 0.0 && v < 1.0)) Fail(std::string(key) + " = " + Num(v) + " is outside (0, 1)");
+    if (!(v > 0.0 && v < 1.0)) Fail(std::string(key) + " = " + NumberText(v, 10) + " is outside (0, 1)");
   }
 
  private:
@@ -122,7 +117,7 @@ bool TrustSpec::IsValid(const std::string& key, std::string* why) const {
     c.Closed01((key + ".low").c_str(), low);
     c.Closed01((key + ".high").c_str(), high);
     if (c.ok() && low > high)
-      c.Fail(key + ".low = " + Num(low) + " is above " + key + ".high = " + Num(high));
+      c.Fail(key + ".low = " + NumberText(low, 10) + " is above " + key + ".high = " + NumberText(high, 10));
   } else if (dist == TrustDist::kBeta) {
     c.Positive((key + ".alpha").c_str(), alpha);
     c.Positive((key + ".beta").c_str(), beta);
@@ -143,17 +138,17 @@ bool TrustSpec::IsValid(const std::string& key, std::string* why) const {
 }
 
 std::string TrustSpec::ToString() const {
-  if (dist == TrustDist::kUniform) return "uniform(" + Num(low) + "," + Num(high) + ")";
-  if (dist == TrustDist::kBeta) return "beta(" + Num(alpha) + "," + Num(beta) + ")";
+  if (dist == TrustDist::kUniform) return "uniform(" + NumberText(low, 10) + "," + NumberText(high, 10) + ")";
+  if (dist == TrustDist::kBeta) return "beta(" + NumberText(alpha, 10) + "," + NumberText(beta, 10) + ")";
   if (dist == TrustDist::kDiscrete) {
     std::string s = "discrete(";
     for (std::size_t i = 0; i < values.size(); ++i) {
-      s += (i ? "," : "") + Num(values[i]);
-      if (!weights.empty()) s += ":" + Num(weights[i]);
+      s += (i ? "," : "") + NumberText(values[i], 10);
+      if (!weights.empty()) s += ":" + NumberText(weights[i], 10);
     }
     return s + ")";
   }
-  return Num(value);
+  return NumberText(value, 10);
 }
 
 bool ExperimentConfig::IsValid(std::string* why) const {
@@ -172,48 +167,48 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   // A road vehicle: SUMO's physics (and the controller's braking and creep
   // profiles) mean nothing far beyond motorway speeds.
   if (c.ok() && s.cruise_speed > kMaxCruiseSpeed)
-    c.Fail("scenario.cruise_speed = " + Num(s.cruise_speed) + " m/s is above " +
-           Num(kMaxCruiseSpeed) + " m/s (" + Num(kMaxCruiseSpeed * 3.6) + " km/h)");
+    c.Fail("scenario.cruise_speed = " + NumberText(s.cruise_speed, 10) + " m/s is above " +
+           NumberText(kMaxCruiseSpeed, 10) + " m/s (" + NumberText(kMaxCruiseSpeed * 3.6, 10) + " km/h)");
   c.NonNegative("scenario.min_gap", s.min_gap);
   c.Positive("scenario.stop_distance", s.stop_distance);
   c.Positive("scenario.step_length", s.step_length);
   if (c.ok() && s.step_length > 1.0)
-    c.Fail("scenario.step_length = " + Num(s.step_length) + " must be <= 1 s");
+    c.Fail("scenario.step_length = " + NumberText(s.step_length, 10) + " must be <= 1 s");
   // SUMO counts time in whole milliseconds: it refuses a step below 1 ms and
   // silently rounds any other step to a whole millisecond.
   if (c.ok()) {
     const double ms = s.step_length * 1000.0;
     if (ms < 1.0 - 1e-9)
-      c.Fail("scenario.step_length = " + Num(s.step_length) +
+      c.Fail("scenario.step_length = " + NumberText(s.step_length, 10) +
              " is below SUMO's smallest step, one millisecond (0.001 s)");
     else if (std::abs(ms - std::round(ms)) > 1e-6 * ms)
-      c.Fail("scenario.step_length = " + Num(s.step_length) +
+      c.Fail("scenario.step_length = " + NumberText(s.step_length, 10) +
              " is not a whole number of milliseconds (SUMO would run " +
-             Num(std::round(ms) / 1000.0) + " s steps)");
+             NumberText(std::round(ms) / 1000.0, 10) + " s steps)");
   }
   c.Positive("scenario.duration", s.duration);
   if (c.ok() && s.duration < s.step_length)
-    c.Fail("scenario.duration = " + Num(s.duration) + " is shorter than one step");
+    c.Fail("scenario.duration = " + NumberText(s.duration, 10) + " is shorter than one step");
   // The run is a whole number of steps: a duration between two would be
   // rounded without a word.
   if (c.ok()) {
     const double steps = s.duration / s.step_length;
     if (std::abs(steps - std::round(steps)) > 1e-6 * std::max(1.0, steps))
-      c.Fail("scenario.duration = " + Num(s.duration) + " s is not a whole number of steps (" +
-             Num(steps) + " steps of scenario.step_length = " + Num(s.step_length) +
-             " s): give " + Num(std::floor(steps) * s.step_length) + " or " +
-             Num(std::ceil(steps) * s.step_length));
+      c.Fail("scenario.duration = " + NumberText(s.duration, 10) + " s is not a whole number of steps (" +
+             NumberText(steps, 10) + " steps of scenario.step_length = " + NumberText(s.step_length, 10) +
+             " s): give " + NumberText(std::floor(steps) * s.step_length, 10) + " or " +
+             NumberText(std::ceil(steps) * s.step_length, 10));
   }
   // What the run allocates grows with the simulated time (one record per
   // encounter, about 300 bytes, ~500 an hour on the figure-8, more on a
   // network): bound it, and the number of steps, before anything starts.
   if (c.ok() && s.duration > kMaxDuration)
-    c.Fail("scenario.duration = " + Num(s.duration) + " s is above " + Num(kMaxDuration) +
-           " s (" + Num(kMaxDuration / 86400.0) +
+    c.Fail("scenario.duration = " + NumberText(s.duration, 10) + " s is above " + NumberText(kMaxDuration, 10) +
+           " s (" + NumberText(kMaxDuration / 86400.0, 10) +
            " simulated days; split a longer study into seeds or a sweep)");
   if (c.ok() && s.duration / s.step_length > kMaxSteps)
-    c.Fail("scenario.duration / scenario.step_length = " + Num(s.duration / s.step_length) +
-           " steps is above " + Num(kMaxSteps));
+    c.Fail("scenario.duration / scenario.step_length = " + NumberText(s.duration / s.step_length, 10) +
+           " steps is above " + NumberText(kMaxSteps, 10));
   c.Positive("scenario.vehicle_length", s.vehicle_length);
   c.Positive("scenario.vehicle_width", s.vehicle_width);
   c.Positive("scenario.accel", s.accel);
@@ -223,7 +218,7 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   c.Positive("scenario.creep_speed", s.creep_speed);
   c.Positive("scenario.loop_length", s.loop_length);
   if (!s.IsNetwork() && c.ok() && s.stop_distance < 1.7 - 1e-9)
-    c.Fail("scenario.stop_distance = " + Num(s.stop_distance) +
+    c.Fail("scenario.stop_distance = " + NumberText(s.stop_distance, 10) +
            " is inside the junction: on the figure-8 the stop line is 1.6 m from the centre and "
            "SUMO holds vehicles 0.1 m before it, so it must be >= 1.7");
   if (s.IsNetwork()) {
@@ -238,9 +233,9 @@ bool ExperimentConfig::IsValid(std::string* why) const {
              "or a scenario.sumocfg with route files");
   }
   if (!(std::isfinite(s.routes_scale) && s.routes_scale > 0.0 && s.routes_scale <= 100.0))
-    c.Fail("scenario.routes_scale = " + Num(s.routes_scale) + " must be in (0, 100] (SUMO's --scale)");
+    c.Fail("scenario.routes_scale = " + NumberText(s.routes_scale, 10) + " must be in (0, 100] (SUMO's --scale)");
   if (s.routes_scale != 1.0 && !s.IsNetwork())
-    c.Fail("scenario.routes_scale = " + Num(s.routes_scale) +
+    c.Fail("scenario.routes_scale = " + NumberText(s.routes_scale, 10) +
            " applies to scenario.kind = 'network' only (the figure-8 has exact vehicle counts)");
   if (s.grid) {
     const GridConfig& g = *s.grid;
@@ -250,9 +245,9 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     if (g.columns > 100 || g.rows > 100)
       c.Fail("scenario.grid.columns/rows must be <= 100");
     if (!(g.length >= 20.0 && g.length <= 10000.0))
-      c.Fail("scenario.grid.length = " + Num(g.length) + " must be in [20, 10000] m");
+      c.Fail("scenario.grid.length = " + NumberText(g.length, 10) + " must be in [20, 10000] m");
     if (!(g.attach_length == 0.0 || (g.attach_length >= 20.0 && g.attach_length <= 10000.0)))
-      c.Fail("scenario.grid.attach_length = " + Num(g.attach_length) +
+      c.Fail("scenario.grid.attach_length = " + NumberText(g.attach_length, 10) +
              " must be 0 or in [20, 10000] m");
     if (g.lanes < 1 || g.lanes > 4)
       c.Fail("scenario.grid.lanes = " + std::to_string(g.lanes) + " must be in 1..4");
@@ -280,14 +275,14 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   if (s.demand) {
     const DemandConfig& d = *s.demand;
     if (!(std::isfinite(d.flow) && d.flow > 0 && d.flow <= 3600.0 / s.step_length))
-      c.Fail("scenario.demand.flow = " + Num(d.flow) +
+      c.Fail("scenario.demand.flow = " + NumberText(d.flow, 10) +
              " veh/h must be > 0 and at most one vehicle per step and edge");
     if (!(std::isfinite(d.major_flow) && d.major_flow >= 0 &&
           d.major_flow <= 3600.0 / s.step_length))
-      c.Fail("scenario.demand.major_flow = " + Num(d.major_flow) +
+      c.Fail("scenario.demand.major_flow = " + NumberText(d.major_flow, 10) +
              " veh/h must be >= 0 and at most one vehicle per step and edge");
     if (!(std::isfinite(d.end)))
-      c.Fail("scenario.demand.end = " + Num(d.end) + " must be a number of seconds");
+      c.Fail("scenario.demand.end = " + NumberText(d.end, 10) + " must be a number of seconds");
   }
   {
     const JunctionSelection& j = s.junctions;
@@ -306,8 +301,8 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   if (s.av_share) c.Closed01("scenario.av_share", *s.av_share);
   c.NonNegative("scenario.warmup", s.warmup);
   if (c.ok() && s.warmup >= s.duration)
-    c.Fail("scenario.warmup = " + Num(s.warmup) + " leaves nothing of scenario.duration = " +
-           Num(s.duration));
+    c.Fail("scenario.warmup = " + NumberText(s.warmup, 10) + " leaves nothing of scenario.duration = " +
+           NumberText(s.duration, 10));
   c.Positive("scenario.critical_gap", s.critical_gap);
   if (!s.IsNetwork() && s.encounter_pairs == EncounterPairs::kAll)
     c.Fail("scenario.encounter_pairs = 'all' applies to scenario.kind = 'network' only (the "
@@ -320,14 +315,14 @@ bool ExperimentConfig::IsValid(std::string* why) const {
              "crossing has no major road)");
     c.NonNegative("scenario.major_road.yield_cost", mr.yield_cost);
     if (c.ok() && !(mr.yield_cost < model.collision_penalty))
-      c.Fail("scenario.major_road.yield_cost = " + Num(mr.yield_cost) +
-             " must be below model.collision_penalty = " + Num(model.collision_penalty) +
+      c.Fail("scenario.major_road.yield_cost = " + NumberText(mr.yield_cost, 10) +
+             " must be below model.collision_penalty = " + NumberText(model.collision_penalty, 10) +
              " (else keeping its way is dominant for the HV: no signal can make it yield)");
     if (c.ok()) c.Model("scenario.major_road: ", ToModel(model, mr));
     c.Positive("scenario.major_road.comfortable_decel", mr.comfortable_decel);
     if (c.ok() && mr.comfortable_decel > s.decel)
-      c.Fail("scenario.major_road.comfortable_decel = " + Num(mr.comfortable_decel) +
-             " m/s^2 is above scenario.decel = " + Num(s.decel) +
+      c.Fail("scenario.major_road.comfortable_decel = " + NumberText(mr.comfortable_decel, 10) +
+             " m/s^2 is above scenario.decel = " + NumberText(s.decel, 10) +
              " (a yielding HV brakes comfortably, within its type's deceleration)");
     c.NonNegative("scenario.major_road.reaction_time", mr.reaction_time);
     if (BeyondPaper())
@@ -352,10 +347,10 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   if (l.type == LikelihoodType::kLogistic) {
     c.Positive("model.likelihood.steepness", l.steepness);
     if (!(l.midpoint >= 0 && l.midpoint <= l.s_max))
-      c.Fail("model.likelihood.midpoint = " + Num(l.midpoint) + " is outside [0, s_max]");
+      c.Fail("model.likelihood.midpoint = " + NumberText(l.midpoint, 10) + " is outside [0, s_max]");
   }
   if (c.ok() && l.s_max >= s.stop_distance + 50.0)
-    c.Fail("model.likelihood.s_max = " + Num(l.s_max) + " is not a nudge (> 50 m past the stop)");
+    c.Fail("model.likelihood.s_max = " + NumberText(l.s_max, 10) + " is not a nudge (> 50 m past the stop)");
 
   // Beyond the paper: dynamic trust, perception noise, learned trust.
   if (m.trust_dynamics) {
@@ -367,7 +362,7 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     const TrustSpec& t = m.trust;
     auto inside = [&](const std::string& key, double v) {
       if (c.ok() && !(v > 0.0 && v < 1.0))
-        c.Fail(key + " = " + Num(v) +
+        c.Fail(key + " = " + NumberText(v, 10) +
                " must lie strictly inside (0, 1) with model.trust_dynamics (the HV's trust is the "
                "mean of a Beta distribution)");
     };
@@ -395,9 +390,9 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     }
   }
   if (learned && c.ok() && !(m.prior_go < 2.0 / (2.0 + m.collision_penalty)))
-    c.Fail("model.prior_go = " + Num(m.prior_go) +
+    c.Fail("model.prior_go = " + NumberText(m.prior_go, 10) +
            " is at or above p* = 2/(2 + model.collision_penalty) = " +
-           Num(2.0 / (2.0 + m.collision_penalty)) +
+           NumberText(2.0 / (2.0 + m.collision_penalty), 10) +
            ": every HV drives if clear without persuasion, so " +
            PolicyOf(PolicyKind::kTaEbpLearned).name + " has nothing to learn");
   if (m.experience) {
@@ -416,7 +411,7 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     }
   }
   if (!(std::isfinite(outputs.interval) && outputs.interval >= 1.0))
-    c.Fail("outputs.interval = " + Num(outputs.interval) +
+    c.Fail("outputs.interval = " + NumberText(outputs.interval, 10) +
            " must be >= 1 s (the time series are sampled once a simulated second)");
 
   if (policies.empty())

@@ -2,6 +2,7 @@
 // --set overrides) and saving of every config struct, through the structs'
 // Serialize() schema.
 #include "taebp/config/config.h"
+#include "taebp/persuasion/number_text.h"
 
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/depthguard.h>
@@ -404,9 +405,7 @@ class JsonWriter {
 std::string YamlDouble(double v) {
   if (std::isnan(v)) return ".nan";
   if (std::isinf(v)) return v > 0 ? ".inf" : "-.inf";
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  std::string s(buf, r.ptr);
+  std::string s = NumberText(v);
   if (s.find_first_of(".eE") == std::string::npos) s += ".0";
   return s;
 }

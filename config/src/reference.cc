@@ -3,6 +3,7 @@
 #include "taebp/config/reference.h"
 
 #include "taebp/config/config.h"
+#include "taebp/persuasion/number_text.h"
 
 #include <nlohmann/json.hpp>
 
@@ -15,12 +16,6 @@
 
 namespace taebp {
 namespace {
-
-std::string Number(double v) {
-  std::array<char, 64> buf{};
-  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), r.ptr);
-}
 
 std::string List(const std::vector<std::string>& items) {
   std::string out = "[";
@@ -67,7 +62,7 @@ class Describer {
   void Describe(const std::string& key, std::uint64_t v, bool opt) {
     Add(key, "non-negative integer", std::to_string(v), opt);
   }
-  void Describe(const std::string& key, double v, bool opt) { Add(key, "number", Number(v), opt); }
+  void Describe(const std::string& key, double v, bool opt) { Add(key, "number", NumberText(v), opt); }
   void Describe(const std::string& key, bool v, bool opt) {
     Add(key, "true or false", v ? "true" : "false", opt);
   }

@@ -71,7 +71,7 @@ double DefaultStallLimit(const RunState& s) {
 std::string StallAdvice(const RunState& s) {
   if (s.scenario.loop_length <= 0)
     return " (gridlock: lower the demand, or set scenario.stall_action: record to measure it)";
-  return " (scenario.loop_length = " + Fmt(s.scenario.loop_length) +
+  return " (scenario.loop_length = " + NumberText(s.scenario.loop_length, 6) +
          " m; try a longer track or fewer vehicles)";
 }
 

@@ -2,6 +2,7 @@
 
 #include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_adapter.h"
+#include "taebp/persuasion/number_text.h"
 #include "taebp/rundir/interrupt.h"
 #include "taebp/report/ssm.h"
 #include "taebp/scenario/ssm_args.h"
@@ -132,21 +133,15 @@ constexpr const char* kSsmSumoFile = ".ssm-sumo.xml";
 std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario& scenario,
                                   const std::string& policy) {
   const ScenarioConfig& sc = config.scenario;
-  std::ostringstream dt, seed;
-  dt.precision(17);
-  dt << sc.step_length;
-  seed << (sc.seed % 2147483647ULL);
   std::vector<std::string> args = {
-      "sumo", "-n", scenario.net, "--step-length", dt.str(), "--seed", seed.str(),
+      "sumo", "-n", scenario.net, "--step-length", NumberText(sc.step_length, 17), "--seed",
+      std::to_string(sc.seed % 2147483647ULL),
       "--collision.check-junctions", "true", "--collision.action", "warn",
       "--collision.mingap-factor", "0", "--time-to-teleport", "-1", "--no-step-log", "true",
       "--duration-log.disable", "true", "--xml-validation", "never"};
   if (!scenario.route_files.empty()) args.insert(args.end(), {"-r", Join(scenario.route_files)});
   if (sc.routes_scale != 1.0) {
-    std::ostringstream scale;
-    scale.precision(17);
-    scale << sc.routes_scale;
-    args.insert(args.end(), {"--scale", scale.str()});
+    args.insert(args.end(), {"--scale", NumberText(sc.routes_scale, 17)});
   }
   std::vector<std::string> additional = scenario.additional_files;
   if (scenario.scratch) {
@@ -169,14 +164,13 @@ std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario
     if (o.edgedata || o.lanedata) {
       // Means over the measured time (from the warm-up's end).
       std::ostringstream add;
-      add.precision(17);
       add << "<additional>\n";
       if (o.edgedata)
         add << "  <edgeData id=\"taebp_edgedata\" file=\"" << (dir / "edgedata.xml").string()
-            << "\" begin=\"" << sc.warmup << "\"/>\n";
+            << "\" begin=\"" << NumberText(sc.warmup, 17) << "\"/>\n";
       if (o.lanedata)
         add << "  <laneData id=\"taebp_lanedata\" file=\"" << (dir / "lanedata.xml").string()
-            << "\" begin=\"" << sc.warmup << "\"/>\n";
+            << "\" begin=\"" << NumberText(sc.warmup, 17) << "\"/>\n";
       add << "</additional>\n";
       const fs::path file = dir / ".taebp-meandata.add.xml";
       std::ofstream(file) << add.str();

@@ -10,6 +10,7 @@
 #include "taebp/controller/sumo_world.h"
 #include "taebp/encounter/hv_population.h"
 #include "taebp/junction/interception.h"
+#include "taebp/persuasion/number_text.h"
 #include "topology.h"
 #include "vehicles.h"
 
@@ -103,11 +104,5 @@ struct RunState {
   PolicyRun out;
 };
 
-inline std::string Fmt(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
 
 }  // namespace taebp::control

@@ -29,7 +29,7 @@ std::string StallDetail(RunState& s, JunctionState& j) {
     }
     const net::Lane* l = s.net.FindLane(lane);
     out += "; lane " + lane + ": " + std::to_string(halting) + " halted, front " + front + " " +
-           Fmt((l ? l->length : 0) - s.sumo.LanePosition(front)) + " m before the line (" +
+           NumberText((l ? l->length : 0) - s.sumo.LanePosition(front), 6) + " m before the line (" +
            state + ")";
   }
   const std::string held = j.logic->Describe([&](int h) { return s.vehicles[h].id; });
@@ -67,7 +67,7 @@ void CheckStalls(RunState& s) {
     const std::string what = "junction '" + info.info.id + "' (" + j.run.rule +
                              "): traffic stalled, vehicles waiting on its incoming lanes and "
                              "none passed it between t = " +
-                             Fmt(progress) + " s and t = " + Fmt(s.now) + " s" +
+                             NumberText(progress, 6) + " s and t = " + NumberText(s.now, 6) + " s" +
                              figure8::StallAdvice(s);
     j.stall_recorded = true;
     j.stall_since = progress;

@@ -302,9 +302,9 @@ void VehicleCommands::FinishNudge(int h, double observed) {
   if (!NudgeRealised(s, observed, kNudgeTolerance)) {
     if (s_.sc.nudge_check == NudgeCheck::kError)
       throw NudgeError("junction '" + s_.topo.junctions()[v.junction].info.id + "', AV " + v.id +
-                       " at t = " + Fmt(s_.now) + " s: commanded nudge " + Fmt(s) +
-                       " m, SUMO reported " + Fmt(observed) + " m (tolerance " +
-                       Fmt(kNudgeTolerance) +
+                       " at t = " + NumberText(s_.now, 6) + " s: commanded nudge " + NumberText(s, 6) +
+                       " m, SUMO reported " + NumberText(observed, 6) + " m (tolerance " +
+                       NumberText(kNudgeTolerance, 6) +
                        " m); set scenario.nudge_check: count to record it and go on");
     ++s_.out.nudges_unrealised;
   }

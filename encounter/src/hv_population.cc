@@ -2,6 +2,7 @@
 
 #include "taebp/config/model.h"
 #include "taebp/encounter/design.h"
+#include "taebp/persuasion/number_text.h"
 #include "taebp/persuasion/random.h"
 
 #include <algorithm>
@@ -32,12 +33,6 @@ std::uint64_t StreamSeed(std::uint64_t seed, std::uint64_t salt) {
 constexpr std::uint64_t kSaltNoise = 0x6e6f697365;  // "noise"
 constexpr std::uint64_t kSaltProbe = 0x70726f6265;  // "probe"
 
-std::string Num(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
 
 bool TaebpFamily(Policy p) {
   return p == Policy::kTaEbp || p == Policy::kPopulationMean || p == Policy::kTaEbpLearned;
@@ -451,7 +446,7 @@ BeyondRun HvPopulation::Results(double end) {
     const double strength = m.trust_dynamics->strength;
     out.design_rule = PolicyName(rule.policy);
     if (rule.policy == Policy::kTaEbp)
-      out.design_rule += rule.assumed_trust ? " for theta_hat = " + Num(*rule.assumed_trust)
+      out.design_rule += rule.assumed_trust ? " for theta_hat = " + NumberText(*rule.assumed_trust, 6)
                                             : " tracking the HV's trust";
     auto initial = [&](double theta) {
       const double mean = Inside01(theta);

@@ -10,7 +10,6 @@
 
 namespace taebp::persuasion {
 
-using internal::Num;
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -22,13 +21,13 @@ bool AvHvParams::IsValid(std::string* why) const {
     return false;
   };
   if (!(prior_go > 0.0 && prior_go < 1.0)) {
-    return fail("prior_go (lambda) = " + Num(prior_go) + " is outside (0, 1)");
+    return fail("prior_go (lambda) = " + NumberText(prior_go) + " is outside (0, 1)");
   }
   if (!(collision_penalty > 0.0)) {
-    return fail("collision_penalty r = " + Num(collision_penalty) + " must be > 0");
+    return fail("collision_penalty r = " + NumberText(collision_penalty) + " must be > 0");
   }
   if (!std::isfinite(collision_penalty)) {
-    return fail("collision_penalty r = " + Num(collision_penalty) + " must be finite");
+    return fail("collision_penalty r = " + NumberText(collision_penalty) + " must be finite");
   }
   return true;
 }
@@ -90,7 +89,7 @@ double HvPosteriorGo(const AvHvParams& params, double theta, const LikelihoodMod
   const double stop = model.PiStop(s) * (1.0 - lambda);
   const double evidence = go + stop;
   if (!(evidence > 0.0)) {
-    throw InvalidArgument("signal s = " + Num(s) + " has zero probability under the " +
+    throw InvalidArgument("signal s = " + NumberText(s) + " has zero probability under the " +
                           model.Name() + " model");
   }
   return (1.0 - theta) * lambda + theta * (go / evidence);
@@ -107,7 +106,7 @@ bool HvDrivesIfClear(const AvHvParams& params, double p_go) {
   params.Validate();
   // Round-off may push a posterior a hair outside [0, 1]; only reject real errors.
   if (!(p_go >= -kProbabilityTolerance && p_go <= 1.0 + kProbabilityTolerance)) {
-    throw InvalidArgument("posterior p_go = " + Num(p_go) + " is outside [0, 1]");
+    throw InvalidArgument("posterior p_go = " + NumberText(p_go) + " is outside [0, 1]");
   }
   const double r = params.collision_penalty;
   const double p_stop = 1.0 - p_go;
@@ -170,9 +169,9 @@ double MinimalNudge(const AvHvParams& params, double theta, const LikelihoodMode
   if (!AvHvPersuadable(params, theta, model)) {
     const TrustThreshold threshold = AvHvModelTrustThreshold(params, model);
     throw InvalidArgument(
-        "trust theta = " + Num(theta) +
-        " is below the minimum persuadable trust theta* = " + Num(threshold.theta_star) +
-        " of the " + model.Name() + " likelihood model: no nudge in [0, " + Num(model.SMax()) +
+        "trust theta = " + NumberText(theta) +
+        " is below the minimum persuadable trust theta* = " + NumberText(threshold.theta_star) +
+        " of the " + model.Name() + " likelihood model: no nudge in [0, " + NumberText(model.SMax()) +
         "] makes the HV drive if clear");
   }
   if (HvDrivesIfClear(params, HvPosteriorGo(params, theta, model, 0.0))) return 0.0;
@@ -196,9 +195,9 @@ double StopNudgeProbability(const AvHvParams& params, double theta) {
   const double p_star = AvHvPStar(params.collision_penalty);
   if (HvDrivesIfClear(params, lambda)) return 1.0;
   if (!HvDrivesIfClear(params, (1.0 - theta) * lambda + theta * 1.0)) {
-    throw InvalidArgument("trust theta = " + Num(theta) +
+    throw InvalidArgument("trust theta = " + NumberText(theta) +
                           " is below the minimum persuadable trust theta* = " +
-                          Num(AvHvThetaStar(params)));
+                          NumberText(AvHvThetaStar(params)));
   }
   const double numerator = lambda * (theta - p_star + (1.0 - theta) * lambda);
   // > 0 here: (1 - theta) lambda <= lambda < p* since the prior alone does not persuade.

@@ -11,7 +11,6 @@
 
 namespace taebp::persuasion {
 
-using internal::Num;
 
 bool ExperienceRule::IsValid(std::string* why) const {
   auto fail = [why](const std::string& m) {
@@ -19,9 +18,9 @@ bool ExperienceRule::IsValid(std::string* why) const {
     return false;
   };
   if (!(strength > 0.0 && std::isfinite(strength)))
-    return fail("strength k = " + Num(strength) + " must be > 0 and finite");
+    return fail("strength k = " + NumberText(strength) + " must be > 0 and finite");
   if (!(bin_width > 0.0 && std::isfinite(bin_width)))
-    return fail("bin_width = " + Num(bin_width) + " must be > 0 and finite");
+    return fail("bin_width = " + NumberText(bin_width) + " must be > 0 and finite");
   return true;
 }
 
@@ -32,12 +31,12 @@ void ExperienceRule::Validate() const {
 
 SignalExperience::SignalExperience(double bin_width) : width_(bin_width) {
   if (!(bin_width > 0.0 && std::isfinite(bin_width)))
-    throw InvalidArgument("bin_width = " + Num(bin_width) + " must be > 0 and finite");
+    throw InvalidArgument("bin_width = " + NumberText(bin_width) + " must be > 0 and finite");
 }
 
 long SignalExperience::Level(double reading) const {
   if (!(reading >= 0.0 && std::isfinite(reading)))
-    throw InvalidArgument("reading = " + Num(reading) + " must be >= 0 and finite");
+    throw InvalidArgument("reading = " + NumberText(reading) + " must be >= 0 and finite");
   return static_cast<long>(std::floor(reading / width_));
 }
 
@@ -55,9 +54,9 @@ void SignalExperience::Record(double reading, bool av_went) {
 
 double ExperiencedPosterior(double intuitive_go, const SignalCounts& c, double strength) {
   if (!(intuitive_go >= 0.0 && intuitive_go <= 1.0))
-    throw InvalidArgument("intuitive posterior q = " + Num(intuitive_go) + " is outside [0, 1]");
+    throw InvalidArgument("intuitive posterior q = " + NumberText(intuitive_go) + " is outside [0, 1]");
   if (!(strength > 0.0))
-    throw InvalidArgument("strength k = " + Num(strength) + " must be > 0");
+    throw InvalidArgument("strength k = " + NumberText(strength) + " must be > 0");
   if (c.readings < 0 || c.went < 0 || c.went > c.readings)
     throw InvalidArgument("experience counts (n = " + std::to_string(c.readings) +
                           ", g = " + std::to_string(c.went) + ") need 0 <= g <= n");
@@ -81,7 +80,7 @@ bool Nudges(const CommittedScheme& s) { return s.nudge > 0.0 && s.Signals(); }
 
 void CheckAOneOrNoSignal(const CommittedScheme& s, const char* who) {
   if (s.Signals() && s.nudge > 0.0 && !(s.a == 0.0 || s.a == 1.0))
-    throw InvalidArgument(std::string(who) + ": scheme a = " + Num(s.a) +
+    throw InvalidArgument(std::string(who) + ": scheme a = " + NumberText(s.a) +
                           " must be 0 or 1 (the still level's learning is not modelled)");
 }
 
@@ -192,7 +191,7 @@ ExperiencePath::ExperiencePath(const CommittedScheme& scheme, const AvHvParams& 
   params.Validate();
   internal::CheckTrust(theta);
   CheckAOneOrNoSignal(scheme, "ExperiencePath");
-  if (!(strength > 0.0)) throw InvalidArgument("strength k = " + Num(strength) + " must be > 0");
+  if (!(strength > 0.0)) throw InvalidArgument("strength k = " + NumberText(strength) + " must be > 0");
   s_max_ = model.SMax();
   if (Nudges(scheme)) q_nudge_ = HvPosteriorGo(scheme, params, 1.0, model, scheme.nudge);
   dc_still_ = HvDrivesIfClear(params, HvPosteriorGo(scheme, params, theta, model, 0.0));

@@ -14,7 +14,6 @@
 
 namespace taebp::persuasion {
 
-using internal::Num;
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -29,13 +28,13 @@ void CheckRatioArgument(double ratio) {
 // ---------------------------------------------------------------------------
 LikelihoodModel::LikelihoodModel(double s_max) : s_max_(s_max) {
   if (!(s_max > 0.0) || !std::isfinite(s_max)) {
-    throw InvalidArgument("s_max = " + Num(s_max) + " must be > 0 and finite");
+    throw InvalidArgument("s_max = " + NumberText(s_max) + " must be > 0 and finite");
   }
 }
 
 void LikelihoodModel::CheckSignal(double s) const {
   if (!(s >= 0.0 && s <= s_max_)) {
-    throw InvalidArgument("signal s = " + Num(s) + " is outside [0, " + Num(s_max_) + "]");
+    throw InvalidArgument("signal s = " + NumberText(s) + " is outside [0, " + NumberText(s_max_) + "]");
   }
 }
 
@@ -81,11 +80,11 @@ double LinearLikelihood::InverseRatio(double ratio) const {
 LogisticLikelihood::LogisticLikelihood(double s_max, double steepness, double midpoint)
     : LikelihoodModel(s_max), k_(steepness), m_(midpoint) {
   if (!(steepness > 0.0) || !std::isfinite(steepness)) {
-    throw InvalidArgument("logistic steepness k = " + Num(steepness) + " must be > 0 and finite");
+    throw InvalidArgument("logistic steepness k = " + NumberText(steepness) + " must be > 0 and finite");
   }
   if (!(midpoint >= 0.0 && midpoint <= s_max)) {
-    throw InvalidArgument("logistic midpoint m = " + Num(midpoint) + " is outside [0, " +
-                          Num(s_max) + "]");
+    throw InvalidArgument("logistic midpoint m = " + NumberText(midpoint) + " is outside [0, " +
+                          NumberText(s_max) + "]");
   }
 }
 
@@ -111,8 +110,8 @@ double LogisticLikelihood::InverseRatio(double ratio) const {
   if (ratio <= Ratio(0.0)) return 0.0;
   const double max_ratio = MaxRatio();
   if (ratio > max_ratio) {
-    throw InvalidArgument("likelihood ratio " + Num(ratio) + " is unreachable by the " + Name() +
-                          " model (L(s_max) = " + Num(max_ratio) + ")");
+    throw InvalidArgument("likelihood ratio " + NumberText(ratio) + " is unreachable by the " + Name() +
+                          " model (L(s_max) = " + NumberText(max_ratio) + ")");
   }
   auto f = [this, ratio](double s) { return PiGo(s) - ratio * PiStop(s); };
   const double f_lo = f(0.0);
@@ -127,7 +126,7 @@ double LogisticLikelihood::InverseRatio(double ratio) const {
   const auto bracket =
       boost::math::tools::toms748_solve(f, 0.0, s_max_, f_lo, f_hi, tolerance, max_iter);
   if (!(std::abs(bracket.second - bracket.first) <= kInverseTolerance)) {
-    throw std::runtime_error("TOMS 748 did not converge for likelihood ratio " + Num(ratio));
+    throw std::runtime_error("TOMS 748 did not converge for likelihood ratio " + NumberText(ratio));
   }
   return bracket.second;
 }

@@ -10,7 +10,6 @@
 
 namespace taebp::persuasion {
 
-using internal::Num;
 
 bool MajorRoadParams::IsValid(std::string* why) const {
   auto fail = [why](const std::string& message) {
@@ -18,17 +17,17 @@ bool MajorRoadParams::IsValid(std::string* why) const {
     return false;
   };
   if (!(prior_go > 0.0 && prior_go < 1.0)) {
-    return fail("prior_go (lambda) = " + Num(prior_go) + " is outside (0, 1)");
+    return fail("prior_go (lambda) = " + NumberText(prior_go) + " is outside (0, 1)");
   }
   if (!(collision_penalty > 0.0) || !std::isfinite(collision_penalty)) {
-    return fail("collision_penalty r = " + Num(collision_penalty) + " must be > 0 and finite");
+    return fail("collision_penalty r = " + NumberText(collision_penalty) + " must be > 0 and finite");
   }
   if (!(yield_cost >= 0.0) || !std::isfinite(yield_cost)) {
-    return fail("yield_cost c = " + Num(yield_cost) + " must be >= 0 and finite");
+    return fail("yield_cost c = " + NumberText(yield_cost) + " must be >= 0 and finite");
   }
   if (!(yield_cost < collision_penalty)) {
-    return fail("yield_cost c = " + Num(yield_cost) + " must be < collision_penalty r = " +
-                Num(collision_penalty) +
+    return fail("yield_cost c = " + NumberText(yield_cost) + " must be < collision_penalty r = " +
+                NumberText(collision_penalty) +
                 " (otherwise keeping its way is weakly dominant: the HV never yields)");
   }
   return true;
@@ -126,14 +125,14 @@ bool MajorRoadApproach::IsValid(std::string* why) const {
       {"av_clear_time", av_clear_time, false},
   };
   for (const auto& field : fields) {
-    const std::string text = std::string(field.name) + " = " + Num(field.value);
+    const std::string text = std::string(field.name) + " = " + NumberText(field.value);
     if (!std::isfinite(field.value)) return fail(text + " must be finite");
     if (field.positive && !(field.value > 0.0)) return fail(text + " must be > 0");
     if (!field.positive && !(field.value >= 0.0)) return fail(text + " must be >= 0");
   }
   if (!(av_clear_time > av_enter_time)) {
-    return fail("av_clear_time = " + Num(av_clear_time) + " must be > av_enter_time = " +
-                Num(av_enter_time) + " (the AV's crossing takes time)");
+    return fail("av_clear_time = " + NumberText(av_clear_time) + " must be > av_enter_time = " +
+                NumberText(av_enter_time) + " (the AV's crossing takes time)");
   }
   return true;
 }

@@ -14,7 +14,6 @@
 
 namespace taebp::persuasion {
 
-using internal::Num;
 
 namespace {
 
@@ -52,9 +51,9 @@ bool PerceptionNoise::IsValid(std::string* why) const {
     if (why != nullptr) *why = message;
     return false;
   };
-  if (!std::isfinite(bias)) return fail("noise.bias = " + Num(bias) + " must be finite");
+  if (!std::isfinite(bias)) return fail("noise.bias = " + NumberText(bias) + " must be finite");
   if (kind != Kind::kNone && !(scale > 0.0 && std::isfinite(scale))) {
-    return fail(std::string("noise.scale = ") + Num(scale) + " must be > 0 and finite for " +
+    return fail(std::string("noise.scale = ") + NumberText(scale) + " must be > 0 and finite for " +
                 ToString(kind) + " noise");
   }
   return true;
@@ -80,7 +79,7 @@ double PerceptionNoise::Cdf(double e) const {
 
 double PerceptionNoise::Quantile(double p) const {
   if (!(p > 0.0 && p < 1.0)) {
-    throw InvalidArgument("noise quantile level p = " + Num(p) + " is outside (0, 1)");
+    throw InvalidArgument("noise quantile level p = " + NumberText(p) + " is outside (0, 1)");
   }
   switch (kind) {
     case Kind::kNone:
@@ -108,10 +107,10 @@ double PerceptionNoise::Density(double e) const {
 double NoisyReading(const PerceptionNoise& noise, double observed, double s_max, double u01) {
   noise.Validate();
   if (!(u01 >= 0.0 && u01 < 1.0)) {
-    throw InvalidArgument("uniform draw u = " + Num(u01) + " is outside [0, 1)");
+    throw InvalidArgument("uniform draw u = " + NumberText(u01) + " is outside [0, 1)");
   }
   if (!std::isfinite(observed)) {
-    throw InvalidArgument("observed displacement = " + Num(observed) + " is not finite");
+    throw InvalidArgument("observed displacement = " + NumberText(observed) + " is not finite");
   }
   // u + 2^-54 keeps the level off 0; above 1/2 it may round up to 1, so cap it.
   const double eps = noise.Quantile(std::min(u01 + 0x1.0p-54, std::nextafter(1.0, 0.0)));
@@ -124,7 +123,7 @@ double PersuasionProbability(const PerceptionNoise& noise, const AvHvParams& par
   params.Validate();
   internal::CheckTrust(theta);
   if (!(s >= 0.0 && s <= model.SMax())) {
-    throw InvalidArgument("displacement s = " + Num(s) + " is outside [0, " + Num(model.SMax()) +
+    throw InvalidArgument("displacement s = " + NumberText(s) + " is outside [0, " + NumberText(model.SMax()) +
                           "]");
   }
   if (noise.kind == PerceptionNoise::Kind::kNone) {
@@ -148,7 +147,7 @@ PredictedOutcome PredictOutcomeUnderNoise(const CommittedScheme& scheme, const A
   for (const auto& [x, name] : {std::pair{scheme.a, "scheme a (P(nudge | Go))"},
                                 std::pair{scheme.b, "scheme b (P(nudge | Stop))"}}) {
     if (!(x >= 0.0 && x <= 1.0)) {
-      throw InvalidArgument(std::string(name) + " = " + Num(x) + " is outside [0, 1]");
+      throw InvalidArgument(std::string(name) + " = " + NumberText(x) + " is outside [0, 1]");
     }
   }
   const double lambda = params.prior_go;
@@ -185,7 +184,7 @@ NoiseAwareDesign DesignUnderNoise(const AvHvParams& params, double theta_hat,
   noise.Validate();
   internal::CheckTrust(theta_hat, "trust theta_hat");
   if (!(delta > 0.0 && delta < 1.0)) {
-    throw InvalidArgument("delta = " + Num(delta) + " is outside (0, 1)");
+    throw InvalidArgument("delta = " + NumberText(delta) + " is outside (0, 1)");
   }
   NoiseAwareDesign out;
   out.nominal = DesignTaebp(params, theta_hat, model);

@@ -81,7 +81,7 @@ PredictedOutcome PredictOutcome(const CommittedScheme& scheme, const AvHvParams&
   internal::CheckTrust(theta_true, "trust theta_true");
   auto check_probability = [](double x, const char* name) {
     if (!(x >= 0.0 && x <= 1.0)) {
-      throw InvalidArgument(std::string(name) + " = " + internal::Num(x) + " is outside [0, 1]");
+      throw InvalidArgument(std::string(name) + " = " + NumberText(x) + " is outside [0, 1]");
     }
   };
   check_probability(scheme.a, "scheme a (P(nudge | Go))");

@@ -11,7 +11,6 @@
 
 namespace taebp::persuasion {
 
-using internal::Num;
 
 namespace {
 
@@ -24,11 +23,11 @@ std::string Shape(const Eigen::MatrixXd& m) {
 void CheckNonNegative(const Eigen::VectorXd& v, const char* name) {
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (!std::isfinite(v(i))) {
-      throw InvalidArgument(std::string(name) + "[" + std::to_string(i) + "] = " + Num(v(i)) +
+      throw InvalidArgument(std::string(name) + "[" + std::to_string(i) + "] = " + NumberText(v(i)) +
                             " is not finite");
     }
     if (v(i) < 0.0) {
-      throw InvalidArgument(std::string(name) + "[" + std::to_string(i) + "] = " + Num(v(i)) +
+      throw InvalidArgument(std::string(name) + "[" + std::to_string(i) + "] = " + NumberText(v(i)) +
                             " is negative");
     }
   }
@@ -83,13 +82,13 @@ bool Game::IsValid(std::string* why) const {
   }
   for (Eigen::Index i = 0; i < n; ++i) {
     const double p = prior(i);
-    const std::string entry = "prior[" + std::to_string(i) + "] = " + Num(p);
+    const std::string entry = "prior[" + std::to_string(i) + "] = " + NumberText(p);
     if (!std::isfinite(p)) return fail(entry + " is not finite");
     if (p < 0.0) return fail(entry + " is negative");
     if (p == 0.0) return fail(entry + " is not in the interior of the simplex (must be > 0)");
   }
   const double sum = prior.sum();
-  if (std::abs(sum - 1.0) > kProbabilityTolerance) return fail("prior must sum to 1 (sum = " + Num(sum) + ")");
+  if (std::abs(sum - 1.0) > kProbabilityTolerance) return fail("prior must sum to 1 (sum = " + NumberText(sum) + ")");
   return true;
 }
 
@@ -112,7 +111,7 @@ Eigen::VectorXd BayesPosterior(const Eigen::VectorXd& prior, const Eigen::Vector
   const double evidence = joint.sum();
   if (!(evidence > 0.0)) {
     throw InvalidArgument("the signal has zero probability under the prior (sum_w pi(s|w) p0(w) = " +
-                          Num(evidence) + ")");
+                          NumberText(evidence) + ")");
   }
   return joint / evidence;
 }
@@ -151,7 +150,7 @@ Eigen::VectorXd ExpectedUtilities(const Eigen::MatrixXd& utility, const Eigen::V
 int BestResponse(const Game& game, const Eigen::VectorXd& belief, double tolerance) {
   game.Validate();
   if (!(tolerance >= 0.0) || !std::isfinite(tolerance)) {
-    throw InvalidArgument("tolerance = " + Num(tolerance) + " must be finite and >= 0");
+    throw InvalidArgument("tolerance = " + NumberText(tolerance) + " must be finite and >= 0");
   }
   if (!belief.allFinite()) throw InvalidArgument("belief has a non-finite entry");
   const Eigen::VectorXd receiver = ExpectedUtilities(game.receiver_utility, belief);
@@ -241,7 +240,7 @@ TrustThreshold MinPersuadableTrust(const Game& game, const Eigen::MatrixXd& sign
       const double x = signals(w, j);
       if (!std::isfinite(x) || x < 0.0) {
         throw InvalidArgument("signals(" + std::to_string(w) + ", " + std::to_string(j) +
-                              ") = " + Num(x) + " must be finite and >= 0");
+                              ") = " + NumberText(x) + " must be finite and >= 0");
       }
     }
   }
@@ -279,14 +278,14 @@ TrustThreshold MinPersuadableTrust(const Game& game) {
 //   theta* = -(p0(w1) du1 + p0(w2) du2) / (p0(w2) (du1 - du2)).
 double TwoStateTrustThreshold(double prior_w1, double delta_u1, double delta_u2) {
   if (!(prior_w1 > 0.0 && prior_w1 < 1.0)) {
-    throw InvalidArgument("prior_w1 = " + Num(prior_w1) + " is outside (0, 1)");
+    throw InvalidArgument("prior_w1 = " + NumberText(prior_w1) + " is outside (0, 1)");
   }
   if (!std::isfinite(delta_u1) || !std::isfinite(delta_u2)) {
-    throw InvalidArgument("delta_u1 = " + Num(delta_u1) + ", delta_u2 = " + Num(delta_u2) +
+    throw InvalidArgument("delta_u1 = " + NumberText(delta_u1) + ", delta_u2 = " + NumberText(delta_u2) +
                           " must be finite");
   }
   if (delta_u1 == delta_u2) {
-    throw InvalidArgument("delta_u1 = delta_u2 = " + Num(delta_u1) +
+    throw InvalidArgument("delta_u1 = delta_u2 = " + NumberText(delta_u1) +
                           ": the threshold is undefined (no signal changes the gain)");
   }
   const double prior_w2 = 1.0 - prior_w1;
@@ -304,7 +303,7 @@ double IndifferencePosterior(const Eigen::Matrix2d& receiver_utility) {
   // An interior indifference point exists iff d1 and d2 have strictly opposite signs.
   if (!((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))) {
     throw InvalidArgument("receiver_utility has no interior indifference point (u(w1,a1)-u(w1,a2) = " +
-                          Num(d1) + ", u(w2,a1)-u(w2,a2) = " + Num(d2) +
+                          NumberText(d1) + ", u(w2,a1)-u(w2,a2) = " + NumberText(d2) +
                           "; they must have opposite signs)");
   }
   return d2 / (d2 - d1);

@@ -14,7 +14,6 @@
 
 namespace taebp::persuasion {
 
-using internal::Num;
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -81,7 +80,7 @@ bool OutcomeQuality::IsValid(std::string* why) const {
     const double q = Of(outcome);
     if (!(q >= 0.0 && q <= 1.0)) {
       if (why != nullptr) {
-        *why = std::string("quality.") + ToString(outcome) + " = " + Num(q) + " is outside [0, 1]";
+        *why = std::string("quality.") + ToString(outcome) + " = " + NumberText(q) + " is outside [0, 1]";
       }
       return false;
     }
@@ -100,13 +99,13 @@ bool TrustUpdateRule::IsValid(std::string* why) const {
     return false;
   };
   if (!(success_weight >= 0.0 && std::isfinite(success_weight))) {
-    return fail("success_weight w_s = " + Num(success_weight) + " must be finite and >= 0");
+    return fail("success_weight w_s = " + NumberText(success_weight) + " must be finite and >= 0");
   }
   if (!(failure_weight >= 0.0 && std::isfinite(failure_weight))) {
-    return fail("failure_weight w_f = " + Num(failure_weight) + " must be finite and >= 0");
+    return fail("failure_weight w_f = " + NumberText(failure_weight) + " must be finite and >= 0");
   }
   if (!(forgetting >= 0.0 && forgetting <= 1.0)) {
-    return fail("forgetting rho = " + Num(forgetting) + " is outside [0, 1]");
+    return fail("forgetting rho = " + NumberText(forgetting) + " is outside [0, 1]");
   }
   return quality.IsValid(why);
 }
@@ -122,19 +121,19 @@ void TrustUpdateRule::Validate() const {
 BetaTrust::BetaTrust(double alpha0, double beta0)
     : alpha0_(alpha0), beta0_(beta0), alpha_(alpha0), beta_(beta0) {
   if (!(alpha0 > 0.0 && std::isfinite(alpha0))) {
-    throw InvalidArgument("trust alpha0 = " + Num(alpha0) + " must be > 0 and finite");
+    throw InvalidArgument("trust alpha0 = " + NumberText(alpha0) + " must be > 0 and finite");
   }
   if (!(beta0 > 0.0 && std::isfinite(beta0))) {
-    throw InvalidArgument("trust beta0 = " + Num(beta0) + " must be > 0 and finite");
+    throw InvalidArgument("trust beta0 = " + NumberText(beta0) + " must be > 0 and finite");
   }
 }
 
 BetaTrust BetaTrust::FromMean(double mean, double strength) {
   if (!(mean > 0.0 && mean < 1.0)) {
-    throw InvalidArgument("initial trust mean = " + Num(mean) + " is outside (0, 1)");
+    throw InvalidArgument("initial trust mean = " + NumberText(mean) + " is outside (0, 1)");
   }
   if (!(strength > 0.0 && std::isfinite(strength))) {
-    throw InvalidArgument("trust strength alpha0 + beta0 = " + Num(strength) +
+    throw InvalidArgument("trust strength alpha0 + beta0 = " + NumberText(strength) +
                           " must be > 0 and finite");
   }
   return BetaTrust(mean * strength, (1.0 - mean) * strength);
@@ -143,7 +142,7 @@ BetaTrust BetaTrust::FromMean(double mean, double strength) {
 void BetaTrust::Update(double q, const TrustUpdateRule& rule) {
   rule.Validate();
   if (!(q >= 0.0 && q <= 1.0)) {
-    throw InvalidArgument("encounter quality q = " + Num(q) + " is outside [0, 1]");
+    throw InvalidArgument("encounter quality q = " + NumberText(q) + " is outside [0, 1]");
   }
   const double keep = 1.0 - rule.forgetting;
   // alpha0 + keep * 0 is alpha0 exactly, so an untouched state stays put.
@@ -173,7 +172,7 @@ std::array<double, kEncounterOutcomeCount> OutcomeProbabilities(const CommittedS
   internal::CheckTrust(theta_true, "trust theta_true");
   auto check_probability = [](double x, const char* name) {
     if (!(x >= 0.0 && x <= 1.0)) {
-      throw InvalidArgument(std::string(name) + " = " + Num(x) + " is outside [0, 1]");
+      throw InvalidArgument(std::string(name) + " = " + NumberText(x) + " is outside [0, 1]");
     }
   };
   check_probability(scheme.a, "scheme a (P(nudge | Go))");
@@ -266,7 +265,7 @@ double ConstantQualityEquilibrium(double quality, const TrustUpdateRule& update,
   update.Validate();
   CheckInitial(alpha0, beta0);
   if (!(quality >= 0.0 && quality <= 1.0)) {
-    throw InvalidArgument("expected quality Q = " + Num(quality) + " is outside [0, 1]");
+    throw InvalidArgument("expected quality Q = " + NumberText(quality) + " is outside [0, 1]");
   }
   const double rho = update.forgetting;
   const double numerator = rho * alpha0 + update.success_weight * quality;
@@ -284,8 +283,8 @@ std::vector<double> TaebpEquilibria(const AvHvParams& params, const TrustUpdateR
   const double lambda = params.prior_go;
   const double p_star = AvHvPStar(params.collision_penalty);
   if (!(lambda < p_star)) {
-    throw InvalidArgument("prior_go (lambda) = " + Num(lambda) + " is not below p* = " +
-                          Num(p_star) + ": the HV drives if clear without persuasion");
+    throw InvalidArgument("prior_go (lambda) = " + NumberText(lambda) + " is not below p* = " +
+                          NumberText(p_star) + ": the HV drives if clear without persuasion");
   }
   const OutcomeQuality& q = update.quality;
   const double d = p_star - lambda;

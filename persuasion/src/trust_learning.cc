@@ -13,7 +13,6 @@
 
 namespace taebp::persuasion {
 
-using internal::Num;
 
 const double TrustPrior::kAboveOne = std::nextafter(1.0, 2.0);
 
@@ -30,7 +29,7 @@ constexpr double kNarrow = 1e-7;
 
 void CheckUnitFraction(double p, const char* name) {
   if (!(p >= 0.0 && p <= 1.0)) {
-    throw InvalidArgument(std::string(name) + " = " + Num(p) + " is outside [0, 1]");
+    throw InvalidArgument(std::string(name) + " = " + NumberText(p) + " is outside [0, 1]");
   }
 }
 
@@ -41,10 +40,10 @@ void CheckUnitFraction(double p, const char* name) {
 // ---------------------------------------------------------------------------
 TrustPrior TrustPrior::Beta(double a, double b) {
   if (!(a > 0.0 && std::isfinite(a))) {
-    throw InvalidArgument("trust prior Beta a = " + Num(a) + " must be > 0 and finite");
+    throw InvalidArgument("trust prior Beta a = " + NumberText(a) + " must be > 0 and finite");
   }
   if (!(b > 0.0 && std::isfinite(b))) {
-    throw InvalidArgument("trust prior Beta b = " + Num(b) + " must be > 0 and finite");
+    throw InvalidArgument("trust prior Beta b = " + NumberText(b) + " must be > 0 and finite");
   }
   TrustPrior prior;
   prior.kind_ = Kind::kBeta;
@@ -59,7 +58,7 @@ TrustPrior TrustPrior::Histogram(std::vector<double> weights) {
   for (std::size_t k = 0; k < weights.size(); ++k) {
     if (!(weights[k] >= 0.0 && std::isfinite(weights[k]))) {
       throw InvalidArgument("trust prior histogram weight[" + std::to_string(k) +
-                            "] = " + Num(weights[k]) + " must be finite and >= 0");
+                            "] = " + NumberText(weights[k]) + " must be finite and >= 0");
     }
     total += weights[k];
   }
@@ -85,11 +84,11 @@ TrustPrior TrustPrior::Discrete(std::vector<double> values, std::vector<double> 
   double total = 0.0;
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (!(values[i] >= 0.0 && values[i] <= 1.0)) {
-      throw InvalidArgument("trust prior value[" + std::to_string(i) + "] = " + Num(values[i]) +
+      throw InvalidArgument("trust prior value[" + std::to_string(i) + "] = " + NumberText(values[i]) +
                             " is outside [0, 1]");
     }
     if (!(weights[i] >= 0.0 && std::isfinite(weights[i]))) {
-      throw InvalidArgument("trust prior weight[" + std::to_string(i) + "] = " + Num(weights[i]) +
+      throw InvalidArgument("trust prior weight[" + std::to_string(i) + "] = " + NumberText(weights[i]) +
                             " must be finite and >= 0");
     }
     atoms[values[i]] += weights[i];
@@ -194,7 +193,7 @@ double TrustPrior::QuantileWithin(double lo, double hi, double p, bool upper) co
   lo = std::max(lo, 0.0);
   const double total = Mass(lo, hi);
   if (!(total > 0.0)) {
-    throw InvalidArgument("the trust interval [" + Num(lo) + ", " + Num(hi) +
+    throw InvalidArgument("the trust interval [" + NumberText(lo) + ", " + NumberText(hi) +
                           ") has no prior mass");
   }
   const double top = std::min(hi, 1.0);
@@ -249,7 +248,7 @@ double TrustPrior::QuantileWithin(double lo, double hi, double p, bool upper) co
 
 double TrustPrior::Draw(double u01) const {
   if (!(u01 >= 0.0 && u01 < 1.0)) {
-    throw InvalidArgument("uniform draw u = " + Num(u01) + " is outside [0, 1)");
+    throw InvalidArgument("uniform draw u = " + NumberText(u01) + " is outside [0, 1)");
   }
   return QuantileWithin(0.0, kAboveOne, u01, false);
 }
@@ -284,7 +283,7 @@ ObservationEffect TrustBelief::Observe(const AvHvParams& params, const Likelihoo
 ObservationEffect TrustBelief::Observe(const TrustInterval& dc_set, bool drove_if_clear) {
   // The DC set touches 0 or 1; what is left of [0, 1] is the other half-line.
   if (!dc_set.Empty() && dc_set.lo > 0.0 && dc_set.hi < 1.0) {
-    throw InvalidArgument("DC trust set [" + Num(dc_set.lo) + ", " + Num(dc_set.hi) +
+    throw InvalidArgument("DC trust set [" + NumberText(dc_set.lo) + ", " + NumberText(dc_set.hi) +
                           "] touches neither 0 nor 1 (eq:pp is affine in theta)");
   }
   if (dc_set.Empty() || (dc_set.lo <= 0.0 && dc_set.hi >= 1.0)) {
@@ -368,8 +367,8 @@ bool ExplorationSchedule::IsValid(std::string* why) const {
     if (why != nullptr) *why = message;
     return false;
   };
-  if (!(delta > 0.0 && delta < 1.0)) return fail("delta = " + Num(delta) + " is outside (0, 1)");
-  if (!(decay > 0.0)) return fail("decay = " + Num(decay) + " must be > 0");
+  if (!(delta > 0.0 && delta < 1.0)) return fail("delta = " + NumberText(delta) + " is outside (0, 1)");
+  if (!(decay > 0.0)) return fail("decay = " + NumberText(decay) + " must be > 0");
   return true;
 }
 
@@ -410,12 +409,12 @@ LearnedDesign ChooseLearnedDesign(const TrustBelief& belief, const AvHvParams& p
   params.Validate();
   schedule.Validate();
   if (!(u01 >= 0.0 && u01 < 1.0)) {
-    throw InvalidArgument("uniform draw u = " + Num(u01) + " is outside [0, 1)");
+    throw InvalidArgument("uniform draw u = " + NumberText(u01) + " is outside [0, 1)");
   }
   const double p_star = AvHvPStar(params.collision_penalty);
   if (!(params.prior_go < p_star)) {
-    throw InvalidArgument("learned trust needs prior_go (lambda) = " + Num(params.prior_go) +
-                          " below p* = " + Num(p_star) +
+    throw InvalidArgument("learned trust needs prior_go (lambda) = " + NumberText(params.prior_go) +
+                          " below p* = " + NumberText(p_star) +
                           ": otherwise the HV drives if clear without persuasion");
   }
   LearnedDesign out;

@@ -1,6 +1,7 @@
 #include "taebp/report/report.h"
 
 #include "taebp/config/policies.h"
+#include "taebp/persuasion/number_text.h"
 
 #include "metric_facts.h"
 #include "taebp/report/metrics.h"
@@ -47,7 +48,7 @@ std::string JsonCell(const json& v) {
   if (v.is_null()) return "";
   if (v.is_boolean()) return v.get<bool>() ? "1" : "0";
   if (v.is_number_integer()) return std::to_string(v.get<long long>());
-  if (v.is_number()) return FormatDouble(v.get<double>());
+  if (v.is_number()) return NumberText(v.get<double>());
   return CsvCell(v.get<std::string>());
 }
 
@@ -142,12 +143,6 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
   return out.str();
 }
 
-std::string FormatDouble(double v) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
-
 Interval Wilson(long k, long n, double z) {
   if (n <= 0) return {0.0, 1.0};
   const double p = static_cast<double>(k) / n;
@@ -216,7 +211,7 @@ struct EncounterColumn {
 const std::vector<EncounterColumn>& EncounterColumns() {
   static const std::vector<EncounterColumn> cols = {
       {"policy", [](const PolicyRun& r, const EncounterRecord&) { return r.policy; }},
-      {"time", [](const PolicyRun&, const EncounterRecord& e) { return FormatDouble(e.time); }},
+      {"time", [](const PolicyRun&, const EncounterRecord& e) { return NumberText(e.time); }},
       {"junction", [](const PolicyRun&, const EncounterRecord& e) { return e.junction; }},
       {"av", [](const PolicyRun&, const EncounterRecord& e) { return e.av; }},
       {"hv", [](const PolicyRun&, const EncounterRecord& e) { return e.hv; }},
@@ -227,12 +222,12 @@ const std::vector<EncounterColumn>& EncounterColumns() {
       {"intent", [](const PolicyRun&, const EncounterRecord& e) {
          return std::string(e.intent_go ? "go" : "stop"); }},
       {"commanded_nudge", [](const PolicyRun&, const EncounterRecord& e) {
-         return FormatDouble(e.commanded); }},
+         return NumberText(e.commanded); }},
       {"observed_displacement", [](const PolicyRun&, const EncounterRecord& e) {
-         return FormatDouble(e.observed); }},
-      {"hv_trust", [](const PolicyRun&, const EncounterRecord& e) { return FormatDouble(e.hv_trust); }},
+         return NumberText(e.observed); }},
+      {"hv_trust", [](const PolicyRun&, const EncounterRecord& e) { return NumberText(e.hv_trust); }},
       {"hv_posterior", [](const PolicyRun&, const EncounterRecord& e) {
-         return FormatDouble(e.posterior); }},
+         return NumberText(e.posterior); }},
       {"hv_action", [](const PolicyRun&, const EncounterRecord& e) {
          return std::string(e.hv_dc ? "DC" : "DR"); }},
       {"av_action", [](const PolicyRun&, const EncounterRecord& e) {
@@ -243,7 +238,7 @@ const std::vector<EncounterColumn>& EncounterColumns() {
   return cols;
 }
 
-std::string Opt(double v) { return std::isfinite(v) ? FormatDouble(v) : std::string(); }
+std::string Opt(double v) { return std::isfinite(v) ? NumberText(v) : std::string(); }
 
 // The columns a run beyond the paper adds after those (README "Outputs").
 const std::vector<EncounterColumn>& BeyondColumns() {
@@ -251,23 +246,23 @@ const std::vector<EncounterColumn>& BeyondColumns() {
       {"design_trust", [](const PolicyRun&, const EncounterRecord& e) {
          return Opt(e.beyond.design_trust); }},
       {"scheme_b", [](const PolicyRun&, const EncounterRecord& e) {
-         return FormatDouble(e.beyond.scheme_b); }},
+         return NumberText(e.beyond.scheme_b); }},
       {"hv_reading", [](const PolicyRun&, const EncounterRecord& e) {
-         return FormatDouble(e.beyond.reading); }},
+         return NumberText(e.beyond.reading); }},
       {"hv_trust_after", [](const PolicyRun&, const EncounterRecord& e) {
-         return FormatDouble(e.beyond.trust_after); }},
+         return NumberText(e.beyond.trust_after); }},
       {"outcome", [](const PolicyRun&, const EncounterRecord& e) { return e.beyond.outcome; }},
       {"quality", [](const PolicyRun&, const EncounterRecord& e) { return Opt(e.beyond.quality); }},
       {"theory_dc", [](const PolicyRun&, const EncounterRecord& e) {
-         return FormatDouble(e.theory_dc); }},
+         return NumberText(e.theory_dc); }},
       {"theory_collision", [](const PolicyRun&, const EncounterRecord& e) {
-         return FormatDouble(e.theory_collision); }},
+         return NumberText(e.theory_collision); }},
       {"oracle_dc", [](const PolicyRun&, const EncounterRecord& e) {
-         return FormatDouble(e.beyond.oracle_dc); }},
+         return NumberText(e.beyond.oracle_dc); }},
       {"oracle_collision", [](const PolicyRun&, const EncounterRecord& e) {
-         return FormatDouble(e.beyond.oracle_collision); }},
+         return NumberText(e.beyond.oracle_collision); }},
       {"regret", [](const PolicyRun&, const EncounterRecord& e) {
-         return FormatDouble(e.beyond.regret); }},
+         return NumberText(e.beyond.regret); }},
       {"learn_mode", [](const PolicyRun&, const EncounterRecord& e) { return e.beyond.mode; }},
       {"risk_level", [](const PolicyRun&, const EncounterRecord& e) {
          return Opt(e.beyond.risk_level); }},
@@ -376,7 +371,7 @@ const std::vector<SampleColumn<TimeSample>>& TimeseriesColumns() {
   using C = SampleColumn<TimeSample>;
   static const std::vector<C> cols = {
       {"policy", "the policy", [](const PolicyRun& r, const TimeSample&) { return CsvCell(r.policy); }},
-      {"time", "simulated time (s)", [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.time); }},
+      {"time", "simulated time (s)", [](const PolicyRun&, const TimeSample& t) { return NumberText(t.time); }},
       {"hvs", "HVs in the network", [](const PolicyRun&, const TimeSample& t) { return Int(t.hvs); }},
       {"mean_trust", "their mean current trust",
        [](const PolicyRun&, const TimeSample& t) { return Opt(t.mean_trust); }},
@@ -389,16 +384,16 @@ const std::vector<SampleColumn<TimeSample>>& TimeseriesColumns() {
       {"failures", "nudged-then-DR encounters so far",
        [](const PolicyRun&, const TimeSample& t) { return Int(t.failures); }},
       {"theory_dc", "sum of the encounters' predicted DC rates",
-       [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.theory_dc); }},
+       [](const PolicyRun&, const TimeSample& t) { return NumberText(t.theory_dc); }},
       {"theory_collisions", "sum of their predicted collision rates",
-       [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.theory_collisions); }},
+       [](const PolicyRun&, const TimeSample& t) { return NumberText(t.theory_collisions); }},
       {"oracle_dc", "sum of the oracle's predicted DC rates",
-       [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.oracle_dc); }},
+       [](const PolicyRun&, const TimeSample& t) { return NumberText(t.oracle_dc); }},
       {"oracle_collisions", "sum of the oracle's predicted collision rates",
-       [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.oracle_collisions); }},
-      {"regret", "regret so far", [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.regret); }},
+       [](const PolicyRun&, const TimeSample& t) { return NumberText(t.oracle_collisions); }},
+      {"regret", "regret so far", [](const PolicyRun&, const TimeSample& t) { return NumberText(t.regret); }},
       {"expected_failures", "the fleet's predicted failures so far",
-       [](const PolicyRun&, const TimeSample& t) { return FormatDouble(t.expected_failures); }},
+       [](const PolicyRun&, const TimeSample& t) { return NumberText(t.expected_failures); }},
   };
   return cols;
 }
@@ -407,9 +402,9 @@ const std::vector<SampleColumn<HvSample>>& HvTrustColumns() {
   using C = SampleColumn<HvSample>;
   static const std::vector<C> cols = {
       {"policy", "the policy", [](const PolicyRun& r, const HvSample&) { return CsvCell(r.policy); }},
-      {"time", "simulated time (s)", [](const PolicyRun&, const HvSample& h) { return FormatDouble(h.time); }},
+      {"time", "simulated time (s)", [](const PolicyRun&, const HvSample& h) { return NumberText(h.time); }},
       {"hv", "the HV's SUMO id", [](const PolicyRun&, const HvSample& h) { return CsvCell(h.hv); }},
-      {"trust", "its current trust", [](const PolicyRun&, const HvSample& h) { return FormatDouble(h.trust); }},
+      {"trust", "its current trust", [](const PolicyRun&, const HvSample& h) { return NumberText(h.trust); }},
       {"encounters", "its encounters so far", [](const PolicyRun&, const HvSample& h) { return Int(h.encounters); }},
       {"belief_lower", "the fleet's lower bound on its trust (learned trust)",
        [](const PolicyRun&, const HvSample& h) { return Opt(h.belief_lower); }},

@@ -1,6 +1,7 @@
 #include "taebp/scenario/demand.h"
 
 #include "taebp/config/config.h"
+#include "taebp/persuasion/number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -172,12 +173,10 @@ std::vector<Trip> DemandTrips(const net::NetFile& net, const DemandSpec& spec) {
   if (spec.major_flow > 0) {
     const FringeEdges m = FindMajorRoads(net, spec.junctions);
     if (m.entries.empty() || m.exits.empty()) {
-      char flow[32];
-      std::snprintf(flow, sizeof flow, "%.6g", spec.major_flow);
       throw std::invalid_argument("the network " + net.path() +
                                   " has no major road (an approach of a controlled junction with "
                                   "a straight car link that has the right of way) for major_flow = " +
-                                  flow + " veh/h; set it to 0");
+                                  NumberText(spec.major_flow, 6) + " veh/h; set it to 0");
     }
     AppendStreams(net, m, false, spec.major_flow, 0x6d616a72u, spec, &trips);
   }
@@ -197,12 +196,11 @@ long WriteDemand(const net::NetFile& net, const DemandSpec& spec, const std::str
   std::ofstream out(path);
   if (!out) throw ConfigError("scenario.demand: cannot write " + path);
   char buf[512];
-  out << "<routes>\n";
-  std::snprintf(buf, sizeof buf,
-                "    <vType id=\"car\" length=\"%.6g\" width=\"%.6g\" minGap=\"%.6g\" accel=\"%.6g\" "
-                "decel=\"%.6g\" maxSpeed=\"%.6g\" sigma=\"0\" speedDev=\"0\"/>\n",
-                spec.length, spec.width, spec.min_gap, spec.accel, spec.decel, spec.max_speed);
-  out << buf;
+  out << "<routes>\n"
+      << "    <vType id=\"car\" length=\"" << NumberText(spec.length, 6) << "\" width=\""
+      << NumberText(spec.width, 6) << "\" minGap=\"" << NumberText(spec.min_gap, 6)
+      << "\" accel=\"" << NumberText(spec.accel, 6) << "\" decel=\"" << NumberText(spec.decel, 6)
+      << "\" maxSpeed=\"" << NumberText(spec.max_speed, 6) << "\" sigma=\"0\" speedDev=\"0\"/>\n";
   for (const Trip& t : trips) {
     std::snprintf(buf, sizeof buf,
                   "    <trip id=\"%s\" type=\"car\" depart=\"%.2f\" from=\"%s\" to=\"%s\" "

@@ -1,3 +1,4 @@
+#include "taebp/persuasion/number_text.h"
 #include "taebp/scenario/scenario.h"
 #include "taebp/scenario/ssm_args.h"
 
@@ -40,12 +41,6 @@ using scenario_internal::RunProgram;
 
 namespace {
 
-std::string Fmt(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
 
 std::string Fixed(double v, int digits) {
   char buf[64];
@@ -124,8 +119,8 @@ std::vector<PlacedVehicle> PlaceFigure8(const ScenarioConfig& sc, const net::Net
   const double need = sc.vehicle_length + sc.min_gap;
   if (spacing < need + 0.5)
     throw ConfigError("scenario.avs + scenario.hvs = " + std::to_string(n) +
-                      " vehicles do not fit on the " + Fmt(lap) + " m track (each needs " +
-                      Fmt(need) + " m); raise scenario.loop_length or use fewer vehicles");
+                      " vehicles do not fit on the " + NumberText(lap, 6) + " m track (each needs " +
+                      NumberText(need, 6) + " m); raise scenario.loop_length or use fewer vehicles");
   std::vector<PlacedVehicle> out;
   int avs_placed = 0;
   double last_pos = -1e9;
@@ -176,10 +171,10 @@ Scenario BuildFigure8(const ExperimentConfig& config, const std::string& config_
     const double needed = RequiredLoopLength(sc);
     if (loop < needed) {
       if (!sc.auto_length)
-        throw ConfigError("scenario.loop_length = " + Fmt(loop) + " m is too short for " +
-                          std::to_string(sc.avs + sc.hvs) + " vehicles (needs " + Fmt(needed) +
+        throw ConfigError("scenario.loop_length = " + NumberText(loop, 6) + " m is too short for " +
+                          std::to_string(sc.avs + sc.hvs) + " vehicles (needs " + NumberText(needed, 6) +
                           " m); raise it or set scenario.auto_length: true");
-      s.notes.push_back("scenario.loop_length grown from " + Fmt(loop) + " to " + Fmt(needed) +
+      s.notes.push_back("scenario.loop_length grown from " + NumberText(loop, 6) + " to " + NumberText(needed, 6) +
                         " m to fit " + std::to_string(sc.avs + sc.hvs) + " vehicles");
       loop = needed;
     }
@@ -193,7 +188,7 @@ Scenario BuildFigure8(const ExperimentConfig& config, const std::string& config_
     } else {
       s.net = GeneratedFigure8(loop, sc.stop_distance);
     }
-    key = "scenario.loop_length = " + Fmt(loop);
+    key = "scenario.loop_length = " + NumberText(loop, 6);
   } else {
     const fs::path p = Resolve(sc.network, config_dir);
     const std::string why = NotAFile(p.string());
@@ -428,7 +423,7 @@ void SelectJunctions(const ScenarioConfig& sc, const net::NetFile& net, Scenario
     };
     add(was_excluded, "in scenario.junctions.exclude");
     add(too_fast, "with an approach faster than scenario.junctions.max_speed = " +
-                      Fmt(sel.max_speed) + " m/s");
+                      NumberText(sel.max_speed, 6) + " m/s");
     add(few_arms, "where fewer than scenario.junctions.min_arms = " +
                       std::to_string(sel.min_arms) + " roads open to cars meet");
     add(no_internal,
@@ -662,8 +657,8 @@ std::string GeneratedFigure8(double loop, double stop_distance) {
   const fs::path built = fs::path(DefaultNetworkPath()).parent_path();
   const fs::path script = built / "make_figure8.py";
   const std::string loop_text = Fixed(loop, 3), stop_text = Fixed(stop_distance, 3);
-  const std::string keys = "scenario.loop_length = " + Fmt(loop) +
-                           ", scenario.stop_distance = " + Fmt(stop_distance);
+  const std::string keys = "scenario.loop_length = " + NumberText(loop, 6) +
+                           ", scenario.stop_distance = " + NumberText(stop_distance, 6);
   if (!fs::exists(script))
     throw ConfigError(keys + " needs " + script.string() + ", which is missing: rebuild the project");
   return Cached("figure8-L" + loop_text + "-S" + stop_text, "figure8.net.xml",
@@ -724,11 +719,11 @@ std::vector<std::string> ScenarioWarnings(const ExperimentConfig& config) {
   if (config.scenario.IsNetwork()) return w;
   const double reach = config.scenario.stop_distance - config.model.likelihood.s_max;
   if (reach < config.scenario.vehicle_width / 2) {
-    w.push_back("a nudge of up to model.likelihood.s_max = " + Fmt(config.model.likelihood.s_max) +
-                " m from scenario.stop_distance = " + Fmt(config.scenario.stop_distance) +
+    w.push_back("a nudge of up to model.likelihood.s_max = " + NumberText(config.model.likelihood.s_max, 6) +
+                " m from scenario.stop_distance = " + NumberText(config.scenario.stop_distance, 6) +
                 " m can put the AV's nose inside the crossing path (needs stop_distance >= s_max + "
                 "vehicle_width/2 = " +
-                Fmt(config.model.likelihood.s_max + config.scenario.vehicle_width / 2) +
+                NumberText(config.model.likelihood.s_max + config.scenario.vehicle_width / 2, 6) +
                 " m): a waiting, nudged AV can then be hit");
   }
   return w;

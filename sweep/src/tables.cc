@@ -5,6 +5,7 @@
 
 #include "plan_values.h"
 #include "taebp/config/policies.h"
+#include "taebp/persuasion/number_text.h"
 #include "taebp/report/metrics.h"
 #include "taebp/report/report.h"
 
@@ -26,7 +27,7 @@ std::string Cell(const Json& v) {
   if (v.is_number_integer()) return std::to_string(v.get<long long>());
   if (v.is_number_float()) {
     const double d = v.get<double>();
-    return std::isfinite(d) ? FormatDouble(d) : "";
+    return std::isfinite(d) ? NumberText(d) : "";
   }
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
   if (v.is_string()) return CsvCell(v.get<std::string>());
@@ -153,7 +154,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
     ++a.ok;
     a.runs.push_back(m);
   });
-  auto num = [](double v) { return std::isfinite(v) ? FormatDouble(v) : std::string(); };
+  auto num = [](double v) { return std::isfinite(v) ? NumberText(v) : std::string(); };
   // One metric pooled over runs (metrics.h Pool): its aggregate cells.
   auto pooled = [&](const Metric& metric, const std::vector<Json>& runs) {
     std::vector<std::string> cells;

@@ -3,6 +3,7 @@
 #include "taebp/config/config.h"
 #include "taebp/controller/policy_run.h"
 #include "taebp/controller/sumo_adapter.h"
+#include "taebp/persuasion/number_text.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/persuasion.h"
 #include "taebp/rundir/interrupt.h"
@@ -76,11 +77,6 @@ void RequireSumoGui() {
     throw GuiError("sumo-gui is not on PATH: install the Debian package 'sumo' (it ships sumo-gui)");
 }
 
-std::string Seconds(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 // Width and height from a PNG's IHDR chunk; {0, 0} when not a PNG.
 std::pair<unsigned, unsigned> PngSize(const std::string& file) {
@@ -117,7 +113,7 @@ void AddLegend(const fs::path& shot, const fs::path& out, const std::string& tit
     throw GuiError("python3 is not installed: the snapshot's legend needs the Debian packages "
                    "python3 and python3-pil (or use --no-legend)");
   std::vector<std::string> args = {python, TAEBP_SNAPSHOT_LEGEND, shot.string(), out.string(),
-                                   "--title", title, "--time", Seconds(at)};
+                                   "--title", title, "--time", NumberText(at, 6)};
   for (const char* e : kLegend) args.insert(args.end(), {"--entry", e});
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
@@ -185,11 +181,10 @@ Framing FrameFor(const std::string& net_path, const std::string& junction, doubl
   constexpr double kMinHalfView = 2.5;  // m
   const double max_zoom = std::min(hx, hy) / kMinHalfView;
   if (zoom > max_zoom) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf,
-                  ": the view would be %.3g m across, less than a car; at most %.4g here", 2 * std::min(hx, hy) / zoom,
-                  max_zoom);
-    throw persuasion::InvalidArgument("--zoom " + Seconds(zoom) + buf);
+    throw persuasion::InvalidArgument("--zoom " + NumberText(zoom, 6) + ": the view would be " +
+                                      NumberText(2 * std::min(hx, hy) / zoom, 3) +
+                                      " m across, less than a car; at most " +
+                                      NumberText(max_zoom, 4) + " here");
   }
   hx /= zoom;
   hy /= zoom;
@@ -372,10 +367,10 @@ void Snapshot::HandBack(int exit_code) {
 int Snapshot::Run(int argc, char** argv) {
   const Impl& o = *impl_;
   if (!(std::isfinite(o.at) && o.at > 0))
-    throw persuasion::InvalidArgument("--at " + Seconds(o.at) +
+    throw persuasion::InvalidArgument("--at " + NumberText(o.at, 6) +
                                       ": the time must be a positive number of seconds");
   if (!(std::isfinite(o.zoom) && o.zoom > 0))
-    throw persuasion::InvalidArgument("--zoom " + Seconds(o.zoom) +
+    throw persuasion::InvalidArgument("--zoom " + NumberText(o.zoom, 6) +
                                       ": the magnification must be a positive number");
   {
     std::string ext = fs::path(o.out).extension().string();
@@ -395,9 +390,9 @@ int Snapshot::Run(int argc, char** argv) {
   if (name != SumoNative().name) ParseGamePolicy(name);  // throws for an unknown name
   const std::string policy = name;
   if (o.at > config.scenario.duration)
-    throw persuasion::InvalidArgument("--at " + Seconds(o.at) + " s is beyond the scenario's end (" +
+    throw persuasion::InvalidArgument("--at " + NumberText(o.at, 6) + " s is beyond the scenario's end (" +
                                       o.config_path + ": scenario.duration = " +
-                                      Seconds(config.scenario.duration) +
+                                      NumberText(config.scenario.duration, 6) +
                                       " s): choose a time within it, or --set scenario.duration");
 
   if (!HasDisplay()) {
@@ -493,7 +488,7 @@ int Snapshot::Run(int argc, char** argv) {
   }
   const auto [w, h] = PngSize(out.string());
   std::fprintf(stderr, "taebp: snapshot of %s at t = %s s (%zu encounters so far): %s", name.c_str(),
-               Seconds(o.at).c_str(), run.encounters.size(), out.string().c_str());
+               NumberText(o.at, 6).c_str(), run.encounters.size(), out.string().c_str());
   if (w > 0) std::fprintf(stderr, " (%u x %u)", w, h);
   if (framing.exaggeration > 1.0)
     std::fprintf(stderr, "; vehicles drawn %.1fx their size", framing.exaggeration);

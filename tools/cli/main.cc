@@ -14,6 +14,7 @@
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/lp.h"
+#include "taebp/persuasion/number_text.h"
 #include "taebp/persuasion/outcomes.h"
 #include "config_cmd.h"
 #include "gui_cmd.h"
@@ -56,13 +57,13 @@ int Theory(const TheoryOptions& o) {
     std::cout << j.dump(2) << "\n";
     return 0;
   }
-  auto num = [&](const char* key) { return j[key].get<double>(); };
-  std::cout << std::setprecision(10);
+  auto t = [](double v) { return taebp::NumberText(v, 10); };
+  auto num = [&](const char* key) { return t(j[key].get<double>()); };
   std::cout << "TA-EBP theory (" << j["likelihood"].get<std::string>()
-            << " likelihood, s in [0, " << o.s_max << "] m)\n"
-            << "  prior lambda = p0(Go)            " << o.prior << "\n"
-            << "  collision penalty r              " << o.penalty << "\n"
-            << "  HV trust theta                   " << o.trust << "\n"
+            << " likelihood, s in [0, " << t(o.s_max) << "] m)\n"
+            << "  prior lambda = p0(Go)            " << t(o.prior) << "\n"
+            << "  collision penalty r              " << t(o.penalty) << "\n"
+            << "  HV trust theta                   " << t(o.trust) << "\n"
             << "  AV's assumed trust theta_hat     " << num("assumed_trust") << "\n"
             << "  indifference posterior p*        " << num("p_star") << "   (eq:ppp)\n"
             << "  minimum persuadable trust theta* " << num("theta_star") << "   (eq:tt / eq:theta_star)\n"
@@ -72,33 +73,33 @@ int Theory(const TheoryOptions& o) {
             << "  pi(s*|Go) = a                    " << num("a") << "\n"
             << "  pi(s*|Stop) = b                  " << num("b") << "   (eq:b)\n"
             << "  P(nudge) = lambda + (1-lambda) b " << num("p_nudge") << "\n\n"
-            << "Predicted per AV-HV encounter, HV of true trust " << o.trust << ":\n"
+            << "Predicted per AV-HV encounter, HV of true trust " << t(o.trust) << ":\n"
             << "  policy        DC rate       collision rate\n";
   const ordered_json& policies = j["policies"];
   for (auto it = policies.begin(); it != policies.end(); ++it) {
     std::cout << "  " << std::left << std::setw(14) << it.key() << std::setw(14)
-              << it.value()["dc_rate"].get<double>() << it.value()["collision_rate"].get<double>()
+              << t(it.value()["dc_rate"].get<double>()) << t(it.value()["collision_rate"].get<double>())
               << "\n";
   }
   if (j.contains("noise")) {
     const ordered_json& n = j["noise"];
     const ordered_json& a = n["aware"];
-    std::cout << "\nWith perception noise (" << o.noise << ", scale " << o.noise_scale
-              << " m, bias " << o.noise_bias << " m) on the HV's reading:\n"
-              << "  noise-aware nudge s_delta        " << a["nudge"].get<double>() << " m   ("
+    std::cout << "\nWith perception noise (" << o.noise << ", scale " << t(o.noise_scale)
+              << " m, bias " << t(o.noise_bias) << " m) on the HV's reading:\n"
+              << "  noise-aware nudge s_delta        " << t(a["nudge"].get<double>()) << " m   ("
               << a["status"].get<std::string>() << ", P(DC | nudge) "
-              << a["persuasion_probability"].get<double>() << " >= 1 - delta = "
-              << 1.0 - o.noise_delta << ")\n"
-              << "  its b                            " << a["b"].get<double>() << "\n"
+              << t(a["persuasion_probability"].get<double>()) << " >= 1 - delta = "
+              << t(1.0 - o.noise_delta) << ")\n"
+              << "  its b                            " << t(a["b"].get<double>()) << "\n"
               << "  policy        DC rate       collision rate\n"
               << "  " << std::left << std::setw(14) << "ta_ebp_aware" << std::setw(14)
-              << a["dc_rate"].get<double>() << a["collision_rate"].get<double>()
-              << "   (bound delta * lambda = " << n["collision_bound"].get<double>() << ")\n";
+              << t(a["dc_rate"].get<double>()) << t(a["collision_rate"].get<double>())
+              << "   (bound delta * lambda = " << t(n["collision_bound"].get<double>()) << ")\n";
     const ordered_json& under = n["policies"];
     for (auto it = under.begin(); it != under.end(); ++it) {
       std::cout << "  " << std::left << std::setw(14) << it.key() << std::setw(14)
-                << it.value()["dc_rate"].get<double>()
-                << it.value()["collision_rate"].get<double>() << "\n";
+                << t(it.value()["dc_rate"].get<double>())
+                << t(it.value()["collision_rate"].get<double>()) << "\n";
     }
   }
   return 0;
@@ -121,18 +122,19 @@ int Solve(const std::string& path, bool json) {
     std::cout << j.dump(2) << "\n";
     return r.status == per::LpResult::Status::kOptimal ? 0 : kExitFailed;
   }
-  std::cout << std::setprecision(8) << "status: " << per::ToString(r.status) << "\n";
+  auto t8 = [](double v) { return taebp::NumberText(v, 8); };
+  std::cout << "status: " << per::ToString(r.status) << "\n";
   if (r.status != per::LpResult::Status::kOptimal) {
     std::cout << r.message << "\n";
     return kExitFailed;
   }
-  std::cout << "trust theta: " << pc.trust << "\nsender value: " << r.sender_value
+  std::cout << "trust theta: " << t8(pc.trust) << "\nsender value: " << t8(r.sender_value)
             << "\n\nscheme pi(recommend action | state):\n" << std::left << std::setw(16) << "";
   for (const auto& a : g.actions) std::cout << std::setw(14) << a;
   std::cout << "\n";
   for (Eigen::Index i = 0; i < n; ++i) {
     std::cout << std::setw(16) << g.states[i];
-    for (Eigen::Index a = 0; a < m; ++a) std::cout << std::setw(14) << r.scheme(i, a);
+    for (Eigen::Index a = 0; a < m; ++a) std::cout << std::setw(14) << t8(r.scheme(i, a));
     std::cout << "\n";
   }
   std::cout << "\ntrust-weighted posterior after each recommendation:\n" << std::setw(16) << "";
@@ -143,9 +145,9 @@ int Solve(const std::string& path, bool json) {
     for (Eigen::Index i = 0; i < n; ++i) {
       const double v = r.posteriors(i, a);
       if (std::isnan(v)) std::cout << std::setw(14) << "-";
-      else std::cout << std::setw(14) << v;
+      else std::cout << std::setw(14) << t8(v);
     }
-    std::cout << std::setw(14) << r.signal_probability(a) << "\n";
+    std::cout << std::setw(14) << t8(r.signal_probability(a)) << "\n";
   }
   return 0;
 }

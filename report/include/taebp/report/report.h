@@ -75,8 +75,6 @@ std::vector<std::string> HvTrustCsvColumns();
 std::string JunctionsCsv(const std::vector<PolicyRun>& runs);
 // A CSV cell (RFC 4180): quoted when it holds a comma, quote or line break.
 std::string CsvCell(const std::string& s);
-// Shortest text that reads back as exactly the same double (std::to_chars).
-std::string FormatDouble(double v);
 
 // Paper-style table: one row per metric, one column per policy, theory beside
 // simulation. A rate whose theory value lies outside its 95% interval is
