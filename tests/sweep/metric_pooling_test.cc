@@ -1,0 +1,314 @@
+// The one metric table (report/metrics.h) against the sweep's tables: every run
+// metric read under its name, and results.csv and aggregate.csv pooled as the
+// table declares (the run's own outputs: tests/report/metric_table_test.cc).
+#include "taebp/report/metrics.h"
+#include "taebp/report/report.h"
+#include "taebp/sweep/plan.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace taebp::sweep {
+namespace {
+
+using ::testing::ElementsAreArray;
+using ::testing::HasSubstr;
+
+std::vector<std::string> SplitCsvLine(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cell;
+  for (char c : line) {
+    if (c == ',') {
+      out.push_back(cell);
+      cell.clear();
+    } else {
+      cell += c;
+    }
+  }
+  out.push_back(cell);
+  return out;
+}
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+EncounterRecord Encounter(const std::string& junction, double time, bool collision, bool dc,
+                          double commanded) {
+  EncounterRecord e;
+  e.junction = junction;
+  e.time = time;
+  e.collision = collision;
+  e.hv_dc = dc;
+  e.commanded = commanded;
+  e.observed = commanded + 1e-6;
+  e.theory_dc = 0.375;
+  e.theory_collision = 0.0;
+  e.beyond.oracle_dc = 0.4;
+  e.beyond.regret = 0.025;
+  e.beyond.failure_probability = 0.1;
+  return e;
+}
+
+// A network run beyond the paper (dynamics, learning and noise on), with
+// encounters at one of its two junctions.
+PolicyRun NetworkRun() {
+  PolicyRun r;
+  r.policy = "ta_ebp";
+  r.scenario_kind = "network";
+  r.simulated_seconds = 700;
+  r.measured_seconds = 600;
+  r.crossings_av = 30;
+  r.crossings_hv = 50;
+  r.held = 4;
+  r.wait_sum = 10;
+  r.wait_max = 4;
+  r.encounters = {Encounter("J1", 150, true, false, 1.6), Encounter("J1", 300, false, true, 1.6),
+                  Encounter("J1", 500, false, false, 0)};
+  r.encounters_formed = 4;
+  r.encounters_unfinished = 1;
+  JunctionRun j1;
+  j1.id = "J1";
+  j1.type = "allway_stop";
+  j1.original_type = "priority";
+  j1.rule = "all_way_stop";
+  j1.crossings_av = 20;
+  j1.crossings_hv = 30;
+  j1.held = 4;
+  j1.wait_sum = 10;
+  j1.wait_max = 4;
+  j1.approaches = {{"a_0", 3, 60, 600}, {"b_0", 5, 120, 600}};
+  JunctionRun j2 = j1;
+  j2.id = "J2";
+  j2.crossings_av = 10;
+  j2.crossings_hv = 20;
+  j2.held = 0;
+  j2.wait_sum = 0;
+  j2.wait_max = 0;
+  r.junctions = {j1, j2};
+  r.network.departed = 90;
+  r.network.arrived = 84;
+  r.network.pending_end = 2;
+  r.network.trips = 90;
+  r.network.trips_unfinished = 6;
+  r.network.time_loss_sum = 900;
+  r.network.duration_sum = 4500;
+  r.network.waiting_time_sum = 180;
+  r.stalls = {{"J2", 100, 400}};
+  // SSM on, PET not measured: 7 conflicts in the network, 4 at J1, none at J2.
+  r.ssm.on = true;
+  r.ssm.rules.on = {true, true, false};
+  r.ssm.network.conflicts = 7;
+  r.ssm.network.by_measure = {5, 3, 0};
+  r.ssm.network.ttc_min = 0.8;
+  r.ssm.at_junctions.conflicts = 4;
+  r.ssm.at_junctions.by_measure = {2, 2, 0};
+  r.ssm.junction["J1"] = r.ssm.at_junctions;
+  r.ssm.junction["J2"] = {};
+  r.beyond.on = true;
+  r.beyond.long_run = true;
+  r.beyond.learning = true;
+  r.beyond.noise = true;
+  r.beyond.final_mean_trust = 0.55;
+  r.beyond.expected_long_run_mean = 0.5;
+  return r;
+}
+
+PolicyRun Figure8Run() {
+  PolicyRun r;
+  r.policy = "no_ebp";
+  r.simulated_seconds = 300;
+  r.measured_seconds = 300;
+  r.theory.dc_rate = 0;
+  r.junctions = {JunctionRun{}};
+  r.junctions[0].id = "C";
+  return r;
+}
+
+nlohmann::ordered_json Summary(const std::vector<PolicyRun>& runs) {
+  Provenance prov;
+  prov.config_json = "{}";
+  return nlohmann::ordered_json::parse(SummaryJson(runs, prov));
+}
+
+std::vector<std::string> Keys(const nlohmann::ordered_json& j) {
+  std::vector<std::string> keys;
+  for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
+  return keys;
+}
+
+TEST(MetricTable, TheSweepReadsEveryRunMetricUnderItsName) {
+  const std::vector<PolicyRun> runs = {NetworkRun(), Figure8Run()};
+  const auto s = Summary(runs);
+  const Json m = MetricsFromSummary(Json::parse(s.dump()), {"ta_ebp", "no_ebp"});
+  EXPECT_THAT(MetricColumns(), ElementsAreArray(MetricColumns(kPolicyLevel, false)));
+  for (const char* p : {"ta_ebp", "no_ebp"}) {
+    SCOPED_TRACE(p);
+    EXPECT_THAT(Keys(m[p]), ElementsAreArray(MetricColumns()));
+    for (const std::string& c : MetricColumns()) {
+      const auto& in_summary = s["policies"][p];
+      if (!in_summary.contains(c)) {
+        EXPECT_TRUE(m[p][c].is_null()) << c;
+      } else if (in_summary[c].is_boolean()) {
+        EXPECT_EQ(m[p][c], in_summary[c].get<bool>() ? 1 : 0) << c;
+      } else {
+        EXPECT_EQ(m[p][c].dump(), in_summary[c].dump()) << c;
+      }
+    }
+  }
+}
+
+// One point, three seeds: each metric pooled as the table says, against sums
+// and means written out here.
+TEST(MetricTable, TheAggregatePoolsEachMetricAsDeclared) {
+  const Plan plan = ExpandSweep(
+      "scenario: {avs: 8, hvs: 8, duration: 60}\npolicies: [ta_ebp]\n"
+      "sweep:\n  replicates: 3\n  grid:\n    model.trust: [0.6]\n",
+      "test.yaml", {});
+  auto run = [](long enc, long coll, long dc, double served, double given, bool stalled,
+                double wait_max) {
+    Json m;
+    for (const std::string& c : MetricColumns()) m[c] = nullptr;
+    m["encounters"] = enc;
+    m["collisions"] = coll;
+    m["dc"] = dc;
+    m["collision_rate"] = enc ? static_cast<double>(coll) / enc : 0.0;
+    m["theory_dc_rate"] = 0.375;
+    m["theory_given_hvs_dc_rate"] = given;
+    m["served_flow"] = served;
+    m["stalled"] = stalled ? 1 : 0;
+    m["wait_max"] = wait_max;
+    m["simulated_seconds"] = 60.0;
+    return Json{{"ta_ebp", m}};
+  };
+  Journal journal;
+  AddEntry(&journal, plan, JournalEntry(plan, plan.tasks[0], "ok", "", run(10, 1, 4, 100, 0.3, false, 5)));
+  AddEntry(&journal, plan, JournalEntry(plan, plan.tasks[1], "ok", "", run(30, 2, 12, 130, 0.4, true, 9)));
+  AddEntry(&journal, plan, JournalEntry(plan, plan.tasks[2], "ok", "", run(0, 0, 0, 160, 0.9, false, 2)));
+  const std::vector<std::string> lines = Lines(AggregateCsv(plan, journal));
+  ASSERT_EQ(lines.size(), 2u);
+  std::vector<std::string> header = {"point", "model.trust", "policy", "runs_ok", "runs_failed"};
+  for (const std::string& c : MetricColumns(kPolicyLevel, true)) header.push_back(c);
+  ASSERT_THAT(SplitCsvLine(lines[0]), ElementsAreArray(header));
+  const std::vector<std::string> cells = SplitCsvLine(lines[1]);
+  ASSERT_EQ(cells.size(), header.size());
+  std::map<std::string, std::string> row;
+  for (std::size_t i = 0; i < header.size(); ++i) row[header[i]] = cells[i];
+  EXPECT_EQ(row["runs_ok"], "3");
+  EXPECT_EQ(row["encounters"], "40");                              // sum
+  EXPECT_EQ(row["collisions"], "3");
+  const Interval ci = Wilson(3, 40);                               // pooled rate
+  EXPECT_DOUBLE_EQ(std::stod(row["collision_rate"]), 3.0 / 40);
+  EXPECT_DOUBLE_EQ(std::stod(row["collision_rate_lo"]), ci.low);
+  EXPECT_DOUBLE_EQ(std::stod(row["collision_rate_hi"]), ci.high);
+  EXPECT_DOUBLE_EQ(std::stod(row["dc_rate"]), 16.0 / 40);
+  // Weighted by encounters; the run without encounters does not count.
+  EXPECT_NEAR(std::stod(row["theory_given_hvs_dc_rate"]), (10 * 0.3 + 30 * 0.4) / 40, 1e-15);
+  EXPECT_DOUBLE_EQ(std::stod(row["theory_dc_rate"]), 0.375);
+  EXPECT_DOUBLE_EQ(std::stod(row["served_flow"]), 130);            // mean and SD
+  EXPECT_DOUBLE_EQ(std::stod(row["served_flow_sd"]), 30);
+  EXPECT_EQ(row["stalled"], "1");                                   // runs that stalled
+  EXPECT_EQ(row["wait_max"], "9");                                  // max
+  EXPECT_EQ(row.count("simulated_seconds"), 0u) << "not pooled";
+  EXPECT_EQ(row["time_loss_mean"], "") << "absent in every run: empty";
+}
+
+TEST(MetricTable, ThePredictionWithoutEncountersIsThePlainMean) {
+  const Plan plan = ExpandSweep(
+      "scenario: {avs: 0, hvs: 16, duration: 60}\npolicies: [no_ebp]\n"
+      "sweep:\n  replicates: 2\n  grid:\n    model.trust: [0.6]\n",
+      "test.yaml", {});
+  auto run = [](double theory) {
+    Json m;
+    for (const std::string& c : MetricColumns()) m[c] = nullptr;
+    m["encounters"] = 0;
+    m["collision_rate"] = 0.0;
+    m["theory_dc_rate"] = theory;
+    m["theory_given_hvs_dc_rate"] = 0.0;
+    return Json{{"no_ebp", m}};
+  };
+  Journal journal;
+  AddEntry(&journal, plan, JournalEntry(plan, plan.tasks[0], "ok", "", run(0.2)));
+  AddEntry(&journal, plan, JournalEntry(plan, plan.tasks[1], "ok", "", run(0.4)));
+  const std::vector<std::string> lines = Lines(AggregateCsv(plan, journal));
+  const std::vector<std::string> header = SplitCsvLine(lines[0]);
+  const std::vector<std::string> cells = SplitCsvLine(lines[1]);
+  std::map<std::string, std::string> row;
+  for (std::size_t i = 0; i < header.size(); ++i) row[header[i]] = cells[i];
+  EXPECT_DOUBLE_EQ(std::stod(row["theory_dc_rate"]), 0.3);
+  EXPECT_EQ(row["theory_given_hvs_dc_rate"], "") << "no HV met";
+  EXPECT_EQ(row["collision_rate"], "") << "no encounter";
+  // In results.csv the undefined rates are empty too.
+  const std::string results = ResultsCsv(plan, journal);
+  const std::vector<std::string> rh = SplitCsvLine(Lines(results)[0]);
+  const std::vector<std::string> r1 = SplitCsvLine(Lines(results)[1]);
+  for (std::size_t i = 0; i < rh.size(); ++i)
+    if (rh[i] == "collision_rate" || rh[i] == "theory_given_hvs_dc_rate") {
+      EXPECT_EQ(r1[i], "") << rh[i];
+    }
+}
+
+// Only games have per-encounter rates (issue 26): sumo_native's rates and
+// theory are empty in results.csv and aggregate.csv, also from a journal of
+// an older taebp that wrote them as 0 (with [0, 1]).
+TEST(MetricTable, APolicyWithoutAGameHasNoRatesOrTheory) {
+  const Plan plan = ExpandSweep(
+      "scenario: {avs: 8, hvs: 8, duration: 60}\npolicies: [sumo_native, ta_ebp]\n"
+      "sweep:\n  replicates: 2\n  grid:\n    model.trust: [0.6]\n",
+      "test.yaml", {});
+  auto run = [](long enc, long coll) {
+    Json m;
+    for (const std::string& c : MetricColumns()) m[c] = nullptr;
+    m["encounters"] = enc;
+    m["collisions"] = coll;
+    m["dc"] = 0;
+    m["collision_rate"] = enc ? static_cast<double>(coll) / enc : 0.0;
+    m["collision_rate_lo"] = 0.0;
+    m["collision_rate_hi"] = 1.0;
+    m["theory_dc_rate"] = 0.0;
+    m["theory_collision_rate"] = 0.0;
+    return m;
+  };
+  Journal journal;
+  for (int t = 0; t < 2; ++t)
+    AddEntry(&journal, plan, JournalEntry(plan, plan.tasks[static_cast<std::size_t>(t)], "ok", "",
+                                          Json{{"sumo_native", run(0, 0)}, {"ta_ebp", run(10, 1)}}));
+  const std::vector<std::string> lines = Lines(AggregateCsv(plan, journal));
+  ASSERT_EQ(lines.size(), 3u);
+  const std::vector<std::string> header = SplitCsvLine(lines[0]);
+  std::map<std::string, std::map<std::string, std::string>> rows;
+  for (std::size_t l = 1; l < lines.size(); ++l) {
+    const std::vector<std::string> cells = SplitCsvLine(lines[l]);
+    ASSERT_EQ(cells.size(), header.size());
+    for (std::size_t i = 0; i < header.size(); ++i) rows[cells[2]][header[i]] = cells[i];
+  }
+  for (const char* k : {"collision_rate", "collision_rate_lo", "collision_rate_hi",
+                        "theory_dc_rate", "theory_collision_rate"})
+    EXPECT_EQ(rows["sumo_native"][k], "") << k;
+  EXPECT_EQ(rows["sumo_native"]["encounters"], "0");
+  EXPECT_DOUBLE_EQ(std::stod(rows["ta_ebp"]["collision_rate"]), 2.0 / 20);
+  EXPECT_DOUBLE_EQ(std::stod(rows["ta_ebp"]["theory_dc_rate"]), 0.0) << "a game's prediction";
+  const std::vector<std::string> results = Lines(ResultsCsv(plan, journal));
+  const std::vector<std::string> rh = SplitCsvLine(results[0]);
+  for (std::size_t l = 1; l < results.size(); ++l) {
+    const std::vector<std::string> cells = SplitCsvLine(results[l]);
+    const bool native = std::find(cells.begin(), cells.end(), "sumo_native") != cells.end();
+    for (std::size_t i = 0; i < rh.size(); ++i)
+      if (rh[i] == "collision_rate_hi" || rh[i] == "theory_dc_rate") {
+        EXPECT_EQ(cells[i] == "", native) << rh[i] << ": " << results[l];
+      }
+  }
+}
+
+}  // namespace
+}  // namespace taebp::sweep
