@@ -93,14 +93,16 @@ std::vector<double> GoPositions(double largest) {
 // nudge in the HV's way, else it holds.
 Premise PremiseForEveryPolicy(junction::Mover av, double av_line, const junction::Mover& hv,
                               double largest, double dt) {
-  bool uncertain = false, clear = false, in_way = false;
+  bool uncertain = false, clear = false;
+  std::vector<double> fronts;
   for (double s : GoPositions(largest)) {
     av.front = av_line + s;
+    fronts.push_back(av.front);
     const Premise p = FromPrediction(junction::PredictBothProceed(av, hv, dt));
     uncertain = uncertain || p == Premise::kUncertainMerge;
     clear = clear || p == Premise::kNoCollision;
-    in_way = in_way || !junction::PassedWay(hv, av, -1.0, 0.0);
   }
+  const bool in_way = !junction::PassedWayOfEveryStand(hv, av, fronts);
   if (uncertain) return Premise::kUncertainMerge;
   if (clear) return Premise::kNoCollision;
   return in_way ? Premise::kNudgeInHvWay : Premise::kHolds;

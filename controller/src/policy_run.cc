@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -326,6 +327,9 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
         e.what(), policy, files, scenario.scratch ? scenario.scratch->path() : ""));
   };
   SumoSimulation& sumo = Sumo();  // the backend selected for this run
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point started = Clock::now();
+  Clock::duration in_start{}, in_sumo{}, in_controller{};
   try {
     sumo.Start(SumoArgs(config, scenario, policy));
   } catch (const SumoError& e) {
@@ -336,6 +340,7 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
   // leaves no simulation (or sumo-gui window) open.
   try {
     controller.Start();
+    in_start = Clock::now() - started;
     if (options.after_start) options.after_start();
     const long steps = std::lround(config.scenario.duration / config.scenario.step_length);
     const long minute = std::max(1L, std::lround(60.0 / config.scenario.step_length));
@@ -343,8 +348,12 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     try {
       for (long k = 0; k < steps; ++k) {
         ThrowIfInterrupted();  // Ctrl-C, SIGTERM: unwind, scratch removed (interrupt.h)
+        const Clock::time_point t0 = Clock::now();
         sumo.Step();
+        const Clock::time_point t1 = Clock::now();
         controller.Step();
+        in_sumo += t1 - t0;
+        in_controller += Clock::now() - t1;
         if (options.every_minute && (k + 1) % minute == 0)
           options.every_minute(policy, sumo.Time());
         if (options.progress && ((k + 1) % progress_every == 0 || k + 1 == steps))
@@ -368,6 +377,9 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     throw;
   }
   sumo.Close();
+  run.wall_seconds_start = std::chrono::duration<double>(in_start).count();
+  run.wall_seconds_sumo_steps = std::chrono::duration<double>(in_sumo).count();
+  run.wall_seconds_controller_steps = std::chrono::duration<double>(in_controller).count();
   abort_guard.reset();
   const control::SumoWarnings warned = messages->Finish();
   messages.reset();

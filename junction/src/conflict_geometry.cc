@@ -145,34 +145,43 @@ struct Bounds {
   bool Meets(const Bounds& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
 };
 
-// A vehicle's bodies from its front at m.front until its rear has left the
-// junction, every `step` m of its front, with the front's arc of each.
-struct Sweep {
+// A mover's bodies from its front on, every `step` m of its front, until its
+// rear is off the junction or `reach` ahead (>= 0), each with its front's arc
+// and bounding box, and the box of them all.
+struct Bodies {
   std::vector<double> at;
   std::vector<Box> boxes;
   std::vector<Bounds> bounds;
   Bounds all;
 };
-Sweep SweepOf(const Mover& m, double step) {
+Bodies BodiesOf(const Mover& m, double reach, double step) {
   const Arcs arcs(m.path);
-  Sweep out;
-  const double end = std::max(m.front, m.exit + m.length);
+  Bodies out;
+  const double end = reach >= 0 ? m.front + reach : std::max(m.front, m.exit + m.length);
   for (double x = m.front;; x = std::min(x + step, end)) {
     out.at.push_back(x);
     out.boxes.push_back(BoxOf(arcs.PointAt(x - m.length), arcs.PointAt(x), m.width));
-    Bounds b;
-    b.Add(out.boxes.back());
-    out.bounds.push_back(b);
+    out.bounds.emplace_back().Add(out.boxes.back());
     out.all.Add(out.boxes.back());
     if (x >= end) break;
   }
   return out;
 }
+// Does some body of `a` overlap some body of `b`?
+bool Touch(const Bodies& a, const Bodies& b) {
+  if (!a.all.Meets(b.all)) return false;
+  for (std::size_t i = 0; i < a.boxes.size(); ++i) {
+    if (!a.bounds[i].Meets(b.all)) continue;
+    for (std::size_t k = 0; k < b.boxes.size(); ++k)
+      if (a.bounds[i].Meets(b.bounds[k]) && Overlap(a.boxes[i], b.boxes[k])) return true;
+  }
+  return false;
+}
 
 }  // namespace
 
 ConflictZone ZoneOnPath(const Mover& m, const Mover& other, double step) {
-  const Sweep mine = SweepOf(m, step), theirs = SweepOf(other, step);
+  const Bodies mine = BodiesOf(m, -1, step), theirs = BodiesOf(other, -1, step);
   ConflictZone z;
   for (std::size_t i = 0; i < mine.boxes.size(); ++i) {
     if (!mine.bounds[i].Meets(theirs.all)) continue;
@@ -199,41 +208,19 @@ double TimeToReach(const Mover& m, double arc, double dt) {
   return 1e9;
 }
 
+bool PassedWayOfEveryStand(const Mover& first, Mover second, const std::vector<double>& fronts,
+                           double step) {
+  const Bodies a = BodiesOf(first, -1, step);
+  for (double f : fronts) {
+    second.front = f;
+    if (Touch(a, BodiesOf(second, 0, step))) return false;
+  }
+  return true;
+}
+
 bool PassedWay(const Mover& first, const Mover& second, double first_reach, double second_reach,
                double step) {
-  const Arcs arcs_a(first.path), arcs_b(second.path);
-  auto bodies = [&](const Mover& m, const Arcs& arcs, double reach) {
-    std::vector<Box> out;
-    // Until the rear is off the junction, or `reach` ahead.
-    const double end = reach >= 0 ? m.front + reach : std::max(m.front, m.exit + m.length);
-    for (double x = m.front;; x = std::min(x + step, end)) {
-      out.push_back(BoxOf(arcs.PointAt(x - m.length), arcs.PointAt(x), m.width));
-      if (x >= end) break;
-    }
-    return out;
-  };
-  const std::vector<Box> a = bodies(first, arcs_a, first_reach),
-                         b = bodies(second, arcs_b, second_reach);
-  struct Bounds {
-    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    void Add(const Box& box) {
-      for (const Point2& p : box.c) {
-        x0 = std::min(x0, p.x), y0 = std::min(y0, p.y);
-        x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
-      }
-    }
-    bool Meets(const Bounds& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
-  };
-  auto bounds = [](const std::vector<Box>& boxes) {
-    std::vector<Bounds> out(boxes.size());
-    for (std::size_t i = 0; i < boxes.size(); ++i) out[i].Add(boxes[i]);
-    return out;
-  };
-  const std::vector<Bounds> ba = bounds(a), bb = bounds(b);
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (std::size_t k = 0; k < b.size(); ++k)
-      if (ba[i].Meets(bb[k]) && Overlap(a[i], b[k])) return false;
-  return true;
+  return !Touch(BodiesOf(first, first_reach, step), BodiesOf(second, second_reach, step));
 }
 
 }  // namespace taebp::junction

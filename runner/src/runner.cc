@@ -22,6 +22,12 @@ namespace fs = std::filesystem;
 std::vector<std::pair<std::string, std::string>> ExperimentResult::Files() const {
   nlohmann::ordered_json timing;
   timing["wall_seconds_total"] = wall_seconds;
+  for (const PolicyRun& r : runs) {  // where each policy's time went
+    nlohmann::ordered_json& p = timing["policies"][r.policy];
+    p["wall_seconds_start"] = r.wall_seconds_start;
+    p["wall_seconds_sumo_steps"] = r.wall_seconds_sumo_steps;
+    p["wall_seconds_controller_steps"] = r.wall_seconds_controller_steps;
+  }
   std::vector<std::pair<std::string, std::string>> files = {
       {"summary.json", SummaryJson(runs, provenance, stopped)},
       {"encounters.csv", EncountersCsv(runs)},

@@ -85,4 +85,10 @@ double TimeToReach(const Mover& m, double arc, double dt);
 bool PassedWay(const Mover& first, const Mover& second, double first_reach = -1,
                double second_reach = -1, double step = 0.25);
 
+// PassedWay(first, second standing with its front at f, -1, 0) for every f in
+// `fronts` at once: true when `first` passes `second` standing at each of them
+// (its bodies are built once for all).
+bool PassedWayOfEveryStand(const Mover& first, Mover second, const std::vector<double>& fronts,
+                           double step = 0.25);
+
 }  // namespace taebp::junction

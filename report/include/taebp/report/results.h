@@ -213,6 +213,11 @@ struct PolicyRun {
   std::vector<double> hv_trust;           // each HV's drawn theta, in HV order
   std::vector<EncounterRecord> encounters;
   double simulated_seconds = 0;
+  // Where this policy's wall time went (timing.json only, never compared):
+  // SUMO's start and the controller's set-up; SUMO's steps
+  // (Simulation::step); the controller's steps (what it reads, decides and
+  // commands between two of SUMO's).
+  double wall_seconds_start = 0, wall_seconds_sumo_steps = 0, wall_seconds_controller_steps = 0;
   long crossings_av = 0, crossings_hv = 0;
   long held = 0;                          // vehicles held at a stop line and released
   double wait_sum = 0, wait_max = 0;      // their stop-line waits (s)
