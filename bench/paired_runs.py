@@ -14,7 +14,11 @@ back to back and their order alternating from pair to pair (B A, A B, B A,
 time (user + system of the process and its children, from wait4: what it
 costs, whatever else shares the machine) and wall time. Prints per policy the
 median CPU of each side and the ratio policy / baseline pair by pair: its
-median, with the min and max of the pairs as the spread. A benchmark, run by
+median, with the min and max of the pairs as the spread. Against a baseline
+policy also where the difference lies (each run's timing.json): the ratio of
+SUMO's own steps (the traffic the policy makes) and the controller's steps
+beyond the baseline's as a share of the baseline run (what the controller
+itself costs), medians with their spread. A benchmark, run by
 tools/bench on demand; never a timed test.
 
 --baseline-command CMD: the baseline is the process CMD (split as a shell
@@ -26,6 +30,7 @@ place of `TAEBP run` with the baseline policy.
     pairs POLICY MEDIAN_RATIO MIN MAX N
 """
 import argparse
+import json
 import os
 import shlex
 import shutil
@@ -76,10 +81,24 @@ def main():
     if baseline_cmd and shutil.which(baseline_cmd[0]) is None:
         ap.error("--baseline-command: %s is not a program on PATH" % baseline_cmd[0])
 
+    def out_dir(policy, k):
+        return os.path.join(scratch, "%s-%d" % (policy, k))
+
+    def split(policy, k):
+        """(SUMO's steps, the controller's steps, all of the run) in wall
+        seconds, from the run's timing.json; None for the baseline command."""
+        if policy is None:
+            return None
+        with open(os.path.join(out_dir(policy, k), "timing.json")) as f:
+            t = json.load(f)["policies"][policy]
+        return (t["wall_seconds_sumo_steps"], t["wall_seconds_controller_steps"],
+                t["wall_seconds_start"] + t["wall_seconds_sumo_steps"] +
+                t["wall_seconds_controller_steps"])
+
     def command(policy, k):
         if baseline_cmd and policy is None:
             return baseline_cmd
-        out = os.path.join(scratch, "%s-%d" % (policy, k))
+        out = out_dir(policy, k)
         return [args.taebp, "run", args.config, *sets, "--set", "policies=[%s]" % policy,
                 "--out", out, "--quiet"]
 
@@ -92,7 +111,7 @@ def main():
         print("%-12s %10s %10s %8s %8s %8s %10s" % ("policy", "cpu base", "cpu pol", "ratio",
                                                    "min", "max", "wall ratio"))
         for policy in policies:
-            base, pol, ratios, walls = [], [], [], []
+            base, pol, ratios, walls, sumo_ratios, shares = [], [], [], [], [], []
             for k in range(args.pairs):
                 order = [(None if baseline_cmd else args.baseline, base), (policy, pol)]
                 if k % 2 == 0:
@@ -105,6 +124,10 @@ def main():
                 b = None if baseline_cmd else args.baseline
                 ratios.append(got[policy][0] / got[b][0])
                 walls.append(got[policy][1] / got[b][1])
+                sp, sb = split(policy, k), split(b, k)
+                if sb:
+                    sumo_ratios.append(sp[0] / sb[0])
+                    shares.append((sp[1] - sb[1]) / sb[2])
             med = statistics.median(ratios)
             verdict = ""
             if args.target is not None:
@@ -114,6 +137,14 @@ def main():
                 policy, statistics.median(base), statistics.median(pol), med, min(ratios),
                 max(ratios), statistics.median(walls), verdict))
             print("pairs %s %.3f %.3f %.3f %d" % (policy, med, min(ratios), max(ratios), len(ratios)))
+            if sumo_ratios:
+                # Where the difference is (timing.json, wall seconds inside the
+                # runs): SUMO's own steps on this policy's traffic against the
+                # baseline's, and the controller's steps beyond the baseline's
+                # as a share of the baseline run.
+                print("split %s sumo_steps_ratio %.3f (%.3f-%.3f) controller_extra %.3f (%.3f-%.3f)"
+                      % (policy, statistics.median(sumo_ratios), min(sumo_ratios),
+                         max(sumo_ratios), statistics.median(shares), min(shares), max(shares)))
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
     return 1 if missed else 0

@@ -409,7 +409,24 @@ TEST(CliRun, WritesDocumentedOutputsDeterministically) {
   EXPECT_EQ(summary_a, ReadFile(b / "summary.json"));
   EXPECT_EQ(csv_a, ReadFile(b / "encounters.csv"));
   EXPECT_TRUE(fs::exists(a / "config.yaml"));
-  EXPECT_TRUE(fs::exists(a / "timing.json"));
+  // timing.json: the total, and per policy of the run where its time went
+  // (SUMO's start, SUMO's steps, the controller's steps), within the total.
+  const json timing = json::parse(ReadFile(a / "timing.json"));
+  const double total = timing.at("wall_seconds_total").get<double>();
+  EXPECT_GT(total, 0);
+  double parts = 0;
+  for (const char* policy : {"no_ebp", "no_trust", "ta_ebp"}) {
+    SCOPED_TRACE(policy);
+    ASSERT_TRUE(timing.at("policies").contains(policy)) << timing.dump(2);
+    const json& t = timing.at("policies").at(policy);
+    EXPECT_GT(t.at("wall_seconds_start").get<double>(), 0);
+    EXPECT_GT(t.at("wall_seconds_sumo_steps").get<double>(), 0);
+    EXPECT_GT(t.at("wall_seconds_controller_steps").get<double>(), 0);
+    parts += t.at("wall_seconds_start").get<double>() + t.at("wall_seconds_sumo_steps").get<double>() +
+             t.at("wall_seconds_controller_steps").get<double>();
+  }
+  EXPECT_EQ(timing.at("policies").size(), 3u);
+  EXPECT_LE(parts, total);
   // No temporary files left behind.
   for (const auto& entry : fs::directory_iterator(a))
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
