@@ -10,7 +10,6 @@
 #include <cmath>
 #include <numeric>
 #include <set>
-#include <sstream>
 
 namespace taebp {
 namespace {
