@@ -204,5 +204,36 @@ TEST(PassedWay, SideBySideLanes) {
   }
 }
 
+// PassedWayOfEveryStand (the premise's "the HV passes the AV standing at each
+// Go position") against PassedWay one position at a time: the HV a on y = 0,
+// the AV b on x = 0 standing with its front at each of `fronts`. Stands short
+// of a's band and stands inside it give both answers; every set gives the
+// same answer as the positions taken one by one.
+TEST(PassedWay, EveryStandIsPassedWayAtEachStand) {
+  for (double a_front : {20.0, 33.0, 37.0}) {
+    Mover a = Straight(1, 0);
+    a.front = a_front;
+    const Mover b = Straight(0, 1);
+    for (const std::vector<double>& fronts :
+         {std::vector<double>{25.0}, {25.0, 26.0, 27.0}, {25.0, 29.5}, {29.5, 31.0},
+          {30.0}, {37.0, 38.0}}) {
+      bool each = true;
+      for (double f : fronts) {
+        Mover at = b;
+        at.front = f;
+        each = each && PassedWay(a, at, -1.0, 0.0);
+      }
+      EXPECT_EQ(PassedWayOfEveryStand(a, b, fronts), each)
+          << "a.front " << a_front << ", " << fronts.size() << " stands from " << fronts.front();
+    }
+  }
+  // Both answers occur, or the comparison proves nothing.
+  Mover a = Straight(1, 0);
+  a.front = 20.0;
+  Mover b = Straight(0, 1);
+  EXPECT_TRUE(PassedWayOfEveryStand(a, b, {25.0}));   // b short of a's band (y <= -0.9)
+  EXPECT_FALSE(PassedWayOfEveryStand(a, b, {25.0, 30.0}));  // b's body in a's way
+}
+
 }  // namespace
 }  // namespace taebp::junction
