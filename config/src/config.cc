@@ -420,6 +420,23 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     if (!FindPolicy(p)) c.Fail("policies: '" + p + "' is not one of " + PolicyChoices());
     if (!seen.insert(p).second) c.Fail("policies: '" + p + "' is listed twice");
   }
+  if (s.paired) {
+    const bool game = std::any_of(policies.begin(), policies.end(), [](const std::string& p) {
+      const PolicyInfo* info = FindPolicy(p);
+      return info && info->plays_game;
+    });
+    if (!policies.empty() && !game)
+      c.Fail("scenario.paired needs a policy that plays the game in policies (" +
+             std::string(SumoNative().name) +
+             " plays none, so there is no game to pair): add one of " + PolicyChoices() +
+             " or set scenario.paired: false");
+    if (BeyondPaper())
+      c.Fail("scenario.paired is modelled in the paper's setting only: not with "
+             "model.trust_dynamics, model.noise, model.learning, model.experience or the "
+             "policies beyond it (" + BeyondPaperPolicies() + "): an HV's state there comes from "
+             "its earlier games under one policy, so a game's branches would not start from the "
+             "same state; remove them or set scenario.paired: false");
+  }
   if (sweep) {
     if (sweep->replicates < 1)
       c.Fail("sweep.replicates = " + std::to_string(sweep->replicates) + " must be >= 1");

@@ -63,6 +63,7 @@ const std::vector<KeyDoc>& ConfigKeyDocs() {
       {"scenario.critical_gap", "a two-way stop's minor head needs this gap on the major road (s)", "> 0"},
       {"scenario.tripinfo_output", "copy SUMO's tripinfo-POLICY.xml into the output folder", ""},
       {"scenario.summary_output", "copy SUMO's summary-POLICY.xml into the output folder", ""},
+      {"scenario.paired", "play each game from the state it formed in under every game policy of the run (paired.csv, docs/paired.md); the paper's model only", ""},
       {"scenario.outputs", "SUMO's own outputs per policy in DIR/POLICY/ (not in a sweep)", ""},
       {"scenario.outputs.fcd", "fcd.xml: every vehicle's position each step", ""},
       {"scenario.outputs.edgedata", "edgedata.xml: SUMO's edge means over the measured time", ""},

@@ -1,6 +1,7 @@
 #include "encounter_game.h"
 
 #include "figure8.h"
+#include "paired.h"
 #include "taebp/config/model.h"
 #include "vehicle_commands.h"
 
@@ -10,10 +11,14 @@ EncounterGame::EncounterGame(RunState& s)
     : s_(s), params_(ToModel(s.cfg.model)), rng_(s.sc.seed) {}
 
 AvDraw EncounterGame::Draw(int av, int hv) {
+  // Paired games: branches fork here, before anything of the policy is used.
+  if (pairing_) pairing_->GameForms(av, hv, major_.count({av, hv}) > 0, *this);
   ++s_.vehicles[av].open_encounters;
   ++s_.vehicles[hv].open_encounters;
-  return DrawAv(PopulationOf(av, hv).Commit(s_.vehicles[av].id, s_.vehicles[hv].id),
-                params_.prior_go, rng_);
+  const AvDraw d = DrawAv(PopulationOf(av, hv).Commit(s_.vehicles[av].id, s_.vehicles[hv].id),
+                          params_.prior_go, rng_);
+  if (pairing_) pairing_->Drawn(av, hv, d);
+  return d;
 }
 
 // Whether a meeting is the game must not depend on the policy being run, or
@@ -341,6 +346,7 @@ void EncounterGame::Record(const JunctionState& j, const junction::EncounterOutc
     r.collision = e.collision;
     r.collision_after_handback = e.collision_after_handback;
     r.decided_at = e.decided_at;
+    if (pairing_) pairing_->Recorded(e.av, e.hv, r);
     s_.out.encounters.push_back(r);
   }
   s_.vehicles.EncounterDone(e.av);

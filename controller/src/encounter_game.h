@@ -18,11 +18,19 @@
 namespace taebp::control {
 
 class VehicleCommands;
+class Pairing;
 
 class EncounterGame : public junction::EncounterModel {
  public:
   explicit EncounterGame(RunState& s);
   void set_commands(VehicleCommands* commands) { commands_ = commands; }
+  void set_pairing(Pairing* pairing) { pairing_ = pairing; }
+  // A paired game's branch (paired.h): the game of (av, hv) is played by
+  // `population` (the branch's policy); every other game by the run's own.
+  void PlayPairWith(int av, int hv, HvPopulation* population) {
+    branch_pair_ = {av, hv};
+    branch_population_ = population;
+  }
 
   AvDraw Draw(int av, int hv) override;
   bool Game(int av, int hv, int av_movement, int hv_movement) override;
@@ -36,6 +44,7 @@ class EncounterGame : public junction::EncounterModel {
  private:
   RunState& s_;
   VehicleCommands* commands_ = nullptr;  // the HV's colour once it decided
+  Pairing* pairing_ = nullptr;           // scenario.paired: a game forms, a game finished
   persuasion::AvHvParams params_;
   std::mt19937_64 rng_;
   std::map<std::pair<int, int>, Premise> verdicts_;
@@ -43,7 +52,10 @@ class EncounterGame : public junction::EncounterModel {
   double LargestNudge() const;  // (AV, HV) met: does the game's premise hold
   // Major-road encounters running, (AV, HV): their game is the major population's.
   std::set<std::pair<int, int>> major_;
+  std::pair<int, int> branch_pair_{-1, -1};
+  HvPopulation* branch_population_ = nullptr;
   HvPopulation& PopulationOf(int av, int hv) const {
+    if (branch_population_ && branch_pair_ == std::make_pair(av, hv)) return *branch_population_;
     return major_.count({av, hv}) ? *s_.major_population : *s_.population;
   }
   // The (AV, HV) movers of a major-road approach and their conflict zones,

@@ -14,6 +14,7 @@
 #include "collisions.h"
 #include "encounter_game.h"
 #include "figure8.h"
+#include "paired.h"
 #include "route_progress.h"
 #include "run_state.h"
 #include "stalls.h"
@@ -27,6 +28,22 @@
 
 namespace taebp {
 namespace control {
+
+std::unique_ptr<HvPopulation> MakePopulation(const RunState& s, persuasion::Policy policy,
+                                             bool major) {
+  if (!major) return std::make_unique<HvPopulation>(s.cfg, policy);
+  // The same HVs in the major-road game: the paper's game at r_eff.
+  ExperimentConfig c = s.cfg;
+  c.model.collision_penalty =
+      persuasion::MajorRoadEffectivePenalty(ToModel(s.cfg.model, *s.sc.major_road));
+  return std::make_unique<HvPopulation>(c, policy);
+}
+
+void MakePopulations(RunState& s, persuasion::Policy policy) {
+  // Each HV's trust, the AV's design for it, its reading (hv_population.h).
+  s.population = MakePopulation(s, policy, false);
+  if (s.sc.major_road) s.major_population = MakePopulation(s, policy, true);
+}
 
 RunState::RunState(const ExperimentConfig& config, std::optional<persuasion::Policy> policy,
                    const Scenario& scenario, const net::NetFile& net,
@@ -44,14 +61,7 @@ RunState::RunState(const ExperimentConfig& config, std::optional<persuasion::Pol
   out.policy = policy ? PolicyName(*policy) : SumoNative().name;
   out.scenario_kind = EnumName(sc.kind);
   if (policy) {
-    // Each HV's trust, the AV's design for it, its reading (hv_population.h).
-    population = std::make_unique<HvPopulation>(config, *policy);
-    if (sc.major_road) {
-      // The same HVs in the major-road game: the paper's game at r_eff.
-      ExperimentConfig major = config;
-      major.model.collision_penalty = persuasion::MajorRoadEffectivePenalty(ToModel(config.model, *sc.major_road));
-      major_population = std::make_unique<HvPopulation>(major, *policy);
-    }
+    MakePopulations(*this, *policy);
     out.scheme = population->PopulationScheme();
     out.theory = population->Theory();
   }
@@ -88,8 +98,10 @@ struct NetworkController::Impl {
       : s(config, policy, scenario, net, options, world),
         game(s),
         commands(s, game),
-        collisions(s, commands) {
+        collisions(s, commands),
+        pairing(s) {
     game.set_commands(&commands);
+    game.set_pairing(&pairing);
   }
 
   // A vehicle entered the network: AV or HV (the HV's trust, the AV's
@@ -136,6 +148,7 @@ struct NetworkController::Impl {
     if (s.population && v.kind == VehicleKind::kHV) s.population->Remove(id);
     if (s.major_population && v.kind == VehicleKind::kHV) s.major_population->Remove(id);
     if (v.state == control::State::kCrossing) commands.Clear(h);  // left inside a junction
+    pairing.Left(h);
     control::SetNear(s, h, {});
     if (s.measuring()) ++s.out.network.arrived;
     s.vehicles.Remove(h);
@@ -191,6 +204,7 @@ struct NetworkController::Impl {
   control::EncounterGame game;
   control::VehicleCommands commands;
   control::CollisionAttribution collisions;
+  control::Pairing pairing;  // scenario.paired
   long steps = 0;
 };
 
@@ -241,6 +255,12 @@ void NetworkController::Step() {
   if (c.steps % s.sample_every == 0) c.Sample();
   s.out.longest_gap_without_crossing =
       std::max(s.out.longest_gap_without_crossing, s.now - s.last_crossing);
+  c.pairing.Step();  // a branch whose game is over ends here
+}
+
+bool NetworkController::InBranch() const { return impl_->pairing.InBranch(); }
+void NetworkController::EndBranch(const std::string& status, const std::string& error) {
+  impl_->pairing.EndBranch(status, error);
 }
 
 long NetworkController::VehiclesNow() const {

@@ -312,6 +312,15 @@ SsmRun ReadSsm(const fs::path& file, const ScenarioConfig& sc, const Scenario& s
 
 PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
                     const Scenario& scenario, const RunOptions& options) {
+  if (config.scenario.paired && sumo::CurrentBackend() == sumo::Backend::kLibtraciGui)
+    throw ConfigError(
+        "scenario.paired forks the simulation to play each game under every policy, and under "
+        "--gui the simulation is sumo-gui, another process: run without --gui, or set "
+        "scenario.paired: false");
+  // SUMO's SSM device as in upstream's release builds (no abort when two
+  // vehicles it saw collide leave together; sumo_adapter.h).
+  if (config.scenario.outputs.ssm && sumo::CurrentBackend() == sumo::Backend::kLibsumo)
+    sumo::SsmReleaseBehaviour();
   ControllerOptions copts;
   copts.colour_states = options.colour_states;
   copts.stall_limit = options.stall_limit;
@@ -360,9 +369,12 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
           options.progress({policy, sumo.Time(), config.scenario.duration,
                             controller.VehiclesNow(), controller.EncountersSoFar()});
       }
+      // A branch of a paired game never gets here but at the run's end.
+      if (controller.InBranch()) controller.EndBranch("ok", "the run ended first");
       if (options.before_close) options.before_close();
       run = controller.Finish();
     } catch (const StallError& e) {
+      if (controller.InBranch()) controller.EndBranch("ok", e.what());
       // scenario.stall_action: error. The run is measured up to the stall
       // (SUMO's tripinfo with every vehicle still in the network, below);
       // the runner stops the experiment after this policy.
@@ -370,9 +382,16 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
       run.stall_error = e.what();
     }
   } catch (const SumoError& e) {
+    // A branch of a paired game ends here, whatever happened in it.
+    if (controller.InBranch()) controller.EndBranch("failed", e.what());
     sumo.Close();
     throw explained(e);
+  } catch (const std::exception& e) {
+    if (controller.InBranch()) controller.EndBranch("failed", e.what());
+    sumo.Close();
+    throw;
   } catch (...) {
+    if (controller.InBranch()) controller.EndBranch("failed", "an unknown error");
     sumo.Close();
     throw;
   }
@@ -416,6 +435,8 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     }
     if (config.scenario.outputs.ssm) {
       run.ssm = ReadSsm(dir / "ssm.xml", config.scenario, scenario, run.encounters);
+      for (std::size_t k = 0; k < run.encounters.size() && k < run.ssm.games.size(); ++k)
+        run.encounters[k].ssm = run.ssm.games[k];
       run.ssm.device_warnings = warned.ssm;
     }
   }

@@ -103,5 +103,13 @@ struct RunState {
   PolicyRun out;
 };
 
+// The HV populations of game policy `policy` (s.population, and
+// s.major_population with scenario.major_road): each HV's trust, the AV's
+// design for it, its reading (hv_population.h); no HV added yet.
+void MakePopulations(RunState& s, persuasion::Policy policy);
+// One of them: the paper's game, or the major road's (`major`).
+std::unique_ptr<HvPopulation> MakePopulation(const RunState& s, persuasion::Policy policy,
+                                             bool major);
+
 
 }  // namespace taebp::control

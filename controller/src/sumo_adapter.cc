@@ -33,6 +33,8 @@ bool g_started = false;  // between a successful Start and Close
 const std::vector<std::string>& GuiArgs() { return g_gui_args; }
 void SetStarted(bool started) { g_started = started; }
 
+Backend CurrentBackend() { return g_backend; }
+
 void SetBackend(Backend backend, std::vector<std::string> gui_args) {
   if (g_started) throw SumoError("SUMO backend cannot change while a simulation is loaded");
   g_backend = backend;

@@ -223,8 +223,10 @@ PYBIND11_MODULE(_taebp, m) {
   m.def("policy_names", &PolicyNames);
 
   m.def("encounter_columns",
-        [](bool beyond, bool network) { return taebp::EncounterCsvColumns(beyond, network); },
-        py::arg("beyond") = false, py::arg("network") = false);
+        [](bool beyond, bool network, bool ssm) {
+          return taebp::EncounterCsvColumns(beyond, network, ssm);
+        },
+        py::arg("beyond") = false, py::arg("network") = false, py::arg("ssm") = false);
 
   // One experiment; the GIL is released while SUMO runs. Returns the result
   // files (name -> text), the printed table and the warnings.

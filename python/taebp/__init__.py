@@ -351,13 +351,15 @@ def solve(problem, frames=None):
     return _to_frames(result) if (frames if frames is not None else framed) else result
 
 
-def encounter_columns(beyond=False, network=False):
+def encounter_columns(beyond=False, network=False, ssm=False):
     """The columns of encounters.csv, in order; ``network=True``: those of a
     network scenario (adds ``both_proceed_collides``, ``premise``,
     ``collision_after_handback``, ``encounter_kind``); ``beyond=True``: those
     of a run beyond the paper (dynamic / learned trust, noise,
-    population_mean), which add columns after those."""
-    return list(_taebp.encounter_columns(bool(beyond), bool(network)))
+    population_mean), which add columns after those; ``ssm=True``: those of a
+    run with SUMO's SSM device (``ssm_min_ttc``, ``ssm_max_drac``,
+    ``ssm_min_pet``: the game's pair measures), last."""
+    return list(_taebp.encounter_columns(bool(beyond), bool(network), bool(ssm)))
 
 
 def metrics():

@@ -1,9 +1,11 @@
 // The numbers a metric of metrics.h is read from (internal to report/).
 #pragma once
 
+#include "taebp/report/clustered.h"
 #include "taebp/report/metrics.h"
 #include "taebp/report/results.h"
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -14,8 +16,15 @@ struct EncounterStats {
   long n = 0, collisions = 0, dc = 0, nudges = 0;
   double commanded_sum = 0, observed_sum = 0, max_abs_error = 0;
   double min_excess = 0;  // min over nudges of observed - commanded
+  bool any_nudge = false;
   double theory_dc_sum = 0, theory_collision_sum = 0;  // per-encounter predictions
+  // scenario.outputs.ssm: games without a collision whose pair measures
+  // (EncounterRecord::ssm) pass a threshold: any measure, and by measure.
+  long near_misses = 0;
+  std::array<long, kSsmMeasures> near_misses_by{};
 };
+// Adds encounter `e` of run `r` (its SSM rules) to `s`.
+void AddEncounter(const PolicyRun& r, const EncounterRecord& e, EncounterStats* s);
 // `junction` empty: every encounter of the run.
 EncounterStats ComputeEncounterStats(const PolicyRun& r, const std::string& junction = "");
 
@@ -25,6 +34,9 @@ struct LastHourWindow {
   long n = 0, dc = 0, collisions = 0;
   double theory_dc = 0, oracle_dc = 0, theory_collisions = 0;
 };
+// The window's start for run `r`, and encounter `e` added to it when in it.
+double LastHourFrom(const PolicyRun& r);
+void AddLastHour(const EncounterRecord& e, LastHourWindow* w);
 LastHourWindow LastHour(const PolicyRun& r);
 
 // Sums over the encounters of a run beyond the paper.
@@ -43,6 +55,13 @@ struct MetricFacts {
 };
 MetricFacts PolicyFacts(const PolicyRun& r);
 MetricFacts JunctionFacts(const PolicyRun& r, const JunctionRun& j);
+// The facts of each HV's encounters among those of `f` (its junction's at
+// the junction level), in HV order: the clusters of a rate's interval
+// (encounter statistics and the last hour only).
+std::vector<MetricFacts> HvFacts(const MetricFacts& f);
+// The interval of rate metric `m` (Pool::kRate) over the clusters `hvs`
+// (HvFacts), at normal quantile z.
+RateInterval MetricInterval(const Metric& m, const std::vector<MetricFacts>& hvs, double z);
 
 // Whether metric scope `s` applies to run `r`.
 bool InScope(MetricScope s, const PolicyRun& r);

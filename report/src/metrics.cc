@@ -11,49 +11,104 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 namespace taebp {
 
 double Rate(long k, long n) { return n > 0 ? static_cast<double>(k) / n : 0.0; }
 double PerHour(double count, double seconds) { return seconds > 0 ? count * 3600.0 / seconds : 0.0; }
 
+void AddEncounter(const PolicyRun& r, const EncounterRecord& e, EncounterStats* s) {
+  ++s->n;
+  s->collisions += e.collision;
+  s->dc += e.hv_dc;
+  s->theory_dc_sum += e.theory_dc;
+  s->theory_collision_sum += e.theory_collision;
+  if (e.commanded > 0) {
+    ++s->nudges;
+    s->commanded_sum += e.commanded;
+    s->observed_sum += e.observed;
+    const double excess = e.observed - e.commanded;
+    s->max_abs_error = std::max(s->max_abs_error, std::abs(excess));
+    s->min_excess = s->any_nudge ? std::min(s->min_excess, excess) : excess;
+    s->any_nudge = true;
+  }
+  if (r.ssm.on && !e.collision) {
+    bool any = false;
+    for (int k = 0; k < kSsmMeasures; ++k) {
+      const SsmMeasure m = static_cast<SsmMeasure>(k);
+      if (!SsmPasses(r.ssm.rules, m, e.ssm.Value(m))) continue;
+      any = true;
+      ++s->near_misses_by[k];
+    }
+    s->near_misses += any;
+  }
+}
+
 EncounterStats ComputeEncounterStats(const PolicyRun& r, const std::string& junction) {
   EncounterStats s;
-  bool first = true;
-  for (const EncounterRecord& e : r.encounters) {
-    if (!junction.empty() && e.junction != junction) continue;
-    ++s.n;
-    s.collisions += e.collision;
-    s.dc += e.hv_dc;
-    s.theory_dc_sum += e.theory_dc;
-    s.theory_collision_sum += e.theory_collision;
-    if (e.commanded > 0) {
-      ++s.nudges;
-      s.commanded_sum += e.commanded;
-      s.observed_sum += e.observed;
-      const double excess = e.observed - e.commanded;
-      s.max_abs_error = std::max(s.max_abs_error, std::abs(excess));
-      s.min_excess = first ? excess : std::min(s.min_excess, excess);
-      first = false;
-    }
-  }
+  for (const EncounterRecord& e : r.encounters)
+    if (junction.empty() || e.junction == junction) AddEncounter(r, e, &s);
   return s;
+}
+
+double LastHourFrom(const PolicyRun& r) {
+  const double start = r.simulated_seconds - r.measured_seconds;
+  return std::max(start, r.simulated_seconds - 3600.0);
+}
+
+void AddLastHour(const EncounterRecord& e, LastHourWindow* w) {
+  if (e.time < w->from) return;
+  ++w->n;
+  w->dc += e.hv_dc;
+  w->collisions += e.collision;
+  w->theory_dc += e.theory_dc;
+  w->theory_collisions += e.theory_collision;
+  w->oracle_dc += e.beyond.oracle_dc;
 }
 
 LastHourWindow LastHour(const PolicyRun& r) {
   LastHourWindow w;
-  const double start = r.simulated_seconds - r.measured_seconds;
-  w.from = std::max(start, r.simulated_seconds - 3600.0);
-  for (const EncounterRecord& e : r.encounters) {
-    if (e.time < w.from) continue;
-    ++w.n;
-    w.dc += e.hv_dc;
-    w.collisions += e.collision;
-    w.theory_dc += e.theory_dc;
-    w.theory_collisions += e.theory_collision;
-    w.oracle_dc += e.beyond.oracle_dc;
-  }
+  w.from = LastHourFrom(r);
+  for (const EncounterRecord& e : r.encounters) AddLastHour(e, &w);
   return w;
+}
+
+std::vector<MetricFacts> HvFacts(const MetricFacts& f) {
+  const PolicyRun& r = *f.run;
+  std::map<std::string, MetricFacts> by_hv;
+  for (const EncounterRecord& e : r.encounters) {
+    if (f.junction && e.junction != f.junction->id) continue;
+    auto [it, fresh] = by_hv.try_emplace(e.hv);
+    MetricFacts& c = it->second;
+    if (fresh) {
+      c.run = f.run;
+      c.junction = f.junction;
+      c.last_hour.from = LastHourFrom(r);
+    }
+    AddEncounter(r, e, &c.s);
+    if (!f.junction) AddLastHour(e, &c.last_hour);
+  }
+  std::vector<MetricFacts> out;
+  out.reserve(by_hv.size());
+  for (auto& [hv, c] : by_hv) out.push_back(c);
+  return out;
+}
+
+RateInterval MetricInterval(const Metric& m, const std::vector<MetricFacts>& hvs, double z) {
+  const Metric* count = FindMetric(m.count);
+  const Metric* per = FindMetric(m.per);
+  std::vector<ClusterCount> clusters;
+  clusters.reserve(hvs.size());
+  for (const MetricFacts& h : hvs) clusters.push_back({count->value(h), per->value(h)});
+  return ClusteredRate(clusters, z);
+}
+
+RateInterval RunRateInterval(const PolicyRun& r, const std::string& name, double z) {
+  const Metric* m = FindMetric(name);
+  if (!m || m->pool != Pool::kRate)
+    throw std::invalid_argument("RunRateInterval: '" + name + "' is not a rate metric");
+  return MetricInterval(*m, HvFacts(PolicyFacts(r)), z);
 }
 
 MetricFacts PolicyFacts(const PolicyRun& r) {
@@ -552,10 +607,8 @@ const std::vector<MetricSection>& RunSections() {
 std::vector<std::string> MetricColumns(const Metric& m, bool aggregate) {
   if (aggregate && m.pool == Pool::kNone) return {};
   std::vector<std::string> cols = {m.name};
-  if (m.pool == Pool::kRate) {
-    cols.push_back(std::string(m.name) + "_lo");
-    cols.push_back(std::string(m.name) + "_hi");
-  }
+  if (m.pool == Pool::kRate)
+    for (const char* c : {"_lo", "_hi", "_deff", "_clusters"}) cols.push_back(m.name + std::string(c));
   if (aggregate && m.pool == Pool::kMean) cols.push_back(std::string(m.name) + "_sd");
   return cols;
 }
@@ -572,7 +625,7 @@ std::vector<std::string> MetricColumns(MetricLevel level, bool aggregate) {
 const char* ToString(Pool p) {
   switch (p) {
     case Pool::kSum: return "sum";
-    case Pool::kRate: return "pooled rate, 95 % Wilson interval";
+    case Pool::kRate: return "pooled rate, 95 % interval clustered by HV and run";
     case Pool::kWeighted: return "mean weighted by its per";
     case Pool::kPrediction: return "mean weighted by encounters";
     case Pool::kMean: return "mean and SD over runs";
@@ -629,7 +682,7 @@ std::string MetricsMarkdown() {
     if (m.levels & kJunctionLevel) where += where.empty() ? "junction" : ", junction";
     if (m.scope != MetricScope::kAll) where += std::string(" (") + ToString(m.scope) + ")";
     std::string name = std::string("`") + m.name + "`";
-    if (m.pool == Pool::kRate) name += " `_lo` `_hi`";
+    if (m.pool == Pool::kRate) name += " `_lo` `_hi` `_deff` `_clusters`";
     std::string meaning = m.description;
     if (m.per && (m.pool == Pool::kRate || m.pool == Pool::kWeighted ||
                   (m.pool == Pool::kMean)))

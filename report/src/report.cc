@@ -4,7 +4,9 @@
 #include "taebp/persuasion/number_text.h"
 
 #include "metric_facts.h"
+#include "taebp/report/clustered.h"
 #include "taebp/report/metrics.h"
+#include "taebp/report/paired.h"
 
 #include <nlohmann/json.hpp>
 
@@ -14,7 +16,9 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #if __has_include("taebp_git.h")
 #include "taebp_git.h"
@@ -54,19 +58,29 @@ std::string JsonCell(const json& v) {
 constexpr double kNoPer = std::numeric_limits<double>::quiet_NaN();
 
 // Every metric of `level` in scope for the run, in table order, with a rate's
-// 95 % interval as NAME_lo / NAME_hi.
+// 95 % interval clustered by HV (clustered.h) as NAME_lo / NAME_hi, its design
+// effect NAME_deff and the HVs it was estimated from NAME_clusters.
 void PutMetrics(const MetricFacts& f, MetricLevel level, json* out) {
+  std::optional<std::vector<MetricFacts>> hvs;  // the rates' clusters, once
   for (const Metric& m : RunMetrics()) {
     if (!(m.levels & level) || !InScope(m.scope, *f.run)) continue;
     const double per = m.per ? FindMetric(m.per)->value(f) : kNoPer;
     // Undefined (no encounter, no game, ...): null, with its interval.
     const bool undefined = MetricUndefined(m, f.run->policy, per);
-    (*out)[m.name] = undefined ? json(nullptr) : MetricJson(m, m.value(f));
+    const double value = m.value(f);
+    (*out)[m.name] = undefined ? json(nullptr) : MetricJson(m, value);
     if (m.pool == Pool::kRate) {
-      const long k = std::lround(FindMetric(m.count)->value(f));
-      const Interval ci = Wilson(k, std::lround(per));
-      (*out)[std::string(m.name) + "_lo"] = undefined ? json(nullptr) : json(ci.low);
-      (*out)[std::string(m.name) + "_hi"] = undefined ? json(nullptr) : json(ci.high);
+      const std::string name = m.name;
+      if (undefined || !std::isfinite(value)) {
+        for (const char* c : {"_lo", "_hi", "_deff", "_clusters"}) (*out)[name + c] = nullptr;
+        continue;
+      }
+      if (!hvs) hvs = HvFacts(f);
+      const RateInterval ci = MetricInterval(m, *hvs, kZ95);
+      (*out)[name + "_lo"] = ci.low;
+      (*out)[name + "_hi"] = ci.high;
+      (*out)[name + "_deff"] = ci.deff;
+      (*out)[name + "_clusters"] = ci.clusters;
     }
   }
 }
@@ -144,13 +158,7 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
 
 Interval Wilson(long k, long n, double z) {
   if (n <= 0) return {0.0, 1.0};
-  const double p = static_cast<double>(k) / n;
-  const double z2 = z * z;
-  const double denom = 1 + z2 / n;
-  const double centre = (p + z2 / (2.0 * n)) / denom;
-  const double half = z * std::sqrt(p * (1 - p) / n + z2 / (4.0 * n * n)) / denom;
-  // At k = 0 (k = n) the bound is exactly 0 (1); avoid round-off residue.
-  return {k == 0 ? 0.0 : std::max(0.0, centre - half), k == n ? 1.0 : std::min(1.0, centre + half)};
+  return WilsonAt(static_cast<double>(k) / static_cast<double>(n), static_cast<double>(n), z);
 }
 
 std::string BuildGitRevision() { return TAEBP_GIT_REVISION; }
@@ -167,6 +175,7 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
   p["config_path"] = prov.config_path;
   p["config"] = json::parse(prov.config_json);
   p["warnings"] = prov.warnings;
+  p["sumo_patches"] = prov.sumo_patches;
   if (!stopped.reason.empty()) {
     root["stopped"] = stopped.reason;
     root["stopped_policy"] = stopped.policy;
@@ -196,162 +205,8 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
     if (InScope(MetricScope::kBeyond, r)) BeyondSectionsJson(r, &j);
     pol[r.policy] = j;
   }
+  if (AnyPaired(runs)) root["paired"] = PairedSummary(runs);
   return root.dump(2) + "\n";
-}
-
-namespace {
-
-// The encounters.csv columns: name and how a record prints. A new column is
-// one line here (and one in the README's Outputs).
-struct EncounterColumn {
-  const char* name;
-  std::string (*cell)(const PolicyRun& run, const EncounterRecord& e);
-};
-const std::vector<EncounterColumn>& EncounterColumns() {
-  static const std::vector<EncounterColumn> cols = {
-      {"policy", [](const PolicyRun& r, const EncounterRecord&) { return r.policy; }},
-      {"time", [](const PolicyRun&, const EncounterRecord& e) { return NumberText(e.time); }},
-      {"junction", [](const PolicyRun&, const EncounterRecord& e) { return e.junction; }},
-      {"av", [](const PolicyRun&, const EncounterRecord& e) { return e.av; }},
-      {"hv", [](const PolicyRun&, const EncounterRecord& e) { return e.hv; }},
-      {"av_movement", [](const PolicyRun&, const EncounterRecord& e) { return e.av_movement; }},
-      {"hv_movement", [](const PolicyRun&, const EncounterRecord& e) { return e.hv_movement; }},
-      {"av_dir", [](const PolicyRun&, const EncounterRecord& e) { return std::string(1, e.av_dir); }},
-      {"hv_dir", [](const PolicyRun&, const EncounterRecord& e) { return std::string(1, e.hv_dir); }},
-      {"intent", [](const PolicyRun&, const EncounterRecord& e) {
-         return std::string(e.intent_go ? "go" : "stop"); }},
-      {"commanded_nudge", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.commanded); }},
-      {"observed_displacement", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.observed); }},
-      {"hv_trust", [](const PolicyRun&, const EncounterRecord& e) { return NumberText(e.hv_trust); }},
-      {"hv_posterior", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.posterior); }},
-      {"hv_action", [](const PolicyRun&, const EncounterRecord& e) {
-         return std::string(e.hv_dc ? "DC" : "DR"); }},
-      {"av_action", [](const PolicyRun&, const EncounterRecord& e) {
-         return std::string(e.av_first ? "go" : "wait"); }},
-      {"collision", [](const PolicyRun&, const EncounterRecord& e) {
-         return std::string(e.collision ? "1" : "0"); }},
-  };
-  return cols;
-}
-
-std::string Opt(double v) { return std::isfinite(v) ? NumberText(v) : std::string(); }
-
-// The columns a run beyond the paper adds after those (README "Outputs").
-const std::vector<EncounterColumn>& BeyondColumns() {
-  static const std::vector<EncounterColumn> cols = {
-      {"design_trust", [](const PolicyRun&, const EncounterRecord& e) {
-         return Opt(e.beyond.design_trust); }},
-      {"scheme_b", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.beyond.scheme_b); }},
-      {"hv_reading", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.beyond.reading); }},
-      {"hv_trust_after", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.beyond.trust_after); }},
-      {"outcome", [](const PolicyRun&, const EncounterRecord& e) { return e.beyond.outcome; }},
-      {"quality", [](const PolicyRun&, const EncounterRecord& e) { return Opt(e.beyond.quality); }},
-      {"theory_dc", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.theory_dc); }},
-      {"theory_collision", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.theory_collision); }},
-      {"oracle_dc", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.beyond.oracle_dc); }},
-      {"oracle_collision", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.beyond.oracle_collision); }},
-      {"regret", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.beyond.regret); }},
-      {"learn_mode", [](const PolicyRun&, const EncounterRecord& e) { return e.beyond.mode; }},
-      {"risk_level", [](const PolicyRun&, const EncounterRecord& e) {
-         return Opt(e.beyond.risk_level); }},
-      {"failure_probability", [](const PolicyRun&, const EncounterRecord& e) {
-         return Opt(e.beyond.failure_probability); }},
-      {"belief_lower", [](const PolicyRun&, const EncounterRecord& e) {
-         return Opt(e.beyond.belief_lower); }},
-      {"belief_upper", [](const PolicyRun&, const EncounterRecord& e) {
-         return Opt(e.beyond.belief_upper); }},
-      {"observation", [](const PolicyRun&, const EncounterRecord& e) {
-         return e.beyond.observation; }},
-  };
-  return cols;
-}
-
-// The column a network scenario adds after those (README "Outputs").
-const std::vector<EncounterColumn>& NetworkColumns() {
-  static const std::vector<EncounterColumn> cols = {
-      {"both_proceed_collides", [](const PolicyRun&, const EncounterRecord& e) {
-         return std::string(e.both_proceed_collides ? "1" : "0"); }},
-      {"premise", [](const PolicyRun&, const EncounterRecord& e) {
-         return std::string(ToString(e.premise)); }},
-      {"collision_after_handback", [](const PolicyRun&, const EncounterRecord& e) {
-         return std::string(e.collision_after_handback ? "1" : "0"); }},
-      {"encounter_kind", [](const PolicyRun&, const EncounterRecord& e) {
-         return std::string(e.major_road ? "major_road" : "stop_lines"); }},
-  };
-  return cols;
-}
-
-bool AnyNetwork(const std::vector<PolicyRun>& runs) {
-  return std::any_of(runs.begin(), runs.end(),
-                     [](const PolicyRun& r) { return r.scenario_kind == "network"; });
-}
-
-}  // namespace
-
-bool AnyBeyond(const std::vector<PolicyRun>& runs) {
-  return std::any_of(runs.begin(), runs.end(), [](const PolicyRun& r) { return r.beyond.on; });
-}
-
-const char* ToString(Premise p) {
-  switch (p) {
-    case Premise::kHolds: return "holds";
-    case Premise::kNoCollision: return "no_collision";
-    case Premise::kUncertainMerge: return "uncertain_merge";
-    case Premise::kNudgeInHvWay: return "nudge_in_hv_way";
-    case Premise::kGrazing: return "grazing";
-  }
-  return "?";
-}
-
-std::string CsvCell(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
-
-std::vector<std::string> EncounterCsvColumns(bool beyond, bool network) {
-  std::vector<std::string> names;
-  for (const EncounterColumn& c : EncounterColumns()) names.emplace_back(c.name);
-  if (network)
-    for (const EncounterColumn& c : NetworkColumns()) names.emplace_back(c.name);
-  if (beyond)
-    for (const EncounterColumn& c : BeyondColumns()) names.emplace_back(c.name);
-  return names;
-}
-
-bool BeyondPaper(const std::vector<PolicyRun>& runs) { return AnyBeyond(runs); }
-
-std::string EncountersCsv(const std::vector<PolicyRun>& runs) {
-  std::vector<EncounterColumn> cols = EncounterColumns();
-  if (AnyNetwork(runs))
-    cols.insert(cols.end(), NetworkColumns().begin(), NetworkColumns().end());
-  if (AnyBeyond(runs))
-    cols.insert(cols.end(), BeyondColumns().begin(), BeyondColumns().end());
-  std::string out;
-  for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + std::string(cols[i].name);
-  out += '\n';
-  for (const PolicyRun& r : runs) {
-    for (const EncounterRecord& e : r.encounters) {
-      for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + CsvCell(cols[i].cell(r, e));
-      out += '\n';
-    }
-  }
-  return out;
 }
 
 namespace {
@@ -365,6 +220,7 @@ struct SampleColumn {
   std::string (*cell)(const PolicyRun& run, const Sample& s);
 };
 std::string Int(long v) { return std::to_string(v); }
+std::string Opt(double v) { return std::isfinite(v) ? NumberText(v) : std::string(); }
 
 const std::vector<SampleColumn<TimeSample>>& TimeseriesColumns() {
   using C = SampleColumn<TimeSample>;

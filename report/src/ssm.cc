@@ -58,15 +58,7 @@ const Extreme& Worse(int k, const Extreme& p, const Extreme& q) {
   return (greater ? q.value > p.value : q.value < p.value) ? q : p;
 }
 
-bool Passes(const SsmRules& r, int k, double v) {
-  if (!r.on[k] || std::isnan(v)) return false;
-  switch (static_cast<SsmMeasure>(k)) {
-    case SsmMeasure::kTtc: return v > 0 && v <= r.threshold[k];
-    case SsmMeasure::kDrac: return v >= r.threshold[k];
-    case SsmMeasure::kPet: return v <= r.threshold[k];
-  }
-  return false;
-}
+bool Passes(const SsmRules& r, int k, double v) { return SsmPasses(r, static_cast<SsmMeasure>(k), v); }
 
 double SegmentDistance(const std::array<double, 2>& p, const std::array<double, 2>& a,
                        const std::array<double, 2>& b) {
@@ -116,6 +108,17 @@ void Add(const std::array<Extreme, kSsmMeasures>& m, int measure, SsmTally* t) {
 
 }  // namespace
 
+bool SsmPasses(const SsmRules& r, SsmMeasure m, double v) {
+  const int k = static_cast<int>(m);
+  if (!r.on[k] || std::isnan(v)) return false;
+  switch (m) {
+    case SsmMeasure::kTtc: return v > 0 && v <= r.threshold[k];
+    case SsmMeasure::kDrac: return v >= r.threshold[k];
+    case SsmMeasure::kPet: return v <= r.threshold[k];
+  }
+  return false;
+}
+
 SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
                      const std::vector<SsmJunctionArea>& areas,
                      const std::vector<SsmGame>& games) {
@@ -159,29 +162,28 @@ SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
     conflicts.push_back(std::move(r));
   }
 
-  // The counted conflicts of each pair (for the games' conflicts).
+  // The conflicts of each pair (for the games' pair measures).
   std::map<std::pair<std::string, std::string>, std::vector<const Record*>> of_pair;
-  for (const Record& c : conflicts) {
-    if (c.begin < rules.warmup) continue;
-    bool counted = false;
-    for (int k = 0; k < kSsmMeasures; ++k) counted = counted || Passes(rules, k, c.m[k].value);
-    if (counted) of_pair[{c.a, c.b}].push_back(&c);
-  }
+  for (const Record& c : conflicts) of_pair[{c.a, c.b}].push_back(&c);
+  run.games.reserve(games.size());
   for (const SsmGame& g : games) {
+    SsmPair pair;
     const auto it = of_pair.find(g.av < g.hv ? std::make_pair(g.av, g.hv) : std::make_pair(g.hv, g.av));
-    if (it == of_pair.end()) continue;
-    bool any = false;
-    std::array<bool, kSsmMeasures> by{};
-    for (const Record* c : it->second) {
-      if (c->end < g.time - kSsmGameBefore || c->begin > g.time + kSsmGameAfter) continue;
-      any = true;
-      for (int k = 0; k < kSsmMeasures; ++k) by[k] = by[k] || Passes(rules, k, c->m[k].value);
+    if (it != of_pair.end()) {
+      std::array<Extreme, kSsmMeasures> worst;
+      for (const Record* c : it->second) {
+        if (c->end < g.time - kSsmGameBefore || c->begin > g.time + kSsmGameAfter) continue;
+        for (int k = 0; k < kSsmMeasures; ++k) worst[k] = Worse(k, worst[k], c->m[k]);
+      }
+      auto value = [&](SsmMeasure m) {
+        const int k = static_cast<int>(m);
+        return rules.on[k] ? worst[k].value : kNaN;
+      };
+      pair.min_ttc = value(SsmMeasure::kTtc);
+      pair.max_drac = value(SsmMeasure::kDrac);
+      pair.min_pet = value(SsmMeasure::kPet);
     }
-    if (!any) continue;
-    for (SsmTally* t : {&run.network, &run.junction[g.junction]}) {
-      ++t->games;
-      for (int k = 0; k < kSsmMeasures; ++k) t->games_by_measure[k] += by[k] ? 1 : 0;
-    }
+    run.games.push_back(pair);
   }
 
   for (const Record& c : conflicts) {
@@ -247,20 +249,20 @@ double ConflictsPer1000(const MetricFacts& f) {
   return n > 0 ? 1000.0 * Count(AtJunctions(f), f, kMeasure) / static_cast<double>(n) : kNaN;
 }
 
-// Games whose AV and HV had a conflict with each other (`measure` -1: any).
-double GameCount(const MetricFacts& f, int measure) {
-  const SsmTally& t = Tally(f);
-  if (measure < 0) return static_cast<double>(t.games);
-  return f.run->ssm.rules.on[measure] ? static_cast<double>(t.games_by_measure[measure]) : kNaN;
+// Games without a collision whose pair measures pass a threshold
+// (`measure` -1: any), NaN for a measure SUMO did not compute.
+double NearMisses(const MetricFacts& f, int measure) {
+  if (measure < 0) return static_cast<double>(f.s.near_misses);
+  return f.run->ssm.rules.on[measure] ? static_cast<double>(f.s.near_misses_by[measure]) : kNaN;
 }
 template <int kMeasure>
-double GameConflicts(const MetricFacts& f) {
-  return GameCount(f, kMeasure);
+double NearMissCount(const MetricFacts& f) {
+  return NearMisses(f, kMeasure);
 }
 template <int kMeasure>
-double GameConflictRate(const MetricFacts& f) {
-  const double k = GameCount(f, kMeasure);
-  return std::isnan(k) ? kNaN : Rate(static_cast<long>(k), f.s.n);
+double NearMissRate(const MetricFacts& f) {
+  const double k = NearMisses(f, kMeasure);
+  return std::isnan(k) ? kNaN : Rate(static_cast<long>(k), f.s.n - f.s.collisions);
 }
 
 constexpr int kAny = -1;
@@ -271,12 +273,14 @@ constexpr unsigned kPJ = kPolicyLevel | kJunctionLevel;
 using T = MetricType;
 using S = MetricScope;
 
-// ssm_game_conflicts' sentence, its window from kSsmGameBefore / kSsmGameAfter.
-const char* GameConflictsSentence() {
+// ssm_near_misses' sentence, its window from kSsmGameBefore / kSsmGameAfter.
+const char* NearMissSentence() {
   static const std::string s =
-      "games whose AV and HV had an SSM conflict with each other (any measure; over a span "
-      "from " + std::to_string(static_cast<int>(kSsmGameBefore)) + " s before the game formed "
-      "to " + std::to_string(static_cast<int>(kSsmGameAfter)) + " s after; docs/ssm.md)";
+      "games without a collision whose AV and HV had an SSM conflict with each other (any "
+      "measure past its threshold, over a span from " +
+      std::to_string(static_cast<int>(kSsmGameBefore)) + " s before the game formed to " +
+      std::to_string(static_cast<int>(kSsmGameAfter)) +
+      " s after; a collision counts in collisions, not here; docs/ssm.md)";
   return s.c_str();
 }
 
@@ -322,27 +326,29 @@ std::vector<Metric> SsmMetricRows() {
      nullptr, "crossings_all", nullptr,
      "PET conflicts at the controlled junctions per 1,000 vehicles through them",
      ConflictsPer1000<kPet>},
-    {"ssm_game_conflicts", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr, nullptr,
-     GameConflictsSentence(), GameConflicts<kAny>},
-    {"ssm_game_conflict_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate, "ssm_game_conflicts",
-     "encounters", nullptr, "ssm_game_conflicts per encounter (empty without a game)",
-     GameConflictRate<kAny>},
-    {"ssm_game_ttc_conflicts", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr, nullptr,
-     "of ssm_game_conflicts, the games with a TTC conflict", GameConflicts<kTtc>},
-    {"ssm_game_ttc_conflict_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate,
-     "ssm_game_ttc_conflicts", "encounters", nullptr, "ssm_game_ttc_conflicts per encounter",
-     GameConflictRate<kTtc>},
-    {"ssm_game_drac_conflicts", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr,
-     nullptr, "of ssm_game_conflicts, the games with a DRAC conflict (a hard brake needed)",
-     GameConflicts<kDrac>},
-    {"ssm_game_drac_conflict_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate,
-     "ssm_game_drac_conflicts", "encounters", nullptr, "ssm_game_drac_conflicts per encounter",
-     GameConflictRate<kDrac>},
-    {"ssm_game_pet_conflicts", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr, nullptr,
-     "of ssm_game_conflicts, the games with a PET conflict", GameConflicts<kPet>},
-    {"ssm_game_pet_conflict_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate,
-     "ssm_game_pet_conflicts", "encounters", nullptr, "ssm_game_pet_conflicts per encounter",
-     GameConflictRate<kPet>},
+    {"encounters_no_collision", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr,
+     nullptr, "encounters in which the AV and the HV did not collide (what a near-miss rate is per)",
+     [](const MetricFacts& f) { return static_cast<double>(f.s.n - f.s.collisions); }},
+    {"ssm_near_misses", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr, nullptr,
+     NearMissSentence(), NearMissCount<kAny>},
+    {"ssm_near_miss_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate, "ssm_near_misses",
+     "encounters_no_collision", nullptr, "ssm_near_misses per encounter without a collision",
+     NearMissRate<kAny>},
+    {"ssm_ttc_near_misses", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr, nullptr,
+     "of ssm_near_misses, those with a TTC conflict", NearMissCount<kTtc>},
+    {"ssm_ttc_near_miss_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate, "ssm_ttc_near_misses",
+     "encounters_no_collision", nullptr, "ssm_ttc_near_misses per encounter without a collision",
+     NearMissRate<kTtc>},
+    {"ssm_drac_near_misses", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr, nullptr,
+     "of ssm_near_misses, those with a DRAC conflict (a hard brake needed)", NearMissCount<kDrac>},
+    {"ssm_drac_near_miss_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate, "ssm_drac_near_misses",
+     "encounters_no_collision", nullptr, "ssm_drac_near_misses per encounter without a collision",
+     NearMissRate<kDrac>},
+    {"ssm_pet_near_misses", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr, nullptr,
+     "of ssm_near_misses, those with a PET conflict", NearMissCount<kPet>},
+    {"ssm_pet_near_miss_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate, "ssm_pet_near_misses",
+     "encounters_no_collision", nullptr, "ssm_pet_near_misses per encounter without a collision",
+     NearMissRate<kPet>},
     {"ssm_device_warnings", T::kCount, "", kPolicyLevel, S::kSsm, Pool::kSum, nullptr, nullptr,
      nullptr,
      "the SSM device's warnings, apart from sumo_warnings (a collision it saw; 'Cannot compute "

@@ -1,10 +1,11 @@
 // The Table I printout of a run (report.h's PrintTable): a column per
-// policy, the paper's rows (collision and DC rates with Wilson intervals
+// policy, the paper's rows (collision and DC rates with clustered intervals
 // against the theory) and, where they apply, the network's, beyond-the-paper
 // and stalled-junction rows, then the footnotes.
 #include "taebp/report/report.h"
 
 #include "metric_facts.h"
+#include "taebp/report/clustered.h"
 #include "taebp/config/policies.h"
 
 #include <algorithm>
@@ -22,28 +23,36 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
   out << std::left << std::setw(w0) << "Metric";
   for (const PolicyRun& r : runs) out << std::setw(w) << PolicyLabel(r.policy);
   out << "\n";
-  bool flagged = false;
-  auto cell = [&](long k, long n, double theory) {
-    const Interval ci = Wilson(k, n);
+  bool flagged = false, few = false;
+  // A rate with its 95 % interval clustered by HV (clustered.h); "~" where
+  // too few HVs were met for any interval to account for their dependence.
+  auto interval = [&](const RateInterval& ci) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3f [%.3f,%.3f]%s", ci.rate, ci.low, ci.high,
+                  ci.few_clusters ? "~" : "");
+    few = few || ci.few_clusters;
+    return std::string(buf);
+  };
+  auto cell = [&](const PolicyRun& r, const char* metric, double theory) {
     char buf[96];
-    if (n == 0 && theory < 0) return std::string("- (SUMO's own logic)");
-    if (n == 0) {
+    if (r.encounters.empty() && theory < 0) return std::string("- (SUMO's own logic)");
+    if (r.encounters.empty()) {
       std::snprintf(buf, sizeof buf, "n/a (no AV-HV encounter) th %.3f", theory);
       return std::string(buf);
     }
+    const RateInterval ci = RunRateInterval(r, metric);
     // The theory outside the measured rate's 95% interval: worth a look.
     const bool outside = theory < ci.low || theory > ci.high;
     flagged = flagged || outside;
-    std::snprintf(buf, sizeof buf, "%.3f [%.3f,%.3f] th %.3f%s", Rate(k, n), ci.low, ci.high,
-                  theory, outside ? " !" : "");
-    return std::string(buf);
+    std::snprintf(buf, sizeof buf, " th %.3f%s", theory, outside ? " !" : "");
+    return interval(ci) + buf;
   };
   std::vector<EncounterStats> stats;
   for (const PolicyRun& r : runs) stats.push_back(ComputeEncounterStats(r));
   out << std::setw(w0) << "Collision Rate";
   for (std::size_t i = 0; i < runs.size(); ++i)
     out << std::setw(w)
-        << cell(stats[i].collisions, stats[i].n,
+        << cell(runs[i], "collision_rate",
                 !PlaysGame(runs[i].policy) ? -1.0 : runs[i].theory.collision_rate);
   // The headline's count: every collision a move of the game took part in
   // (metric collisions_total), a third vehicle hit by one included.
@@ -61,7 +70,20 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
   out << "\n" << std::setw(w0) << "DC Rate";
   for (std::size_t i = 0; i < runs.size(); ++i)
     out << std::setw(w)
-        << cell(stats[i].dc, stats[i].n, !PlaysGame(runs[i].policy) ? -1.0 : runs[i].theory.dc_rate);
+        << cell(runs[i], "dc_rate", !PlaysGame(runs[i].policy) ? -1.0 : runs[i].theory.dc_rate);
+  // The design effects of the two rates' intervals, and the HVs they rest on.
+  out << "\n" << std::setw(w0) << "Design effect (HVs)";
+  for (const PolicyRun& r : runs) {
+    char buf[96];
+    if (r.encounters.empty()) {
+      std::snprintf(buf, sizeof buf, "-");
+    } else {
+      const RateInterval c = RunRateInterval(r, "collision_rate");
+      const RateInterval d = RunRateInterval(r, "dc_rate");
+      std::snprintf(buf, sizeof buf, "%.2f / %.2f (%ld HVs)", c.deff, d.deff, d.clusters);
+    }
+    out << std::setw(w) << buf;
+  }
   out << "\n" << std::setw(w0) << "AV-HV encounters";
   for (std::size_t i = 0; i < runs.size(); ++i) out << std::setw(w) << stats[i].n;
   const bool network = !runs.empty() && runs.front().scenario_kind == "network";
@@ -128,14 +150,12 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       for (const PolicyRun& r : runs) out << std::setw(w) << cell(r);
       out << "\n";
     };
-    row("Last hour DC rate", [](const PolicyRun& r) {
+    row("Last hour DC rate", [&](const PolicyRun& r) {
       if (!PlaysGame(r.policy)) return std::string("-");
       const LastHourWindow win = LastHour(r);
-      const Interval ci = Wilson(win.dc, win.n);
       char buf[96];
-      std::snprintf(buf, sizeof buf, "%.3f [%.3f,%.3f] or %.3f", Rate(win.dc, win.n), ci.low,
-                    ci.high, win.n ? win.oracle_dc / win.n : 0.0);
-      return std::string(buf);
+      std::snprintf(buf, sizeof buf, " or %.3f", win.n ? win.oracle_dc / win.n : 0.0);
+      return interval(RunRateInterval(r, "last_hour_dc_rate")) + buf;
     });
     row("Regret / encounter", [](const PolicyRun& r) {
       if (!PlaysGame(r.policy) || r.encounters.empty()) return std::string("-");
@@ -168,7 +188,9 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
                                      (r.stall_error.empty() ? " (recorded)" : " (run stopped)"));
     out << "\n";
   }
-  out << "(rate [95% Wilson interval] th = library theory for the same parameters)\n";
+  out << "(rate [95% interval clustered by HV: Wilson's where the design effect <= 1] th = "
+         "library theory for the same parameters)\n"
+         "(design effect: of the collision rate / of the DC rate, over the HVs met)\n";
   if (network)
     out << "(delay: SUMO's tripinfo of every trip departed after the warm-up, finished or "
            "still in the network at the end)\n";
@@ -190,6 +212,9 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
     out << "(or = the oracle, TA-EBP for each HV's exact trust, on the same encounters; regret "
            "= DC lost + r x collisions against it)\n";
   if (flagged) out << "! the theory lies outside the measured rate's 95% interval\n";
+  if (few)
+    out << "~ fewer than " << kMinClusters
+        << " HVs met: no interval can account for their encounters being dependent\n";
   for (const std::string& warning : warnings) out << "warning: " << warning << "\n";
 }
 

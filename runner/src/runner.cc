@@ -1,6 +1,8 @@
 #include "taebp/runner/runner.h"
 
+#include "taebp/controller/sumo_adapter.h"
 #include "taebp/rundir/interrupt.h"
+#include "taebp/report/paired.h"
 
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/scenario/scenario.h"
@@ -40,6 +42,8 @@ std::vector<std::pair<std::string, std::string>> ExperimentResult::Files() const
     if (!r.sumo_summary_xml.empty())
       files.emplace_back("summary-" + r.policy + ".xml", r.sumo_summary_xml);
   }
+  if (config.scenario.paired)  // each game under every game policy (docs/paired.md)
+    files.emplace_back("paired.csv", PairedCsv(runs));
   if (BeyondPaper(runs)) {  // dynamic / learned trust, noise: the time series
     files.emplace_back("timeseries.csv", TimeseriesCsv(runs));
     files.emplace_back("hv_trust.csv", HvTrustCsv(runs));
@@ -164,6 +168,9 @@ ExperimentResult RunExperiment(const std::string& config_path,
   prov.sumo_version = result.runs.empty() ? "" : result.runs.front().sumo_version;
   prov.taebp_version = TaebpVersion();
   prov.warnings = result.warnings;
+  if (config.scenario.outputs.ssm && sumo::CurrentBackend() == sumo::Backend::kLibsumo)
+    prov.sumo_patches.push_back("MSDevice_SSM.cpp:1870 assertion as in SUMO's release builds: " +
+                                sumo::SsmReleaseBehaviour());
   return result;
 }
 

@@ -80,35 +80,44 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
     for (const std::string& c : cols) h += (h.empty() ? "" : ",") + c;
     return h;
   };
-  // The header line of each ok task's encounters.csv, read once.
-  std::vector<std::string> headers;
+  // The headers a task's encounters.csv may have (report.h
+  // EncounterCsvColumns: the paper's columns, then a network's, a run beyond
+  // the paper's and the SSM device's where they apply).
+  std::map<std::string, std::vector<std::string>> known;
+  for (bool beyond : {false, true})
+    for (bool network : {false, true})
+      for (bool ssm : {false, true}) {
+        std::vector<std::string> cols = EncounterCsvColumns(beyond, network, ssm);
+        known[join(cols)] = cols;
+      }
+  // The header line of each ok task's encounters.csv, read once. The pooled
+  // file has every group any task has, in that order; a task without a group
+  // gets empty cells there.
+  bool network = false, beyond = false, ssm = false;
+  const std::vector<std::string> paper = EncounterCsvColumns(false, false, false);
   for (const Task& t : plan.tasks) {
     const auto it = journal.entries.find(t.index);
     if (it == journal.entries.end() || !IsOk(it->second) || t.runs.empty()) continue;
     std::ifstream in(TaskDir(out, t) / "encounters.csv", std::ios::binary);
     std::string line;
-    if (in && std::getline(in, line)) headers.push_back(line);
+    if (!(in && std::getline(in, line))) continue;
+    const auto k = known.find(line);
+    if (k == known.end()) continue;
+    auto has = [&](const std::vector<std::string>& group) {
+      return std::find(k->second.begin(), k->second.end(), group.front()) != k->second.end();
+    };
+    network = network || has(EncounterCsvColumnGroup("network"));
+    beyond = beyond || has(EncounterCsvColumnGroup("beyond"));
+    ssm = ssm || has(EncounterCsvColumnGroup("ssm"));
   }
-  // A network scenario's tasks have its column (EncounterCsvColumns(..., true)),
-  // the first readable task says which. A task of a run beyond the paper has
-  // the extra columns (EncounterCsvColumns(true, ...)); when any has, the
-  // pooled file has them and the other tasks' rows get empty cells.
-  const bool network = !headers.empty() && (headers[0] == join(EncounterCsvColumns(false, true)) ||
-                                            headers[0] == join(EncounterCsvColumns(true, true)));
-  const std::string paper_header = join(EncounterCsvColumns(false, network));
-  const std::string beyond_header = join(EncounterCsvColumns(true, network));
-  const std::string padding(
-      EncounterCsvColumns(true, network).size() - EncounterCsvColumns(false, network).size(), ',');
-  const bool any_beyond =
-      std::find(headers.begin(), headers.end(), beyond_header) != headers.end();
-  const std::string task_header = any_beyond ? beyond_header : paper_header;
+  const std::vector<std::string> pooled = EncounterCsvColumns(beyond, network, ssm);
   const fs::path tmp = out / ("encounters.csv.tmp." + std::to_string(::getpid()));
   std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
   errno = 0;
   if (!f) throw std::runtime_error("cannot write " + tmp.string());
   f << "point,replicate,seed";
   for (const std::string& c : plan.columns) f << ',' << CsvCell(c);
-  f << ',' << task_header << '\n';
+  f << ',' << join(pooled) << '\n';
   for (const Task& t : plan.tasks) {
     const auto it = journal.entries.find(t.index);
     if (it == journal.entries.end() || !IsOk(it->second) || t.runs.empty()) continue;
@@ -116,19 +125,41 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
     std::ifstream in(file, std::ios::binary);
     std::string line;
     const bool read = in && std::getline(in, line);
-    const bool pad = any_beyond && read && line == paper_header;
-    if (!read || (line != task_header && !pad)) {
+    const auto k = read ? known.find(line) : known.end();
+    // Network and figure-8 tasks do not mix in one sweep: the first says.
+    const bool fits =
+        k != known.end() &&
+        (std::find(k->second.begin(), k->second.end(), EncounterCsvColumnGroup("network").front()) !=
+         k->second.end()) == network;
+    if (!fits) {
       std::fprintf(stderr, "taebp sweep: warning: %s %s; its encounters are not in %s\n",
                    file.c_str(), in ? "has other columns (another taebp version?)" : "is missing",
                    (out / "encounters.csv").c_str());
       continue;
     }
+    // Where each pooled column comes from in this task's rows (-1: empty).
+    const std::vector<std::string>& cols = k->second;
+    std::vector<int> from;
+    for (const std::string& c : pooled) {
+      const auto at = std::find(cols.begin(), cols.end(), c);
+      from.push_back(at == cols.end() ? -1 : static_cast<int>(at - cols.begin()));
+    }
+    const bool same = cols == pooled;
     std::string prefix = std::to_string(t.point) + ',' + std::to_string(t.replicate) + ',' +
                          std::to_string(t.seed);
     for (const std::string& v : plan.points[static_cast<std::size_t>(t.point)].values)
       prefix += ',' + CsvCell(v);
-    while (std::getline(in, line))
-      if (!line.empty()) f << prefix << ',' << line << (pad ? padding : std::string()) << '\n';
+    while (std::getline(in, line)) {
+      if (line.empty()) continue;
+      if (same) {
+        f << prefix << ',' << line << '\n';
+        continue;
+      }
+      const std::vector<std::string> cells = SplitCsvRow(line);
+      f << prefix;
+      for (int i : from) f << ',' << (i >= 0 && i < static_cast<int>(cells.size()) ? cells[i] : "");
+      f << '\n';
+    }
   }
   f.flush();
   if (!f) {

@@ -6,6 +6,7 @@
 #include "plan_values.h"
 #include "taebp/config/policies.h"
 #include "taebp/persuasion/number_text.h"
+#include "taebp/report/clustered.h"
 #include "taebp/report/metrics.h"
 #include "taebp/report/report.h"
 
@@ -178,15 +179,22 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
         return std::vector<std::string>{std::to_string(sum)};
       }
       case Pool::kRate: {
-        long k = 0, n = 0;
+        // Clustered by HV within each run and by run (report/clustered.h).
+        std::vector<RunRate> rates;
         for (const Json& m : runs) {
           const double c = value(m, metric.count), t = value(m, metric.per);
-          if (std::isfinite(c) && std::isfinite(t)) k += std::lround(c), n += std::lround(t);
+          if (!std::isfinite(c) || !std::isfinite(t)) continue;
+          const double deff = value(m, name + "_deff");
+          const double clusters = value(m, name + "_clusters");
+          rates.push_back({c, t, std::isfinite(deff) ? deff : 1.0,
+                           std::isfinite(clusters) ? std::lround(clusters) : 0L});
         }
-        if (n <= 0) return std::vector<std::string>{"", "", ""};
-        const Interval ci = Wilson(k, n);
-        return std::vector<std::string>{num(static_cast<double>(k) / static_cast<double>(n)),
-                                        num(ci.low), num(ci.high)};
+        double trials = 0;
+        for (const RunRate& r : rates) trials += r.n;
+        if (!(trials > 0)) return std::vector<std::string>{"", "", "", "", ""};
+        const RateInterval ci = PooledRate(rates);
+        return std::vector<std::string>{num(ci.rate), num(ci.low), num(ci.high), num(ci.deff),
+                                        std::to_string(ci.clusters)};
       }
       case Pool::kWeighted:
       case Pool::kPrediction: {

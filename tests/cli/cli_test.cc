@@ -548,7 +548,7 @@ const std::map<std::string, std::vector<std::string>>& ExpectedOptions() {
                   "--steepness", "--midpoint", "--noise", "--noise-scale", "--noise-bias",
                   "--noise-delta", "--json"}},
       {"solve", {"PROBLEM", "--json"}},
-      {"run", {"CONFIG", "--set", "--out", "--quiet", "--gui", "--delay"}},
+      {"run", {"CONFIG", "--set", "--out", "--quiet", "--paired", "--gui", "--delay"}},
       {"sweep", {"CONFIG", "--set", "--out", "--jobs", "--shard", "--list", "--quiet", "--mpi"}},
       {"merge", {"OUT", "--quiet"}},
       {"snapshot", {"CONFIG", "--out", "--at", "--set", "--policy", "--junction", "--zoom",

@@ -5,6 +5,7 @@
 // Wilson intervals), the dynamic trust against its mean-field path and fixed
 // point, the learner's failures against its posterior, and determinism.
 #include "taebp/config/config.h"
+#include "taebp/report/clustered.h"
 #include "taebp/report/report.h"
 #include "taebp/runner/runner.h"
 
@@ -123,8 +124,9 @@ TEST(Beyond, NoiseAwareDesignKeepsCollisionsWithinDeltaLambdaThePapersDoesNot) {
     }
     EXPECT_GT(noisy, n / 2);
     EXPECT_EQ(p.nudges_unrealised, 0);
-    // The exact theory over the noise inside the 99.9% intervals.
-    const Interval ci_c = Wilson(collisions, n, kZ999), ci_d = Wilson(dc, n, kZ999);
+    // The exact theory over the noise inside the 99.9% intervals (clustered by HV).
+    const RateInterval ci_c = RunRateInterval(p, "collision_rate", kZ999);
+    const RateInterval ci_d = RunRateInterval(p, "dc_rate", kZ999);
     EXPECT_LE(ci_d.low, p.theory.dc_rate);
     EXPECT_GE(ci_d.high, p.theory.dc_rate);
     EXPECT_LE(ci_c.low, p.theory.collision_rate);
@@ -168,14 +170,10 @@ TEST(Beyond, DynamicTrustFollowsItsMeanFieldToTheFixedPoint) {
               std::abs(0.6 - fixed.at(p.policy)) / 6 + 4 * sd);
     EXPECT_LT(std::abs(b.final_mean_field - fixed.at(p.policy)),
               std::abs(0.6 - fixed.at(p.policy)) / 6);
-    // The per-encounter theory (given each trust state) inside the 99.9% interval.
-    long dc = 0, collisions = 0;
-    for (const EncounterRecord& e : p.encounters) {
-      dc += e.hv_dc;
-      collisions += e.collision;
-    }
-    const long total = static_cast<long>(p.encounters.size());
-    const Interval ci_d = Wilson(dc, total, kZ999), ci_c = Wilson(collisions, total, kZ999);
+    // The per-encounter theory (given each trust state) inside the 99.9% interval,
+    // clustered by HV: each HV's trust walks on its own.
+    const RateInterval ci_d = RunRateInterval(p, "dc_rate", kZ999);
+    const RateInterval ci_c = RunRateInterval(p, "collision_rate", kZ999);
     EXPECT_LE(ci_d.low, p.theory.dc_rate);
     EXPECT_GE(ci_d.high, p.theory.dc_rate);
     EXPECT_LE(ci_c.low, p.theory.collision_rate);
@@ -208,8 +206,9 @@ TEST(Beyond, LearnedTrustIsSafeAndItsFailuresMatchItsPosterior) {
   ASSERT_GT(n, 1000);
   EXPECT_LE(static_cast<double>(collisions) / n, 0.01);
   EXPECT_NEAR(failures, expected, 4 * std::sqrt(expected) + 1);
-  // The per-encounter theory (the design chosen, the HV's trust) inside the 99.9% interval.
-  const Interval ci = Wilson(dc, n, kZ999);
+  // The per-encounter theory (the design chosen, the HV's trust) inside the 99.9% interval,
+  // clustered by HV (the fleet's belief about each HV is its own).
+  const RateInterval ci = RunRateInterval(p, "dc_rate", kZ999);
   EXPECT_LE(ci.low, p.theory.dc_rate);
   EXPECT_GE(ci.high, p.theory.dc_rate);
   EXPECT_EQ(p.beyond.hvs_met, 8);

@@ -5,6 +5,7 @@
 // through the library's learning rule; always_nudge unlearned within the
 // hour; guarded ta_ebp never colliding, its DC rate inside the 99.9 % Wilson
 // interval of the mean-field path; the paper's scheme on the knife edge.
+#include "taebp/report/clustered.h"
 #include "taebp/config/config.h"
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/experience.h"
@@ -61,8 +62,10 @@ Tally Replay(const PolicyRun& run) {
   return t;
 }
 
-bool Inside999(long k, long n, double p) {
-  const Interval ci = Wilson(k, n, 3.2905267314919255);
+// The run's 99.9 % interval of rate metric `rate`, clustered by HV (each HV
+// learns on its own walk: report/clustered.h), holds p.
+bool Inside999(const PolicyRun& run, const char* rate, double p) {
+  const RateInterval ci = RunRateInterval(run, rate, kZ999);
   return ci.low <= p && p <= ci.high;
 }
 
@@ -79,13 +82,13 @@ TEST(ExperienceInSumo, HvsLearnFromSumosDisplacementAlwaysNudgeIsUnlearnedGuarde
   // is learned as meaning the prior: few DC, collisions near lambda.
   EXPECT_LT(static_cast<double>(nudge.dc) / nudge.n, 0.1);
   EXPECT_GE(nudge.dc, 8);
-  EXPECT_TRUE(Inside999(nudge.collisions, nudge.n, nudge.theory_collisions / nudge.n));
-  EXPECT_TRUE(Inside999(nudge.dc, nudge.n, nudge.theory_dc / nudge.n));
+  EXPECT_TRUE(Inside999(r.runs[0], "collision_rate", nudge.theory_collisions / nudge.n));
+  EXPECT_TRUE(Inside999(r.runs[0], "dc_rate", nudge.theory_dc / nudge.n));
   // Guarded ta_ebp: no nudge is ever read as DR, no collision.
   EXPECT_EQ(ta.dr_after_nudge, 0);
   EXPECT_EQ(ta.collisions, 0);
   EXPECT_EQ(ta.theory_collisions, 0.0);
-  EXPECT_TRUE(Inside999(ta.dc, ta.n, ta.theory_dc / ta.n))
+  EXPECT_TRUE(Inside999(r.runs[1], "dc_rate", ta.theory_dc / ta.n))
       << ta.dc << "/" << ta.n << " vs " << ta.theory_dc / ta.n;
   EXPECT_GT(static_cast<double>(ta.dc) / ta.n, 0.25);
   EXPECT_NEAR(r.runs[1].beyond.long_run_dc, 0.375, 1e-12);
@@ -100,8 +103,8 @@ TEST(ExperienceInSumo, ThePapersSchemeAgainstALearnerSitsOnTheKnifeEdge) {
   ASSERT_GT(t.n, 300);
   EXPECT_GT(t.dr_after_nudge, t.nudges / 5);  // about half in the long run
   EXPECT_GT(t.collisions, 0);
-  EXPECT_TRUE(Inside999(t.collisions, t.n, t.theory_collisions / t.n));
-  EXPECT_TRUE(Inside999(t.dc, t.n, t.theory_dc / t.n));
+  EXPECT_TRUE(Inside999(r.runs[0], "collision_rate", t.theory_collisions / t.n));
+  EXPECT_TRUE(Inside999(r.runs[0], "dc_rate", t.theory_dc / t.n));
   EXPECT_NEAR(r.runs[0].beyond.long_run_collision, 0.1, 1e-12);
 }
 

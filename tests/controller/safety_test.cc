@@ -14,6 +14,7 @@
 #include "taebp/report/report.h"
 #include "taebp/scenario/scenario.h"
 
+#include "clustered_support.h"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -27,11 +28,6 @@ namespace {
 
 const std::string kSource = TAEBP_SOURCE_DIR;
 
-// 99.9 % Wilson interval of k in n holds p.
-bool Inside(long k, long n, double p) {
-  const Interval ci = Wilson(k, n, kZ999);
-  return p >= ci.low - 1e-12 && p <= ci.high + 1e-12;
-}
 
 // The reckless HV waits for the major road's gap; a vehicle halted inside
 // the junction is traffic unless a nudged AV holds it; the moves of the game
@@ -41,6 +37,7 @@ TEST(Safety, GridTwoWayNoGameMoveHitsAThirdVehicleWhereSumoNativeHasNoCollision)
   struct Pooled {
     long encounters = 0, collisions = 0, dc = 0;
     double theory_collisions = 0, theory_dc = 0;
+    std::vector<std::vector<EncounterRecord>> runs;  // each seed's
   };
   std::map<std::string, Pooled> pooled;
   for (const char* seed : {"scenario.seed=1", "scenario.seed=2", "scenario.seed=3"}) {
@@ -59,6 +56,7 @@ TEST(Safety, GridTwoWayNoGameMoveHitsAThirdVehicleWhereSumoNativeHasNoCollision)
       const PolicyRun r = RunPolicy(cfg, policy, sc);
       EXPECT_EQ(r.other_collisions_game_move, 0) << "a move of the game hit a third vehicle";
       Pooled& p = pooled[policy];
+      p.runs.push_back(r.encounters);
       for (const EncounterRecord& e : r.encounters) {
         ++p.encounters;
         p.collisions += e.collision;
@@ -78,11 +76,15 @@ TEST(Safety, GridTwoWayNoGameMoveHitsAThirdVehicleWhereSumoNativeHasNoCollision)
     SCOPED_TRACE(policy);
     ASSERT_GT(p.encounters, 100);
     // Theory per encounter (the mean of each encounter's own prediction)
-    // inside the 99.9 % interval of the seeds' pooled rates.
+    // inside the 99.9 % interval of the seeds' pooled rates, clustered by HV
+    // and by run (report/clustered.h).
     const double th_c = p.theory_collisions / p.encounters, th_dc = p.theory_dc / p.encounters;
-    EXPECT_TRUE(Inside(p.collisions, p.encounters, th_c))
-        << p.collisions << " / " << p.encounters << " vs " << th_c;
-    EXPECT_TRUE(Inside(p.dc, p.encounters, th_dc)) << p.dc << " / " << p.encounters << " vs " << th_dc;
+    const RateInterval ci_c =
+        test::PooledEncounterRate(p.runs, [](const EncounterRecord& e) { return e.collision; }, kZ999);
+    const RateInterval ci_dc =
+        test::PooledEncounterRate(p.runs, [](const EncounterRecord& e) { return e.hv_dc; }, kZ999);
+    EXPECT_TRUE(test::Holds(ci_c, th_c)) << p.collisions << " / " << p.encounters << " vs " << th_c;
+    EXPECT_TRUE(test::Holds(ci_dc, th_dc)) << p.dc << " / " << p.encounters << " vs " << th_dc;
   }
 }
 

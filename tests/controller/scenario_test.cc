@@ -14,6 +14,7 @@
 
 #include <sys/stat.h>
 
+#include "clustered_support.h"
 #include "test_support.h"
 
 #include <algorithm>
@@ -35,16 +36,22 @@ namespace fs = std::filesystem;
 
 const std::string kPaper = std::string(TAEBP_SOURCE_DIR) + "/configs/paper.yaml";
 
-// k of n against a theory probability p: exact for p = 0 or 1, else p must lie
-// in the 99.9% Wilson interval of k/n.
-void ExpectAgrees(long k, long n, double p, const std::string& what) {
+// The encounters with `hit` against a theory probability p: exact for p = 0
+// or 1, else p must lie in the 99.9% interval clustered by HV (the outputs'
+// interval, report/clustered.h; Wilson's where the HVs' encounters look
+// independent, as with the paper's one trust).
+void ExpectAgrees(const std::vector<EncounterRecord>& encounters, const test::EncounterHit& hit,
+                  double p, const std::string& what) {
+  const long n = static_cast<long>(encounters.size());
+  long k = 0;
+  for (const EncounterRecord& e : encounters) k += hit(e);
   ASSERT_GT(n, 0) << what;
   if (p == 0.0) {
     EXPECT_EQ(k, 0) << what << ": theory says never";
   } else if (p == 1.0) {
     EXPECT_EQ(k, n) << what << ": theory says always";
   } else {
-    const Interval ci = Wilson(k, n, kZ999);
+    const RateInterval ci = test::EncounterRate(encounters, hit, kZ999);
     EXPECT_GE(p, ci.low) << what << ": " << k << "/" << n << " = " << static_cast<double>(k) / n
                          << ", theory " << p;
     EXPECT_LE(p, ci.high) << what << ": " << k << "/" << n << " = "
@@ -160,10 +167,14 @@ TEST_P(ScenarioPoint, EveryEncounterFollowsTheLibraryAndRatesAgreeWithTheory) {
       dc += e.hv_dc;
       collisions += e.collision;
     }
-    ExpectAgrees(go, n, params.prior_go, "P(intent Go)");
-    ExpectAgrees(nudges, n, theory.nudge_rate, "nudge rate");
-    ExpectAgrees(dc, n, theory.dc_rate, "DC rate");
-    ExpectAgrees(collisions, n, theory.collision_rate, "collision rate");
+    const std::vector<EncounterRecord>& all = run.encounters;
+    ExpectAgrees(all, [](const EncounterRecord& e) { return e.intent_go; }, params.prior_go,
+                 "P(intent Go)");
+    ExpectAgrees(all, [](const EncounterRecord& e) { return e.commanded > 0; }, theory.nudge_rate,
+                 "nudge rate");
+    ExpectAgrees(all, [](const EncounterRecord& e) { return e.hv_dc; }, theory.dc_rate, "DC rate");
+    ExpectAgrees(all, [](const EncounterRecord& e) { return e.collision; }, theory.collision_rate,
+                 "collision rate");
     if (policy == per::Policy::kNoEbp) {
       // No information: every HV decides from the prior (DC iff lambda >= p*).
       EXPECT_EQ(nudges, 0);

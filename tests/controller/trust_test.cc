@@ -1,6 +1,7 @@
 // Heterogeneous trust and penetration: TrustSpec, its YAML form, the expected
 // theory over a trust distribution (against an independent integration), the
 // per-HV draws in SUMO, and tracks that grow to fit the vehicles.
+#include "taebp/report/clustered.h"
 #include "taebp/config/config.h"
 #include "taebp/controller/policy_run.h"
 #include "taebp/report/report.h"
@@ -207,8 +208,10 @@ TEST(HeterogeneousRun, DrawsPerHvTrustAndAgreesWithTheoryGivenHvs) {
   EXPECT_EQ(col, 0);  // exact knowledge: never a collision
   const long n = static_cast<long>(run.encounters.size());
   theory_dc /= n;
-  // The 99.9% Wilson interval around the measured DC rate.
-  const Interval ci = Wilson(dc, n, kZ999);
+  // The 99.9% interval around the measured DC rate, clustered by HV (each
+  // HV's trust is drawn once: its encounters share it).
+  const RateInterval ci = RunRateInterval(run, "dc_rate", kZ999);
+  EXPECT_EQ(ci.rate, static_cast<double>(dc) / n);
   EXPECT_GE(theory_dc, ci.low);
   EXPECT_LE(theory_dc, ci.high);
 }

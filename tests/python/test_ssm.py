@@ -174,12 +174,19 @@ def test_every_policy_has_numeric_conflicts_per_hour_equal_to_sumos_own_file(run
 
 def test_the_device_leaves_the_game_and_sumos_traffic_unchanged(runs):
     on, off = runs / "on", runs / "off"
-    assert open(on / "encounters.csv").read() == open(off / "encounters.csv").read()
+    # encounters.csv: the same rows, the device's pair measures added last.
+    with open(on / "encounters.csv") as f:
+        rows_on = list(csv.reader(f))
+    with open(off / "encounters.csv") as f:
+        rows_off = list(csv.reader(f))
+    assert rows_on[0] == rows_off[0] + ["ssm_min_ttc", "ssm_max_drac", "ssm_min_pet"]
+    assert [r[:len(rows_off[0])] for r in rows_on] == rows_off
     s_on = json.load(open(on / "summary.json"))["policies"]
     s_off = json.load(open(off / "summary.json"))["policies"]
+    ssm_only = lambda k: k.startswith("ssm_") or k == "encounters_no_collision"
     for policy in POLICIES:
-        without = {k: v for k, v in s_on[policy].items() if not k.startswith("ssm_")}
-        without["junctions"] = [{k: v for k, v in j.items() if not k.startswith("ssm_")}
+        without = {k: v for k, v in s_on[policy].items() if not ssm_only(k)}
+        without["junctions"] = [{k: v for k, v in j.items() if not ssm_only(k)}
                                 for j in s_on[policy]["junctions"]]
         assert without == s_off[policy], policy
         assert "ssm_conflicts" not in s_off[policy]
@@ -189,58 +196,95 @@ def test_the_device_leaves_the_game_and_sumos_traffic_unchanged(runs):
 GAME_BEFORE, GAME_AFTER = 30.0, 60.0  # s: a game's window (report/ssm.h)
 
 
-def games_expected(ssm_xml, encounters):
-    """Games whose AV and HV had a counted conflict with each other over a span
-    overlapping [formed - 30 s, formed + 60 s]: any measure and by measure,
-    network-wide and per game junction."""
-    keys = {"minTTC": "ssm_game_ttc_conflicts", "maxDRAC": "ssm_game_drac_conflicts",
-            "PET": "ssm_game_pet_conflicts"}
+COLUMNS = {"minTTC": "ssm_min_ttc", "maxDRAC": "ssm_max_drac", "PET": "ssm_min_pet"}
+NEAR = {"minTTC": "ssm_ttc_near_misses", "maxDRAC": "ssm_drac_near_misses", "PET": "ssm_pet_near_misses"}
+
+
+def pair_measures_expected(ssm_xml, encounters):
+    """Each game's pair measures: the worst value of each measure over its AV's
+    and HV's conflicts with each other whose span overlaps [formed - 30 s,
+    formed + 60 s], past its threshold or not (None: none logged)."""
     of_pair = {}
     for c in conflicts_of(ssm_xml):
-        if c["begin"] < WARMUP:
-            continue
-        passed = {tag for tag in keys if passes(tag, c["m"][tag][0])}
-        if passed:
-            of_pair.setdefault(c["pair"], []).append((c["begin"], c["end"], passed))
-    net = {"ssm_game_conflicts": 0, **{k: 0 for k in keys.values()}}
-    per_j = {}
+        of_pair.setdefault(c["pair"], []).append(c)
+    out = []
     for e in encounters:
         t = float(e["time"])
-        spans = [s for s in of_pair.get(tuple(sorted((e["av"], e["hv"]))), [])
-                 if s[1] >= t - GAME_BEFORE and s[0] <= t + GAME_AFTER]
-        if not spans:
-            continue
-        passed = set().union(*(s[2] for s in spans))
-        for tally in (net, per_j.setdefault(e["junction"], {k: 0 for k in net})):
-            tally["ssm_game_conflicts"] += 1
-            for tag, key in keys.items():
-                tally[key] += tag in passed
-    return net, per_j
+        worst = {tag: None for tag in THRESHOLDS}
+        for c in of_pair.get(tuple(sorted((e["av"], e["hv"]))), []):
+            if c["end"] < t - GAME_BEFORE or c["begin"] > t + GAME_AFTER:
+                continue
+            for tag in THRESHOLDS:
+                v, old = c["m"][tag][0], worst[tag]
+                if v is not None and (old is None or (v > old if tag == "maxDRAC" else v < old)):
+                    worst[tag] = v
+        out.append(worst)
+    return out
 
 
-def test_the_games_own_conflicts_equal_sumos_file_and_sumo_native_has_no_rate(runs):
+def test_the_games_pair_measures_and_near_misses_equal_sumos_file(runs):
+    """encounters.csv's ssm_min_ttc / ssm_max_drac / ssm_min_pet are each game's
+    pair measures in SUMO's file; a near miss is a game without a collision
+    whose pair passes a threshold (a collision is counted once, in collisions);
+    sumo_native has no game and no near-miss rate."""
     on = runs / "on"
     summary = json.load(open(on / "summary.json"))
     with open(on / "encounters.csv") as f:
         encounters = list(csv.DictReader(f))
-    with open(on / "junctions.csv") as f:
-        rows = list(csv.DictReader(f))
-    games = 0
+    near_total = 0
     for policy in POLICIES:
         p = summary["policies"][policy]
         mine = [e for e in encounters if e["policy"] == policy]
-        net, per_j = games_expected(on / policy / "ssm.xml", mine)
-        for key, value in net.items():
+        expected = pair_measures_expected(on / policy / "ssm.xml", mine)
+        near = {key: 0 for key in NEAR.values()}
+        near_any = 0
+        for e, worst in zip(mine, expected):
+            for tag, column in COLUMNS.items():
+                if worst[tag] is None:
+                    assert e[column] == "", (policy, column, e[column])
+                else:
+                    assert float(e[column]) == pytest.approx(worst[tag]), (policy, column)
+            if e["collision"] == "1":
+                continue
+            passed = [tag for tag in THRESHOLDS if passes(tag, worst[tag])]
+            near_any += bool(passed)
+            for tag in passed:
+                near[NEAR[tag]] += 1
+        assert p["ssm_near_misses"] == near_any, policy
+        for key, value in near.items():
             assert p[key] == value, (policy, key, p[key], value)
+        without = sum(e["collision"] == "0" for e in mine)
+        assert p["encounters_no_collision"] == without
         if not mine:
-            assert p["ssm_game_conflict_rate"] is None, policy
-            assert net["ssm_game_conflicts"] == 0
+            assert p["ssm_near_miss_rate"] is None, policy
         else:
-            assert p["ssm_game_conflict_rate"] == pytest.approx(net["ssm_game_conflicts"] / len(mine))
-        for r in rows:
-            if r["policy"] == policy:
-                for key in net:
-                    assert int(r[key]) == per_j.get(r["junction"], {}).get(key, 0), (policy, r["junction"], key)
-        games += net["ssm_game_conflicts"]
+            assert p["ssm_near_miss_rate"] == pytest.approx(near_any / without)
+        near_total += near_any
     assert summary["policies"]["sumo_native"]["encounters"] == 0
-    assert games > 0, "no game had a conflict: the test compares nothing"
+    assert near_total > 0, "no game was a near miss: the test compares nothing"
+
+
+# Runs that SUMO 1.15's SSM device aborted before taebp turned its assertion
+# into what upstream's release builds do (docs/ssm.md, "No run lost"): the
+# shipped two-way grid at flow 150 under TA-EBP (aborted at t = 232 s, two
+# vehicles the device saw collide leaving together) and under No Trust, whose
+# games collide (aborted at t = 484 s). Each now runs to its end, and the
+# device did see what used to abort it ("detected collision" remarks).
+ABORTED = [
+    ["--set", "scenario.duration=600", "--set", "scenario.warmup=120",
+     "--set", "scenario.demand.flow=150", "--set", "policies=[ta_ebp]", "--set", "scenario.seed=1"],
+    ["--set", "scenario.duration=600", "--set", "policies=[no_trust]", "--set", "scenario.seed=1"],
+]
+
+
+@pytest.mark.parametrize("overrides", ABORTED, ids=["ta_ebp_flow150", "no_trust"])
+def test_no_run_is_lost_to_sumos_assertion(tmp_path, overrides):
+    r = cli("run", GRID, *overrides, *SSM, "--out", tmp_path / "run", "--quiet", check=False)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert "SUMO aborted" not in r.stderr
+    summary = json.load(open(tmp_path / "run" / "summary.json"))
+    assert summary["provenance"]["sumo_patches"] == [
+        "MSDevice_SSM.cpp:1870 assertion as in SUMO's release builds: applied"]
+    for policy, p in summary["policies"].items():
+        assert p["ssm_device_warnings"] > 0, policy
+        assert p["simulated_seconds"] == pytest.approx(600)

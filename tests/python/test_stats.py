@@ -9,7 +9,7 @@ import pytest
 
 import taebp
 from taebp import stats
-from conftest import ROOT
+from conftest import ROOT, cli
 
 
 # Newcombe (1998), Statistics in Medicine 17:857-872, Table II, method 3
@@ -87,19 +87,28 @@ def test_small_samples_and_bad_counts():
 
 
 def test_the_same_numbers_as_the_cpp_interval_in_a_run(tmp_path):
-    # summary.json's intervals come from taebp::Wilson: the Python one gives the
-    # same bounds for the same counts.
+    # summary.json's intervals come from taebp::ClusteredRate: the Python one
+    # gives the same bounds for the same encounters, and where the design
+    # effect is at most 1 (the paper's one trust, here) they are Wilson's.
     r = taebp.run(os.path.join(ROOT, "configs", "paper.yaml"),
                   overrides=["scenario.duration=300", "policies=[no_trust,ta_ebp]"])
-    checked = 0
+    rows = list(r.encounters)
+    checked = wilson = 0
     for name, p in r.summary["policies"].items():
+        mine = [e for e in rows if e["policy"] == name]
         n = p["encounters"]
-        for key, k in (("collision_rate", p["collisions"]), ("dc_rate", p["dc"])):
-            lo, hi = stats.wilson(k, n)
-            assert p[key + "_lo"] == pytest.approx(lo, abs=1e-12), (name, key)
-            assert p[key + "_hi"] == pytest.approx(hi, abs=1e-12), (name, key)
+        for key, k, hit in (("collision_rate", p["collisions"], lambda e: e["collision"] in (1, "1", True)),
+                            ("dc_rate", p["dc"], lambda e: e["hv_action"] == "DC")):
+            c = stats.encounter_rate(mine, hit)
+            assert p[key + "_lo"] == pytest.approx(c["low"], abs=1e-12), (name, key)
+            assert p[key + "_hi"] == pytest.approx(c["high"], abs=1e-12), (name, key)
+            assert p[key + "_deff"] == pytest.approx(c["deff"], rel=1e-12), (name, key)
+            if p[key + "_deff"] <= 1:
+                lo, hi = stats.wilson(k, n)
+                assert (p[key + "_lo"], p[key + "_hi"]) == pytest.approx((lo, hi), abs=1e-12)
+                wilson += 1
             checked += 1
-    assert checked == 4
+    assert checked == 4 and wilson >= 1
 
 
 # The formula's signature, as any copy would spell it: z^2 / (4 n^2) under the root.
@@ -109,7 +118,7 @@ WILSON_BODY = re.compile(r"z2?\s*\*?\s*z?\s*/\s*\(\s*4(\.0)?\s*\*\s*n\s*\*\s*n\s
 def test_no_second_wilson_interval_in_the_tree():
     files = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard"], cwd=ROOT, capture_output=True, text=True,
                            check=True).stdout.split()
-    homes = {"report/src/report.cc", "python/taebp/stats.py"}
+    homes = {"report/src/clustered.cc", "python/taebp/stats.py"}
     found = set()
     for f in files:
         if not f.endswith((".cc", ".h", ".py")) and not f.startswith("tools/"):
@@ -121,3 +130,65 @@ def test_no_second_wilson_interval_in_the_tree():
             if WILSON_BODY.search(fh.read()):
                 found.add(f)
     assert found == homes, "Wilson's formula outside its two homes: %s" % sorted(found - homes)
+
+
+# ------------------------------------------------------------ clustered intervals
+# The Python twin of report/clustered.h (docs/metrics.md "Intervals"): the same
+# worked cases as tests/report/clustered_test.cc, and the outputs' own values.
+
+def test_clustered_rate_worked_cases():
+    # HVs of equal rates: Wilson's interval exactly; a design effect of 0.
+    c = stats.clustered_rate([3, 6, 9, 3, 6], [10, 20, 30, 10, 20])
+    assert (c["low"], c["high"]) == stats.wilson(27, 90)
+    assert c["clusters"] == 5 and not c["few_clusters"]
+    # Two HVs, 2 and 8 of 10: design effect 7.2, its excess scaled by (t_1 / z)^2.
+    c = stats.clustered_rate([2, 8], [10, 10])
+    assert c["deff"] == pytest.approx(7.2, abs=1e-12)
+    adj = 1 + 6.2 * (12.7062047361747 / stats.Z95) ** 2
+    lo, hi = stats.wilson_at(0.5, 20 / adj)
+    assert c["low"] == pytest.approx(lo, abs=1e-9) and c["high"] == pytest.approx(hi, abs=1e-9)
+    assert c["few_clusters"]
+    # Pooled: two runs of 10 HVs (design effect 4) at 0.10 and 0.15: the runs'
+    # level (deff 16/7 from 2 runs) sets it, as in the sweep test.
+    p = stats.pooled_rate([20, 30], [200, 200], [4.0, 4.0], [10, 10])
+    assert p["deff"] == pytest.approx(16 / 7, abs=1e-9) and p["clusters"] == 2
+    adj = 1 + (16 / 7 - 1) * (12.7062047361747 / stats.Z95) ** 2
+    lo, hi = stats.wilson_at(0.125, 400 / adj)
+    assert p["low"] == pytest.approx(lo, abs=1e-9) and p["high"] == pytest.approx(hi, abs=1e-9)
+
+
+def test_encounter_rate_gives_the_intervals_the_outputs_report(tmp_path):
+    """From a run's encounters.csv, stats.encounter_rate reproduces summary.json's
+    rate intervals (computed in C++) to the last digits: HVs who learn (an
+    influence run), whose design effect is far from 1."""
+    import csv
+    import json
+    out = tmp_path / "run"
+    cli("run", os.path.join(ROOT, "configs", "influence.yaml"), "--set", "scenario.duration=3600",
+        "--set", "model.experience.design=paper", "--set", "policies=[ta_ebp]",
+        "--set", "scenario.seed=41", "--out", out, "--quiet")
+    p = json.load(open(out / "summary.json"))["policies"]["ta_ebp"]
+    with open(out / "encounters.csv") as f:
+        rows = list(csv.DictReader(f))
+    for rate, hit in (("dc_rate", lambda r: r["hv_action"] == "DC"),
+                      ("collision_rate", lambda r: r["collision"] == "1")):
+        c = stats.encounter_rate(rows, hit)
+        assert c["rate"] == pytest.approx(p[rate], abs=1e-12), rate
+        assert c["low"] == pytest.approx(p[rate + "_lo"], abs=1e-12), rate
+        assert c["high"] == pytest.approx(p[rate + "_hi"], abs=1e-12), rate
+        assert c["deff"] == pytest.approx(p[rate + "_deff"], rel=1e-12), rate
+        assert c["clusters"] == p[rate + "_clusters"] == 8
+    assert p["dc_rate_deff"] > 3
+
+
+def test_normal_quantile_bonferroni_and_the_mover_difference():
+    assert stats.normal_quantile(0.95) == pytest.approx(stats.Z95, abs=1e-12)
+    assert stats.normal_quantile(0.999) == pytest.approx(stats.Z999, abs=1e-12)
+    assert stats.bonferroni_level(4) == pytest.approx(0.9875)
+    # Newcombe (1998b), Statistics in Medicine 17:873-890, Table II, method 10
+    # (the score-based hybrid): 56/70 - 48/80 = 0.2000 [0.0524, 0.3339].
+    a = dict(zip(("low", "high"), stats.wilson(56, 70)), rate=56 / 70)
+    b = dict(zip(("low", "high"), stats.wilson(48, 80)), rate=48 / 80)
+    d, lo, hi = stats.rate_difference(a, b)
+    assert d == pytest.approx(0.2)
+    assert lo == pytest.approx(0.0524, abs=5e-5) and hi == pytest.approx(0.3339, abs=5e-5)

@@ -108,31 +108,46 @@ TEST(SsmOutput, AMissingOrForeignFileIsAnErrorNamingIt) {
               HasSubstr("not SUMO's SSM output"));
 }
 
-// A game's conflicts: its AV's and HV's conflicts with each other over the
-// game's window [formed - 30 s, formed + 60 s], once per game and measure, at
-// the game's junction; other pairs' conflicts and the pair's other times not.
-TEST(SsmOutput, AGamesConflictsAreItsPairsInItsWindowOncePerGameAndMeasure) {
+// A game's pair measures: the worst of each measure over its AV's and HV's
+// conflicts with each other in the game's window [formed - 30 s, formed + 60
+// s], past its threshold or not; other pairs' conflicts and the pair's other
+// times not; NaN where none was logged.
+TEST(SsmOutput, AGamesPairMeasuresAreItsPairsWorstInItsWindow) {
   test::TempDir dir;
   const std::string log = Log().substr(0, Log().rfind("</SSMLog>")) +
                           // E and F: TTC 1.0, then DRAC 5.0 (no TTC) a little later.
                           Conflict("E", "F", 100, 102, "1.00", "NA", "NA", "5.00,0.00") +
                           Conflict("F", "E", 110, 112, "NA", "5.00", "NA", "5.00,0.00") +
+                          // E and F again, long after the game's window: not its.
+                          Conflict("E", "F", 300, 302, "0.50", "9.00", "0.10", "5.00,0.00") +
                           "</SSMLog>\n";
   const std::vector<SsmGame> games = {
-      {"B", "A", "J", 12},    // A-B at 10-20 (TTC) and 40-45 (TTC, DRAC): both in its window
+      {"B", "A", "J", 12},    // A-B at 10-20 (TTC 1.2) and 40-45 (TTC 2.9, DRAC 4.0)
       {"B", "C", "K", 100},   // B-C's DRAC conflict at 30-33 ends before 100 - 30
       {"E", "F", "J", 105},   // TTC and DRAC in two conflicts
-      {"A", "D", "J", 50}};   // A-D: PET 2.5, not a conflict
+      {"A", "D", "J", 50}};   // A-D: PET 2.5, past no threshold, still its value
   const SsmRun r = ReadSsmOutput(dir.Write("ssm.xml", log), Rules(), kAreas, games);
-  EXPECT_EQ(r.network.games, 2);
-  EXPECT_EQ(r.network.games_by_measure[0], 2);  // TTC: A-B, E-F
-  EXPECT_EQ(r.network.games_by_measure[1], 2);  // DRAC: A-B, E-F (its second conflict)
-  EXPECT_EQ(r.network.games_by_measure[2], 0);
-  EXPECT_EQ(r.junction.at("J").games, 2);
-  EXPECT_EQ(r.junction.at("K").games, 0);
-  EXPECT_EQ(r.network.conflicts, 5) << "the games' conflicts are counted among all the others";
+  ASSERT_EQ(r.games.size(), 4u);
+  EXPECT_DOUBLE_EQ(r.games[0].min_ttc, 1.2);
+  EXPECT_DOUBLE_EQ(r.games[0].max_drac, 4.0);
+  EXPECT_TRUE(std::isnan(r.games[0].min_pet));
+  EXPECT_TRUE(std::isnan(r.games[1].min_ttc) && std::isnan(r.games[1].max_drac) &&
+              std::isnan(r.games[1].min_pet));
+  EXPECT_DOUBLE_EQ(r.games[2].min_ttc, 1.0);
+  EXPECT_DOUBLE_EQ(r.games[2].max_drac, 5.0);
+  EXPECT_TRUE(std::isnan(r.games[2].min_pet));
+  EXPECT_DOUBLE_EQ(r.games[3].min_pet, 2.5);
+  EXPECT_FALSE(SsmPasses(Rules(), SsmMeasure::kPet, r.games[3].min_pet));
+  EXPECT_TRUE(SsmPasses(Rules(), SsmMeasure::kTtc, r.games[0].min_ttc));
+  EXPECT_FALSE(SsmPasses(Rules(), SsmMeasure::kTtc, 0.0)) << "TTC 0: SUMO's standstill";
+  // A measure SUMO did not compute: NaN for every game.
+  SsmRules no_drac = Rules();
+  no_drac.on[1] = false;
+  const SsmRun partial = ReadSsmOutput(dir.Write("ssm3.xml", log), no_drac, kAreas, games);
+  EXPECT_TRUE(std::isnan(partial.games[0].max_drac));
+  EXPECT_DOUBLE_EQ(partial.games[0].min_ttc, 1.2);
   const SsmRun none = ReadSsmOutput(dir.Write("ssm2.xml", log), Rules(), kAreas);
-  EXPECT_EQ(none.network.games, 0);
+  EXPECT_TRUE(none.games.empty());
 }
 
 }  // namespace

@@ -235,7 +235,7 @@ TEST(SweepJournal, TornTailIgnoredOtherSweepRefusedOkWins) {
   AddEntry(&both, p, JournalEntry(p, p.tasks[2], "failed", "config error: model.trust", nullptr));
   const std::string csv = ResultsCsv(p, both);
   EXPECT_THAT(csv, HasSubstr("\n0,1,11,0.2,no_trust,ok,,,10,2,0.5,"));
-  EXPECT_THAT(csv, HasSubstr("\n0,1,11,0.2,ta_ebp,ok,,,0,0,,,,1,0,,,,0.5,0.5,0.5,0.5,,,1,"));
+  EXPECT_THAT(csv, HasSubstr("\n0,1,11,0.2,ta_ebp,ok,,,0,0,,,,,,1,0,,,,,,0.5,0.5,0.5,0.5,,,1,"));
   EXPECT_THAT(csv, HasSubstr("\n1,0,10,0.8,ta_ebp,failed,config error: model.trust,,,"));
   EXPECT_THAT(ResultsJsonl(p, both), HasSubstr("\"collision_rate\":null"));
   const std::string agg = AggregateCsv(p, both);

@@ -2,6 +2,7 @@
 // metric read under its name, and results.csv and aggregate.csv pooled as the
 // table declares (the run's own outputs: tests/report/metric_table_test.cc).
 #include "taebp/report/metrics.h"
+#include "taebp/report/clustered.h"
 #include "taebp/report/report.h"
 #include "taebp/sweep/plan.h"
 
@@ -93,6 +94,9 @@ TEST(MetricTable, TheAggregatePoolsEachMetricAsDeclared) {
   EXPECT_DOUBLE_EQ(std::stod(row["collision_rate"]), 3.0 / 40);
   EXPECT_DOUBLE_EQ(std::stod(row["collision_rate_lo"]), ci.low);
   EXPECT_DOUBLE_EQ(std::stod(row["collision_rate_hi"]), ci.high);
+  // Runs of an older taebp without a design effect: taken as 1 with no
+  // cluster known; the runs' own spread is below the binomial's: Wilson.
+  EXPECT_EQ(row["collision_rate_clusters"], "0");
   EXPECT_DOUBLE_EQ(std::stod(row["dc_rate"]), 16.0 / 40);
   // Weighted by encounters; the run without encounters does not count.
   EXPECT_NEAR(std::stod(row["theory_given_hvs_dc_rate"]), (10 * 0.3 + 30 * 0.4) / 40, 1e-15);
@@ -103,6 +107,48 @@ TEST(MetricTable, TheAggregatePoolsEachMetricAsDeclared) {
   EXPECT_EQ(row["wait_max"], "9");                                  // max
   EXPECT_EQ(row.count("simulated_seconds"), 0u) << "not pooled";
   EXPECT_EQ(row["time_loss_mean"], "") << "absent in every run: empty";
+}
+
+// A rate pooled over seeds is clustered by HV within each run and by run
+// (report/clustered.h PooledRate): two runs of 10 HVs each, design effect 4
+// within each, at rates 0.10 and 0.15: the runs disagree more than their HVs
+// explain, so the runs' level (2 clusters, t with 1 degree of freedom) sets
+// the interval. Worked by hand: p = 50/400, the binomial variance p(1-p)/400,
+// the runs' CR1 variance 2 (5^2 + 5^2) / 400^2, design effect 16/7.
+TEST(MetricTable, TheAggregatesRateIsClusteredByHvAndByRun) {
+  const Plan plan = ExpandSweep(
+      "scenario: {avs: 8, hvs: 8, duration: 60}\npolicies: [ta_ebp]\n"
+      "sweep:\n  replicates: 2\n  grid:\n    model.trust: [0.6]\n",
+      "test.yaml", {});
+  auto run = [](long enc, long coll) {
+    Json m;
+    for (const std::string& c : MetricColumns()) m[c] = nullptr;
+    m["encounters"] = enc;
+    m["collisions"] = coll;
+    m["collision_rate"] = static_cast<double>(coll) / enc;
+    m["collision_rate_deff"] = 4.0;
+    m["collision_rate_clusters"] = 10;
+    return Json{{"ta_ebp", m}};
+  };
+  Journal journal;
+  AddEntry(&journal, plan, JournalEntry(plan, plan.tasks[0], "ok", "", run(200, 20)));
+  AddEntry(&journal, plan, JournalEntry(plan, plan.tasks[1], "ok", "", run(200, 30)));
+  const std::vector<std::string> lines = Lines(AggregateCsv(plan, journal));
+  const std::vector<std::string> header = SplitCsvLine(lines[0]);
+  const std::vector<std::string> cells = SplitCsvLine(lines[1]);
+  std::map<std::string, std::string> row;
+  for (std::size_t i = 0; i < header.size(); ++i) row[header[i]] = cells[i];
+  const double p = 50.0 / 400, binomial = p * (1 - p) / 400;
+  const double deff_run = 2.0 * 50.0 / (400.0 * 400.0) / binomial;
+  EXPECT_NEAR(deff_run, 16.0 / 7.0, 1e-12);
+  const double t1 = 12.7062047361747;  // Student's t, 1 degree of freedom, 97.5 %
+  const double adj = 1 + (deff_run - 1) * (t1 / kZ95) * (t1 / kZ95);
+  const Interval expected = WilsonAt(p, 400 / adj);
+  EXPECT_DOUBLE_EQ(std::stod(row["collision_rate"]), p);
+  EXPECT_NEAR(std::stod(row["collision_rate_lo"]), expected.low, 1e-9);
+  EXPECT_NEAR(std::stod(row["collision_rate_hi"]), expected.high, 1e-9);
+  EXPECT_NEAR(std::stod(row["collision_rate_deff"]), deff_run, 1e-9);
+  EXPECT_EQ(row["collision_rate_clusters"], "2");
 }
 
 TEST(MetricTable, ThePredictionWithoutEncountersIsThePlainMean) {

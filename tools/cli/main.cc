@@ -6,6 +6,7 @@
 #include "taebp/rundir/interrupt.h"
 #include "taebp/rundir/output_dir.h"
 #include "taebp/report/metrics.h"
+#include "taebp/report/paired.h"
 #include "taebp/report/report.h"
 #include "taebp/runner/errors.h"
 #include "taebp/runner/runner.h"
@@ -272,6 +273,7 @@ std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv) {
 int PrintMetrics(const std::string& what) {
   if (what == "markdown") std::cout << taebp::MetricsMarkdown() << "\n" << taebp::SampleColumnsMarkdown();
   else if (what == "renames") std::cout << taebp::RenamesMarkdown();
+  else if (what == "paired") std::cout << taebp::PairedColumnsMarkdown();
   else std::cout << taebp::MetricsJson() << "\n";
   return 0;
 }
@@ -345,6 +347,10 @@ int main(int argc, char** argv) {
                       std::string(taebp::PolicyOf(taebp::PolicyKind::kTaEbp).name) + "]");
   run->add_option("--out", out_dir, "output directory (default: results/<config name>)");
   run->add_flag("--quiet", quiet, "no progress on stderr");
+  bool paired = false;
+  run->add_flag("--paired", paired,
+                "paired games: play each game from the state it formed in under every game policy "
+                "of the config (scenario.paired; paired.csv, docs/paired.md)");
   std::string rss_log;
   run->add_option("--rss-log", rss_log,
                   "append 'policy,simulated_seconds,rss_kb' every simulated minute (tools/soak)")
@@ -360,8 +366,8 @@ int main(int argc, char** argv) {
       "metrics", "The result metrics: names, units, meaning and how sweeps pool them");
   metrics->add_option("--print", metrics_what,
                       "markdown: the manual's table (docs/metrics.md); renames: CHANGELOG.md's list; json: the "
-                      "table as data")
-      ->check(CLI::IsMember({"markdown", "renames", "json"}))
+                      "table as data; paired: paired.csv's columns (docs/paired.md)")
+      ->check(CLI::IsMember({"markdown", "renames", "json", "paired"}))
       ->capture_default_str();
   std::string policies_what = "list";
   CLI::App* policies = app.add_subcommand(
@@ -391,6 +397,7 @@ int main(int argc, char** argv) {
           std::ofstream(rss_log, std::ios::app) << policy << ',' << t << ',' << kb << '\n';
         };
       }
+      if (paired) overrides.push_back("scenario.paired=true");
       return RunExperimentCommand(config_path, overrides, out_dir, quiet, options);
     }
     if (*metrics) return PrintMetrics(metrics_what);

@@ -268,6 +268,12 @@ struct ScenarioConfig {
   // the minor stop line, an HV approaching on the major road); unset: off,
   // only pairs that both stop at lines meet (see MajorRoadConfig).
   std::optional<MajorRoadConfig> major_road;
+  // Paired games (docs/paired.md): where a game forms, the run forks and
+  // plays it from that same state (SUMO's and the controller's, random
+  // number generators included) under each game policy of the run for the
+  // game's window; the run goes on under its own policy. paired.csv and
+  // summary.json's paired section. `taebp run --paired` sets it.
+  bool paired = false;
 
   template <typename Archive>
   void Serialize(Archive* a) {
@@ -308,6 +314,7 @@ struct ScenarioConfig {
     a->Visit("stall_action", &stall_action);
     a->Visit("encounter_pairs", &encounter_pairs);
     a->Visit("major_road", &major_road);
+    a->Visit("paired", &paired);
   }
   bool IsNetwork() const { return kind == ScenarioKind::kNetwork; }
 };

@@ -91,6 +91,11 @@ class NetworkController {
   // so far (finished, after the warm-up).
   long VehiclesNow() const;
   long EncountersSoFar() const;
+  // scenario.paired: whether this process is a branch of a paired game
+  // (paired.h), and its end where the run cannot go on (it ended, an error):
+  // the branch's row as far as it got, then the process ends.
+  bool InBranch() const;
+  [[noreturn]] void EndBranch(const std::string& status, const std::string& error = "");
 
  private:
   struct Impl;

@@ -29,6 +29,18 @@ enum class Backend {
 // args[0] and appends "--start", "--quit-on-end" and `gui_args` (e.g.
 // {"--delay", "100"}).
 void SetBackend(Backend backend, std::vector<std::string> gui_args = {});
+// The backend selected.
+Backend CurrentBackend();
+
+// SUMO 1.15's SSM device (scenario.outputs.ssm) asserts that two vehicles it
+// saw inside their conflict area at once never leave it in the same step
+// (MSDevice_SSM.cpp:1870); Debian builds SUMO with assertions on, so such a
+// run aborted. Upstream's release builds (NDEBUG) have no assertion there and
+// classify the encounter as both having left. This makes the SUMO library of
+// this process do the same, after checking that its code is Debian 12's sumo
+// 1.15.0 build byte for byte (sumo_ssm_release.cc; docs/ssm.md). Returns
+// "applied" or why not (then the device may still abort).
+std::string SsmReleaseBehaviour();
 
 }  // namespace sumo
 

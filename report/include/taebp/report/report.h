@@ -33,6 +33,9 @@ struct Provenance {
   std::string sumo_version;
   std::string taebp_version;
   std::vector<std::string> warnings;  // ScenarioWarnings
+  // What this process changed in SUMO's library for the run (sumo_adapter.h
+  // SsmReleaseBehaviour): empty for most runs.
+  std::vector<std::string> sumo_patches;
 };
 // The git revision the binary was built from ("unknown" outside a checkout).
 std::string BuildGitRevision();
@@ -57,9 +60,16 @@ std::string SummaryJson(const std::vector<PolicyRun>& runs, const Provenance& pr
 // summary.json.
 // Network scenarios add both_proceed_collides after the paper's columns;
 // runs beyond the paper (PolicyRun::beyond.on) then add the columns of
-// EncounterCsvColumns(true, ...).
+// EncounterCsvColumns(true, ...); runs with SUMO's SSM device
+// (scenario.outputs.ssm) then the game's pair measures.
 std::string EncountersCsv(const std::vector<PolicyRun>& runs);
-std::vector<std::string> EncounterCsvColumns(bool beyond = false, bool network = false);
+std::vector<std::string> EncounterCsvColumns(bool beyond = false, bool network = false,
+                                             bool ssm = false);
+// One group of those columns: "paper", "network", "beyond" or "ssm".
+std::vector<std::string> EncounterCsvColumnGroup(const std::string& group);
+// The cells of one CSV line as written (RFC 4180 records on one line; a
+// quoted cell keeps its quotes), for copying cells between files.
+std::vector<std::string> SplitCsvRow(const std::string& line);
 // Whether any run is beyond the paper (then the files below are written too).
 bool BeyondPaper(const std::vector<PolicyRun>& runs);
 // timeseries.csv: one row per (policy, sample time): the HVs in the network,

@@ -79,6 +79,9 @@ struct EncounterRecord {
   bool major_road = false;
   double theory_dc = 0;         // library prediction for this AV-HV pair's design and HV
   double theory_collision = 0;
+  // scenario.outputs.ssm: the worst surrogate measures between this game's AV
+  // and HV over the game's window (report/ssm.h SsmPair; NaN: none logged).
+  SsmPair ssm;
   BeyondEncounter beyond;
 };
 
@@ -200,6 +203,35 @@ struct BeyondRun {
   persuasion::PredictedOutcome oracle;
 };
 
+// Paired games (scenario.paired, docs/paired.md): one game of a run played
+// from the state it formed in under one game policy (a branch of the run,
+// in a forked process). paired.csv's rows.
+struct PairedRecord {
+  std::string game;      // "HOST-K": the K-th paired game of the run of policy HOST
+  std::string host;      // the policy of the run the game formed in
+  std::string policy;    // the policy the branch played it under
+  double time = 0;       // when it formed (s)
+  std::string junction, av, hv;
+  // ok: the game finished (its outcome below; a vehicle not past the
+  // junction when the window or the run ended has no clearing time);
+  // unfinished: the window (kPairedWindow) or the run ended before the game
+  // did; failed: the branch ended abnormally (`error`).
+  std::string status;
+  std::string error;
+  bool intent_go = false;
+  double nudge = 0;       // commanded nudge (m)
+  bool hv_dc = false, av_first = false, collision = false;
+  double decided_at = kNoValue;  // when the HV decided (s)
+  // Seconds from the game's formation until each vehicle reached the edge
+  // after the junction (NaN: not within the window): the pair's delay.
+  double av_clear = kNoValue, hv_clear = kNoValue;
+  // Collisions between a game move and a third vehicle during the window.
+  long third_collisions = 0;
+  double hv_trust = 0, theory_dc = 0, theory_collision = 0;
+};
+// How long a branch follows its game at most (s after it formed).
+inline constexpr double kPairedWindow = 120;
+
 struct PolicyRun {
   std::string policy;
   // SUMO's warnings in this policy's simulation: all, SUMO's collision
@@ -256,6 +288,8 @@ struct PolicyRun {
   std::vector<std::pair<std::string, std::string>> sumo_output_files;
   BeyondRun beyond;
   SsmRun ssm;  // scenario.outputs.ssm: SUMO's SSM conflicts (report/ssm.h)
+  // scenario.paired: this run's games played under each game policy.
+  std::vector<PairedRecord> paired;
 };
 
 }  // namespace taebp

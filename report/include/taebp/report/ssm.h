@@ -54,16 +54,30 @@ struct SsmGame {
 inline constexpr double kSsmGameBefore = 30;  // s
 inline constexpr double kSsmGameAfter = 60;   // s
 
+// A game's pair measures: the worst value of each measure over the conflicts
+// logged between its AV and HV in its window (least TTC and PET, greatest
+// DRAC), whether or not it passes its threshold; NaN where none was logged
+// (or the measure is not computed). encounters.csv's ssm_min_ttc,
+// ssm_max_drac, ssm_min_pet.
+struct SsmPair {
+  double min_ttc = std::numeric_limits<double>::quiet_NaN();
+  double max_drac = std::numeric_limits<double>::quiet_NaN();
+  double min_pet = std::numeric_limits<double>::quiet_NaN();
+  double Value(SsmMeasure m) const {
+    return m == SsmMeasure::kTtc ? min_ttc : m == SsmMeasure::kDrac ? max_drac : min_pet;
+  }
+};
+
+// Whether value `v` of measure `m` passes its threshold as SUMO's own test
+// does (TTC in (0, t], DRAC >= t, PET <= t), for a measure computed.
+bool SsmPasses(const SsmRules& rules, SsmMeasure m, double v);
+
 // Conflicts of one policy or one junction.
 struct SsmTally {
   long conflicts = 0;                           // any measure
   std::array<long, kSsmMeasures> by_measure{};  // TTC, DRAC, PET
   double ttc_min = std::numeric_limits<double>::quiet_NaN();   // over the TTC conflicts
   double drac_max = std::numeric_limits<double>::quiet_NaN();  // over the DRAC conflicts
-  // Games whose AV and HV had a conflict with each other: any measure, and by
-  // measure.
-  long games = 0;
-  std::array<long, kSsmMeasures> games_by_measure{};
 };
 
 struct SsmRun {
@@ -72,6 +86,7 @@ struct SsmRun {
   SsmTally network;                         // every conflict in the network
   SsmTally at_junctions;                    // those at a controlled junction
   std::map<std::string, SsmTally> junction; // by controlled junction id
+  std::vector<SsmPair> games;               // the games' pair measures, in the order given
   long records = 0;                         // conflict elements SUMO wrote (all times)
   // The device's warnings (a collision it saw; "Cannot compute SSM due to bad
   // internal lane geometry at junction J": crossings there go unmeasured).
