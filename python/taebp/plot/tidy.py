@@ -4,7 +4,7 @@ metric's value, its interval, its theory and the stalled runs. Every plot
 of the generic view (view.py) draws from it.
 
 Intervals: a rate pooled over the seeds (aggregate.csv's METRIC_lo /
-METRIC_hi: the Wilson interval of the pooled counts, taebp.stats.wilson's
+METRIC_hi: the interval of the pooled counts, clustered by HV and run (taebp.stats.pooled_rate's)
 C++ twin); a mean over the seeds (METRIC_sd with runs_ok): the Student t
 95 % interval of the mean (taebp.stats.student_t_quantile).
 Derived here (not in the metric table): encounters_per_hour, the AV-HV
