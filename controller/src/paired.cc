@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <tuple>
 
 #include <fcntl.h>
 #include <sys/wait.h>
@@ -41,6 +42,8 @@ json ToJson(const PairedRecord& r) {
           {"av_clear", NumberOrNull(r.av_clear)},
           {"hv_clear", NumberOrNull(r.hv_clear)},
           {"third_collisions", r.third_collisions},
+          {"pair_min_ttc", NumberOrNull(r.pair_min_ttc)},
+          {"pair_min_pet", NumberOrNull(r.pair_min_pet)},
           {"hv_trust", r.hv_trust},
           {"theory_dc", r.theory_dc},
           {"theory_collision", r.theory_collision}};
@@ -59,6 +62,8 @@ void FromJson(const json& j, PairedRecord* r) {
   r->av_clear = NumberOf(j, "av_clear");
   r->hv_clear = NumberOf(j, "hv_clear");
   r->third_collisions = j.value("third_collisions", 0L);
+  r->pair_min_ttc = NumberOf(j, "pair_min_ttc");
+  r->pair_min_pet = NumberOf(j, "pair_min_pet");
   r->hv_trust = NumberOf(j, "hv_trust");
   r->theory_dc = NumberOf(j, "theory_dc");
   r->theory_collision = NumberOf(j, "theory_collision");
@@ -177,6 +182,7 @@ void Pairing::StartBranch(persuasion::Policy policy, bool major, EncounterGame& 
   av_edge_ = s_.sumo.RouteIndex(av_id_);
   hv_edge_ = s_.sumo.RouteIndex(hv_id_);
   third_before_ = s_.out.other_collisions_game_move;
+  Sample();  // where the two are as the game forms
 }
 
 void Pairing::Drawn(int av, int hv, const AvDraw& draw) {
@@ -197,8 +203,27 @@ void Pairing::Left(int h) {
   if (h == hv_ && std::isnan(hv_clear_)) hv_clear_ = s_.now - formed_;
 }
 
+void Pairing::Sample() {
+  const int av = s_.vehicles.Find(av_id_), hv = s_.vehicles.Find(hv_id_);
+  if (av != av_ || hv != hv_) return;
+  for (const auto& [h, id, track] :
+       {std::make_tuple(av, av_id_, &av_track_), std::make_tuple(hv, hv_id_, &hv_track_)}) {
+    junction::BodySample b;
+    b.t = s_.now;
+    const XY p = s_.sumo.Position(id);
+    b.x = p.x;
+    b.y = p.y;
+    b.heading = junction::HeadingFromSumoAngle(s_.sumo.Angle(id));
+    b.speed = s_.sumo.Speed(id);
+    b.length = s_.vehicles[h].length;
+    b.width = s_.vehicles[h].width;
+    track->push_back(b);
+  }
+}
+
 void Pairing::Step() {
   if (!branch_) return;
+  Sample();
   if (std::isnan(av_clear_) && s_.vehicles.Find(av_id_) == av_ && s_.sumo.RouteIndex(av_id_) > av_edge_)
     av_clear_ = s_.now - formed_;
   if (std::isnan(hv_clear_) && s_.vehicles.Find(hv_id_) == hv_ && s_.sumo.RouteIndex(hv_id_) > hv_edge_)
@@ -234,6 +259,9 @@ PairedRecord Pairing::Row(const std::string& status, const std::string& error) c
   }
   r.av_clear = av_clear_;
   r.hv_clear = hv_clear_;
+  const junction::PairSurrogates m = junction::MeasurePair(av_track_, hv_track_);
+  r.pair_min_ttc = m.min_ttc;
+  r.pair_min_pet = m.min_pet;
   r.third_collisions = s_.out.other_collisions_game_move - third_before_;
   return r;
 }

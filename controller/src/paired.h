@@ -14,6 +14,7 @@
 #pragma once
 
 #include "run_state.h"
+#include "taebp/junction/pair_surrogates.h"
 
 #include <memory>
 
@@ -70,6 +71,9 @@ class Pairing {
   EncounterRecord record_;
   long third_before_ = 0;
   std::unique_ptr<HvPopulation> population_;  // the branch's policy, for its game only
+  // Both vehicles each step while both are in the network (pair_surrogates.h).
+  std::vector<junction::BodySample> av_track_, hv_track_;
+  void Sample();
 };
 
 }  // namespace taebp::control

@@ -53,6 +53,10 @@ const std::vector<PairedColumn>& Columns() {
       {"hv_clear", "the same for the HV", [](const PairedRecord& r) { return Opt(r.hv_clear); }},
       {"third_collisions", "collisions of a game move with a third vehicle in the window",
        [](const PairedRecord& r) { return std::to_string(r.third_collisions); }},
+      {"pair_min_ttc", "the pair's least time to collision in the window, both carried on at speed and heading (s; empty: never on a collision course within 10 s)",
+       [](const PairedRecord& r) { return Opt(r.pair_min_ttc); }},
+      {"pair_min_pet", "the pair's post-encroachment time: the least time between the two occupying the same place (s; 0: a collision; empty: never)",
+       [](const PairedRecord& r) { return Opt(r.pair_min_pet); }},
       {"hv_trust", "the HV's trust", [](const PairedRecord& r) { return NumberText(r.hv_trust); }},
       {"theory_dc", "the library's DC rate for this HV under the branch's policy",
        [](const PairedRecord& r) { return NumberText(r.theory_dc); }},
@@ -69,6 +73,8 @@ double Measure(const PairedRecord& r, const std::string& m) {
   if (m == "av_clear") return r.av_clear;
   if (m == "hv_clear") return r.hv_clear;
   if (m == "third_collisions") return static_cast<double>(r.third_collisions);
+  if (m == "pair_min_ttc") return r.pair_min_ttc;
+  if (m == "pair_min_pet") return r.pair_min_pet;
   return std::nan("");
 }
 
@@ -76,7 +82,7 @@ double Measure(const PairedRecord& r, const std::string& m) {
 
 const std::vector<std::string>& PairedMeasures() {
   static const std::vector<std::string> m = {"collision", "dc", "av_clear", "hv_clear",
-                                              "third_collisions"};
+                                              "third_collisions", "pair_min_ttc", "pair_min_pet"};
   return m;
 }
 

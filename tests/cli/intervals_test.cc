@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_support.h"
+#include "csv_support.h"
 #include "test_support.h"
 
 #include <nlohmann/json.hpp>
@@ -30,20 +31,6 @@ using taebp::test::TempDir;
 
 const std::string kCli = TAEBP_CLI;
 
-std::vector<std::string> Split(const std::string& line) {
-  std::vector<std::string> cells(1);
-  bool quoted = false;
-  for (char c : line) {
-    if (c == '"') quoted = !quoted;
-    if (c == ',' && !quoted) {
-      cells.emplace_back();
-      continue;
-    }
-    cells.back() += c;
-  }
-  return cells;
-}
-
 TEST(ClusteredIntervals, TheInfluenceRunsDcIntervalIsAsWideAsABootstrapOverItsHvs) {
   TempDir tmp;
   const fs::path out = tmp.path() / "influence";
@@ -53,19 +40,10 @@ TEST(ClusteredIntervals, TheInfluenceRunsDcIntervalIsAsWideAsABootstrapOverItsHv
              "scenario.seed=41", "--out", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.Describe();
   // Each HV's DC choices and encounters.
-  std::istringstream in(ReadText(out / "encounters.csv"));
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> header = Split(line);
-  const auto col = [&](const char* name) {
-    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
-  };
   std::map<std::string, std::pair<double, double>> hvs;  // hv -> (dc, encounters)
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    const std::vector<std::string> cells = Split(line);
-    auto& h = hvs[cells[col("hv")]];
-    h.first += cells[col("hv_action")] == "DC";
+  for (const auto& row : taebp::test::ReadCsvRows(out / "encounters.csv")) {
+    auto& h = hvs[row.at("hv")];
+    h.first += row.at("hv_action") == "DC";
     h.second += 1;
   }
   ASSERT_EQ(hvs.size(), 8u);
@@ -105,7 +83,7 @@ TEST(ClusteredIntervals, TheInfluenceRunsDcIntervalIsAsWideAsABootstrapOverItsHv
   ASSERT_LT(theory, boot_hi);
   std::istringstream table(r.out);
   bool dc_row = false;
-  while (std::getline(table, line))
+  for (std::string line; std::getline(table, line);)
     if (line.rfind("DC Rate", 0) == 0) {
       dc_row = true;
       EXPECT_EQ(line.find('!'), std::string::npos) << line;

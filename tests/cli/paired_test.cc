@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_support.h"
+#include "csv_support.h"
 #include "test_support.h"
 
 #include <nlohmann/json.hpp>
@@ -36,38 +37,7 @@ CliResult RunCli(const std::vector<std::string>& args) {
   return taebp::test::RunProgram(kCli, args);
 }
 
-// The cells of one CSV line (no quoted commas in these files' cells but the
-// error column's, which the tests do not read).
-std::vector<std::string> Split(const std::string& line) {
-  std::vector<std::string> cells(1);
-  bool quoted = false;
-  for (char c : line) {
-    if (c == '"') quoted = !quoted;
-    if (c == ',' && !quoted) {
-      cells.emplace_back();
-      continue;
-    }
-    cells.back() += c;
-  }
-  return cells;
-}
-
-// A CSV file as rows of named cells.
-std::vector<std::map<std::string, std::string>> ReadCsv(const fs::path& p) {
-  std::vector<std::map<std::string, std::string>> rows;
-  std::istringstream in(ReadText(p));
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> header = Split(line);
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    const std::vector<std::string> cells = Split(line);
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
-    rows.push_back(row);
-  }
-  return rows;
-}
+using taebp::test::ReadCsvRows;
 
 // The acceptance run of issue 41: the shipped two-way grid, 600 s (300 of
 // them warm-up), the three game policies, paired; and the same run without
@@ -86,8 +56,8 @@ TEST(PairedGrid, EveryGameUnderEveryPolicySameDrawTheRunUnchangedAndTheTheoryMet
                                   "--set", "scenario.duration=600", "--out", plain.string(),
                                   "--quiet"});
   ASSERT_EQ(alone.exit_code, 0) << alone.Describe();
-  const auto rows = ReadCsv(out / "paired.csv");
-  const auto encounters = ReadCsv(out / "encounters.csv");
+  const auto rows = ReadCsvRows(out / "paired.csv");
+  const auto encounters = ReadCsvRows(out / "encounters.csv");
   ASSERT_FALSE(rows.empty());
 
   // Every game under all three policies, the same AV, HV, time and draw.
@@ -139,9 +109,8 @@ TEST(PairedGrid, EveryGameUnderEveryPolicySameDrawTheRunUnchangedAndTheTheoryMet
   EXPECT_FALSE(fs::exists(plain / "paired.csv"));
 
   // The paired rates meet their theory: No Trust's collisions at lambda
-  // (0.2), TA-EBP's DC at lambda + (1 - lambda) b = 0.375 (some games are the
-  // major road's, whose theory is their own), No EBP's DC 0: inside the 95 %
-  // intervals clustered by HV.
+  // (0.2), TA-EBP's DC at lambda + (1 - lambda) b = 0.375, No EBP's DC 0:
+  // inside the 95 % intervals clustered by HV.
   const nlohmann::json s = nlohmann::json::parse(ReadText(out / "summary.json"));
   ASSERT_TRUE(s.contains("paired")) << "summary.json has no paired section";
   const nlohmann::json& p = s["paired"]["policies"];
@@ -152,8 +121,8 @@ TEST(PairedGrid, EveryGameUnderEveryPolicySameDrawTheRunUnchangedAndTheTheoryMet
     EXPECT_LE(q[measure + "_lo"].get<double>(), theory) << policy << " " << measure;
     EXPECT_GE(q[measure + "_hi"].get<double>(), theory) << policy << " " << measure;
   }
-  EXPECT_NEAR(p["no_trust"]["theory_collision_rate"].get<double>(), 0.2, 0.02);
-  EXPECT_NEAR(p["ta_ebp"]["theory_dc_rate"].get<double>(), 0.375, 0.05);
+  EXPECT_NEAR(p["no_trust"]["theory_collision_rate"].get<double>(), 0.2, 1e-12);
+  EXPECT_NEAR(p["ta_ebp"]["theory_dc_rate"].get<double>(), 0.375, 1e-12);
   // The differences on the same games: No Trust collides more than TA-EBP.
   bool found = false;
   for (const nlohmann::json& d : s["paired"]["differences"]) {

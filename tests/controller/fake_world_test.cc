@@ -111,6 +111,8 @@ class FakeWorld : public SumoWorld {
   double Speed(const std::string& v) override { return ++reads, cars.at(v).speed; }
   double Distance(const std::string& v) override { return ++reads, cars.at(v).odometer; }
   double LanePosition(const std::string& v) override { return ++reads, cars.at(v).pos; }
+  XY Position(const std::string& v) override { return ++reads, XY{cars.at(v).pos, 0}; }
+  double Angle(const std::string& v) override { return ++reads, (void)cars.at(v), 90.0; }
   std::string LaneID(const std::string& v) override { return ++reads, cars.at(v).lane; }
   std::string RoadID(const std::string& v) override {
     ++reads;

@@ -73,6 +73,8 @@ class SumoWorld {
   virtual std::string LaneID(const std::string& veh) = 0;
   virtual std::string RoadID(const std::string& veh) = 0;
   virtual int RouteIndex(const std::string& veh) = 0;  // the current edge's index in Route()
+  virtual XY Position(const std::string& veh) = 0;      // its front's centre
+  virtual double Angle(const std::string& veh) = 0;     // degrees, 0 = north, clockwise
   // A vehicle as it departs (its SUMO type's and its route's).
   virtual std::vector<std::string> Route(const std::string& veh) = 0;
   virtual std::string TypeID(const std::string& veh) = 0;

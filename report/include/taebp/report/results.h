@@ -227,6 +227,9 @@ struct PairedRecord {
   double av_clear = kNoValue, hv_clear = kNoValue;
   // Collisions between a game move and a third vehicle during the window.
   long third_collisions = 0;
+  // The pair's surrogate safety measures over the window, from both
+  // vehicles' positions each step (junction/pair_surrogates.h; NaN: none).
+  double pair_min_ttc = kNoValue, pair_min_pet = kNoValue;
   double hv_trust = 0, theory_dc = 0, theory_collision = 0;
 };
 // How long a branch follows its game at most (s after it formed).
