@@ -120,7 +120,7 @@ def test_one_plot_command_draws_the_figures(study):
             assert m in metrics, (name, m)
         for p in fig["panels"]:
             assert p["xlabel"] == fig["x"]  # the axis is the swept key
-            assert p["ylabel"] == p["metric"]
+            assert p["ylabel"].split(" (")[0] == p["metric"]  # its name, and its unit
             keys = [(l["policy"], l["style"], p.get("facet")) for l in p["lines"]]
             assert len(keys) == len(set(keys)), "one line per policy and style"
             assert {l["policy"] for l in p["lines"]} <= set(POLICIES)
