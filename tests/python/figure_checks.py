@@ -100,6 +100,80 @@ def problems(fig, name=""):
 
 
 # ------------------------------------------------------------------ sweeps by hand
+NARROW, WIDE = "{dist: beta, alpha: 12, beta: 8}", "{dist: beta, alpha: 1.2, beta: 0.8}"
+POLICIES = [p["name"] for p in style.tables()["policies"]]
+
+
+def grid_study(folder, seeds=3, shares=(0.25, 0.5, 0.75), failed=()):
+    """A two-way grid's study by hand: AV share x two trust distributions x
+    every policy x `seeds` seeds; `failed`: (share, policy, failed runs)."""
+    rows, runs, point = [], [], 0
+    for share in shares:
+        for trust in (NARROW, WIDE):
+            for i, policy in enumerate(POLICIES):
+                game = style.plays_game(policy)
+                bad = sum(f for s, p, f in failed if s == share and p == policy)
+                ok = seeds - bad
+                flow = 1500 + 40 * share - 3 * i
+                row = {"point": point, "scenario.av_share": share, "model.trust": trust,
+                       "policy": policy, "runs_ok": ok, "runs_failed": bad}
+                if ok:
+                    row.update({"served_flow": flow, "served_flow_sd": 12.0,
+                                "offered_flow": 1600, "time_loss_mean_av": 30 + 2 * i,
+                                "time_loss_mean_av_sd": 1.5, "time_loss_mean_hv": 28 + i,
+                                "time_loss_mean_hv_sd": 1.0, "stalled": 0})
+                    if game:
+                        n = 120 * seeds
+                        k = int(0.1 * (i % 3) * n)
+                        row.update({"encounters": n, "collisions": k,
+                                    "collision_rate": k / n, "collision_rate_lo": k / n * 0.7,
+                                    "collision_rate_hi": k / n * 1.3 + 0.01,
+                                    "dc": n // 3, "dc_rate": (n // 3) / n,
+                                    "dc_rate_lo": 0.28, "dc_rate_hi": 0.38,
+                                    "theory_collision_rate": 0.1 * (i % 3),
+                                    "theory_dc_rate": 1 / 3,
+                                    "encounters_per_hour": 120 / (1680 / 3600),
+                                    "encounters_per_hour_sd": 9.0})
+                    else:
+                        row.update({"encounters": 0})
+                rows.append(row)
+                for rep in range(ok):
+                    runs.append({"point": point, "replicate": rep, "scenario.av_share": share,
+                                 "model.trust": trust, "policy": policy,
+                                 "served_flow": flow + 10 * (rep - 1),
+                                 "time_loss_mean_av": 30 + 2 * i + rep,
+                                 "time_loss_mean_hv": 28 + i - rep,
+                                 "encounters_per_hour": 257 + rep if game else None,
+                                 "measured_seconds": 1680})
+                for rep in range(ok, seeds):
+                    runs.append({"point": point, "replicate": rep, "policy": policy,
+                                 "status": "failed", "error": "SUMO aborted"})
+            point += 1
+    return write_sweep(str(folder), ["scenario.av_share", "model.trust"], rows, runs,
+                       config={"scenario": {"kind": "network", "duration": 1800, "warmup": 120},
+                               "model": {"prior_go": 0.2, "collision_penalty": 3.0}},
+                       replicates=seeds)
+
+
+def mismatch_study(folder, zipped=False):
+    rows, point = [], 0
+    for theta in (0.2, 0.6, 1.0):
+        for hat in (0.2, 0.6, 1.0):
+            n = 200
+            k = 40 if hat > theta and hat >= 0.25 else 0
+            rows.append({"point": point, "model.trust": theta, "model.assumed_trust": hat,
+                         "policy": "ta_ebp", "runs_ok": 2, "runs_failed": 0, "encounters": n,
+                         "collisions": k, "collision_rate": k / n,
+                         "collision_rate_lo": max(0, k / n - 0.05), "collision_rate_hi": k / n + 0.05,
+                         "dc_rate": 0.3, "dc_rate_lo": 0.24, "dc_rate_hi": 0.37,
+                         "theory_collision_rate": 0.2 if k else 0.0, "theory_dc_rate": 0.3})
+            point += 1
+    return write_sweep(str(folder), ["model.trust", "model.assumed_trust"], rows,
+                       config={"model": {"prior_go": 0.2, "collision_penalty": 3.0,
+                                         "likelihood": {"type": "linear", "s_max": 2.0}},
+                               "scenario": {"duration": 600}}, replicates=2)
+
+
 def metric_columns(metrics, level="run", aggregate=True):
     key = "aggregate_columns" if aggregate else "columns"
     return [c for m in metrics if level in m["levels"] for c in m[key]]

@@ -10,7 +10,7 @@ import sys
 from PIL import Image
 
 import taebp
-from conftest import ROOT, readme
+from conftest import readme
 
 
 def example():

@@ -11,7 +11,7 @@ folders that differ only in their seed)."""
 
 
 from . import style, tidy
-from .common import die, number, warn
+from .common import PlotError, die, number, warn
 from .view import Figure, Mark, Panel, SweepView
 
 
@@ -418,6 +418,16 @@ def draw(name, plt, sweep, theory, out):
 
 
 # ------------------------------------------------------------------ runs
+def _save_group(plt, fig, out):
+    """One group's figure; a group without a simulated value (a sweep point
+    whose runs met no AV-HV pair) is skipped with a warning, not the others."""
+    try:
+        return [fig.save(plt, out)]
+    except PlotError as e:
+        warn("%s (skipped)" % e)
+        return []
+
+
 def _suffix(name):
     return "" if not name else "_" + name.replace(" ", "")
 
@@ -457,17 +467,17 @@ def learned(plt, runs, out):
                             [row[5] / row[2] for row in rows], colour=style.policy_colour(policy),
                             ls="--", lw=1.2, simulated=False,
                             legend="the oracle's expected DC on the learner's encounters"))
-        ctx = runs.context(idx) + (" (%s)" % name if name else "")
-        paths.append(Figure("learned_rates%s.png" % _suffix(name), [dc, coll], ncols=2,
-                            title="Learned trust: " + ctx,
-                            legend_extra=[(dict(color="black", marker="o", ls="none", ms=4),
-                                           "rate over the hour's encounters, 95 % interval")]
-                            ).save(plt, out))
-        paths.append(_regret(plt, runs, idx, policies, name, ctx, out))
+        ctx = runs.context(idx) + (" (%s)" % runs.group_title(name) if name else "")
+        paths += _save_group(plt, Figure(
+            "learned_rates%s.png" % _suffix(name), [dc, coll], ncols=2,
+            title="Learned trust: " + ctx,
+            legend_extra=[(dict(color="black", marker="o", ls="none", ms=4),
+                           "rate over the hour's encounters, 95 % interval")]), out)
+        paths += _save_group(plt, _regret(runs, idx, policies, name, ctx), out)
     return paths
 
 
-def _regret(plt, runs, idx, policies, name, ctx, out):
+def _regret(runs, idx, policies, name, ctx):
     learner = Panel(title="TA-EBP learned: regret against the oracle",
                     xlabel="AV-HV encounters T (log scale)", ylabel="cumulative expected regret",
                     xscale="log", name="regret")
@@ -536,7 +546,7 @@ def _regret(plt, runs, idx, policies, name, ctx, out):
                   title="Learned trust, regret growth: " + ctx, caption=caption,
                   legend_extra=[(dict(color="black", lw=0.7, alpha=0.35), "one seed"),
                                 (dict(color="black", lw=1.8), "mean of the seeds")]
-                  ).save(plt, out)
+                  if len(idx) > 1 else [])
 
 
 def dynamic(plt, runs, out):
@@ -582,14 +592,14 @@ def dynamic(plt, runs, out):
                 panel.add(Mark("hline", [longs[0]], policy=policy, ls=":", lw=1.4,
                                note=" long run %.3f" % longs[0], legend="long-run trust (theory)",
                                legend_colour="black", simulated=False))
-        ctx = runs.context(idx) + (" (%s)" % name if name else "")
+        ctx = runs.context(idx) + (" (%s)" % runs.group_title(name) if name else "")
         title = "Dynamic trust: %s; w_s = %g, w_f = %g, ρ = %g, α0+β0 = %g" % (
             ctx, d.get("success_weight", 1), d.get("failure_weight", 1), d.get("forgetting", 0),
             d.get("strength", 10))
         extra = [(dict(color="black", lw=0.7, alpha=0.35), "one seed"),
                  (dict(color="black", lw=2.0), "mean of the seeds")] if len(idx) > 1 else []
-        paths.append(Figure("dynamic_trust%s.png" % _suffix(name), [panel], ncols=1,
-                            panel_height=3.4, title=title, legend_extra=extra).save(plt, out))
+        paths += _save_group(plt, Figure("dynamic_trust%s.png" % _suffix(name), [panel], ncols=1,
+                                         panel_height=3.4, title=title, legend_extra=extra), out)
     return paths
 
 
@@ -606,13 +616,13 @@ def influence(plt, runs, out):
     designs = sorted({e["design"] for e in data.values()}, key=lambda d: d != "guarded")
     labels = {"guarded": "designed for each HV's experience (guarded)",
               "paper": "the paper's scheme kept as it is"}
-    panels = [Panel(title="DC per AV-HV encounter, per %g simulated minutes" % (_width(data) / 60),
+    minutes = "%g" % round(_width(data) / 60)
+    panels = [Panel(title="(a) DC, per %s simulated minutes" % minutes,
                     xlabel="simulated time (h)", ylabel="dc_rate", name="dc_rate"),
-              Panel(title="Collisions per AV-HV encounter, per %g simulated minutes"
-                    % (_width(data) / 60), xlabel="simulated time (h)",
-                    ylabel="collision_rate", name="collision_rate"),
-              Panel(title="DC by each HV's own encounter number",
-                    xlabel="the HV's encounter number (1 = its first)", ylabel="dc_rate",
+              Panel(title="(b) Collisions, per %s simulated minutes" % minutes,
+                    xlabel="simulated time (h)", ylabel="collision_rate", name="collision_rate"),
+              Panel(title="(c) DC by each HV's own encounter number",
+                    xlabel="the HV's encounter number", ylabel="dc_rate",
                     name="dc_by_encounter", ylim=(0, 1.02))]
     for (policy, design), e in sorted(data.items(), key=lambda kv: (
             style.policy_order().index(kv[0][0]) if kv[0][0] in style.policy_order() else 99,
@@ -654,9 +664,9 @@ def influence(plt, runs, out):
 
 
 def _width(data):
-    e = next(iter(data.values()))
-    (a, b), _ = sorted(e["bins"].items())[0]
-    return b - a
+    """The time series' interval (s): the most common width of its bins."""
+    widths = [round(b - a) for e in data.values() for (a, b) in e["bins"]]
+    return max(set(widths), key=widths.count)
 
 
 def influence_data(runs):

@@ -165,9 +165,11 @@ class Sweep:
         seeds = sorted({sum(self.runs(row)) for row in self.rows})
         sample = []
         if measured:
-            span = "%g" % measured[0] if len(measured) == 1 else "%g–%g" % (measured[0],
-                                                                          measured[-1])
-            sample.append("%s s measured" % span)
+            hours = measured[0] >= 7200  # long runs in hours
+            f = (lambda v: "%g" % (v / 3600.0)) if hours else (lambda v: "%g" % v)
+            span = f(measured[0]) if len(measured) == 1 else "%s–%s" % (f(measured[0]),
+                                                                      f(measured[-1]))
+            sample.append("%s %s measured" % (span, "h" if hours else "s"))
         if seeds and seeds != [0]:
             n = seeds[0] if len(seeds) == 1 else "%d–%d" % (seeds[0], seeds[-1])
             sample.append("%s seed%s per point" % (n, "" if n == 1 else "s"))
@@ -345,6 +347,7 @@ class Runs:
     def __init__(self, where):
         wheres = [where] if isinstance(where, (str, os.PathLike)) else list(where)
         self.dirs, self.points = [], []
+        self.point_text = {}  # point -> "KEY = value, ..." of a sweep's point
         for w in wheres:
             w = os.fspath(w)
             if os.path.isfile(os.path.join(w, "summary.json")):
@@ -364,6 +367,7 @@ class Runs:
                         continue  # a staging folder, or a task without time series
                     self.dirs.append(full)
                     self.points.append(order(d)[0])
+                self._point_values(w)
         self.summaries = []
         for d in self.dirs:
             with open(os.path.join(d, "summary.json"), encoding="utf-8") as f:
@@ -374,6 +378,21 @@ class Runs:
                 if p not in self.policies:
                     self.policies.append(p)
         self._csv = {}
+
+    def _point_values(self, sweep_dir):
+        """The swept values of each point of a sweep (results.csv), as text."""
+        path = os.path.join(sweep_dir, "results.csv")
+        info = os.path.join(sweep_dir, "sweep.json")
+        if not (os.path.isfile(path) and os.path.isfile(info)):
+            return
+        with open(info, encoding="utf-8") as f:
+            keys = (json.load(f) or {}).get("columns", [])
+        with open(path, newline="", encoding="utf-8") as f:
+            for r in csv.DictReader(f):
+                p = int(r["point"])
+                if p not in self.point_text and keys:
+                    self.point_text[p] = ", ".join(
+                        "%s = %s" % (k, dists.label(r.get(k, ""))) for k in keys)
 
     def __bool__(self):
         return bool(self.dirs)
@@ -387,7 +406,8 @@ class Runs:
         keyed = {}
         for i, p in enumerate(self.points):
             if p is not None:
-                key = ("point %d" % p,)
+                key = ("point %d" % p,) if p not in self.point_text else \
+                    ("point %d" % p, self.point_text[p])
             else:
                 c = json.loads(json.dumps(self.config(i)))
                 (c.get("scenario") or {}).pop("seed", None)
@@ -401,6 +421,14 @@ class Runs:
         for n, (key, idx) in enumerate(groups):
             named.append((key[0] if key[0].startswith("point") else "config %d" % (n + 1), idx))
         return named
+
+    def group_title(self, name):
+        """A group's name for a title: "point 3: KEY = value, ..." for a sweep's point."""
+        if name.startswith("point "):
+            p = int(name.split()[1])
+            if p in self.point_text:
+                return "%s: %s" % (name, self.point_text[p])
+        return name
 
     def csv(self, i, name):
         """Rows of one run's CSV ([] when it has none)."""
@@ -439,7 +467,9 @@ class Runs:
             parts.append("%d AVs + %d HVs" % (sc.get("avs"), sc.get("hvs")))
         warm, end = self.measured(idx[0])
         if end:
-            parts.append("%g h measured" % ((end - warm) / 3600.0))
+            span = end - warm
+            parts.append(("%g h measured" % (span / 3600.0)) if span >= 3600 else
+                         "%g s measured" % span)
         parts.append("%d seed%s" % (len(idx), "" if len(idx) == 1 else "s"))
         return ", ".join(parts)
 

@@ -220,10 +220,10 @@ class Figure:
                             ax.annotate(m.opts["note"], xy=(v, 1), xycoords=("data", "axes fraction"),
                                         xytext=(2, -2), textcoords="offset points", va="top",
                                         ha="left", fontsize=style.FONT)
-                        else:
-                            ax.annotate(m.opts["note"], xy=(0, v), xycoords=("axes fraction", "data"),
-                                        xytext=(2, 2), textcoords="offset points", va="bottom",
-                                        ha="left", fontsize=style.FONT)
+                        else:  # at the right end, above the line
+                            ax.annotate(m.opts["note"], xy=(1, v), xycoords=("axes fraction", "data"),
+                                        xytext=(-2, 2), textcoords="offset points", va="bottom",
+                                        ha="right", fontsize=style.FONT, color=m.colour)
                 if m.legend:
                     self._entry(("ref", m.legend), Line2D([], [], color=m.opts.get(
                         "legend_colour", m.colour), ls=m.opts.get("ls", "--"),
@@ -241,10 +241,14 @@ class Figure:
         # Titles and labels wrapped to the panel's width at the printed size.
         ax.set_title(wrap_to(fig, panel.title, style.TITLE_FONT, self._panel_width - 0.7),
                      fontsize=style.TITLE_FONT)
-        ax.set_xlabel(wrap_to(fig, panel.xlabel, style.FONT, self._panel_width - 0.4))
+        ax.set_xlabel(wrap_to(fig, panel.xlabel, style.FONT, self._panel_width - 0.7))
         ax.set_ylabel(wrap_to(fig, panel.ylabel, style.FONT, self.panel_height - 0.3))
         ax.set_xscale(panel.xscale)
         ax.set_yscale(panel.yscale)
+        from matplotlib.ticker import NullFormatter
+        for axis, scale in ((ax.xaxis, panel.xscale), (ax.yaxis, panel.yscale)):
+            if scale == "log":  # decades only: minor labels collide at the printed size
+                axis.set_minor_formatter(NullFormatter())
         if panel.categories:
             ax.set_xticks(range(len(panel.categories)))
             ax.set_xticklabels(["\n".join(textwrap.wrap(c, 14)) for c in panel.categories])
@@ -374,6 +378,7 @@ class Figure:
         suptitle = None
         if title:
             suptitle = fig.suptitle(title, fontsize=style.TITLE_FONT, y=1.0, va="top")
+            suptitle.set_in_layout(False)  # its room is the rect's top below
             top_in += suptitle.get_window_extent(renderer).height / per_inch + 0.04
         legend = None
         legend_in = 0.0
@@ -514,7 +519,7 @@ class SweepView:
         gaps = [b - a for a, b in zip(xs, xs[1:]) if b > a]
         spacing = min(gaps) if gaps else 1.0
         n = max(1, slots)
-        width = spacing * 0.3
+        width = spacing * 0.2
         return lambda slot: (slot - (n - 1) / 2) * width / n if n > 1 else 0.0
 
     def figures(self):
@@ -641,7 +646,8 @@ class SweepView:
                     curve = self.theory(metric, policy, facet, v)
                     if curve:
                         p.add(Mark("theory", curve[0], curve[1], policy=policy, variant=v,
-                                   legend="theory", ls="-", lw=1.3, alpha=0.9))
+                                   legend="theory", lw=1.3, alpha=0.9,
+                                   ls=style.LINESTYLES[v % len(style.LINESTYLES)]))
                 for x, q in zip(xs, pts):
                     if q[6] > 0:
                         stalled_x.append(x)
