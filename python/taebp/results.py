@@ -188,7 +188,7 @@ class Table:
 
 def to_pandas(obj):
     """pandas DataFrames of a result: a Table -> one DataFrame; a RunResult ->
-    {"encounters", "junctions", "policies"}; a SweepResult -> {"results",
+    {"encounters", "junctions", "collisions", "policies"}; a SweepResult -> {"results",
     "aggregate", "encounters", "junctions"}."""
     if isinstance(obj, (Table, RunResult, SweepResult)):
         return obj.to_pandas()

@@ -258,9 +258,15 @@ def network(plt, sweep, theory, out):
              if grid else "")
     ctx = sweep.context()
     facet = (lambda f: "AV share %s" % f) if share else None
-    views = [SweepView(sweep, key, ["served_flow", "time_loss_mean", "encounters_per_hour"],
+    def served_equals_offered(panel, metric, facet):
+        if metric == "served_share":
+            panel.add(Mark("hline", [1.0], ls=":", lw=1.0, simulated=False,
+                           legend="served = offered (all the demand served)"))
+
+    views = [SweepView(sweep, key, ["served_share", "time_loss_mean", "encounters_per_hour"],
                        by=share, select=select, x_title=x_title, name="network_throughput.png",
-                       facet_title=facet,
+                       facet_title=facet, extra=served_equals_offered,
+                       zero={"served_share": False},
                        title="Throughput and delay against demand: " + ", ".join(
                            t for t in (where, ctx) if t),
                        caption=note + "SUMO native: SUMO's own junction logic, no controller.")]

@@ -78,13 +78,22 @@ def policy_order():
     return [p["name"] for p in tables()["policies"]]
 
 
+# What the figures derive from two of the table's metrics (tidy.value_of
+# computes them): not results of a run, so not in the metric table.
+DERIVED = {
+    "served_share": {"name": "served_share", "type": "real", "unit": "", "pool": "mean",
+                     "levels": ["run"], "description": "served flow over the offered flow "
+                     "(served_flow / offered_flow; 1: all the demand offered was served)"},
+}
+
+
 def metric(name):
     """The metric table's row of `name` (name, type, unit, pool, description,
-    ...), or None."""
+    ...), a derived metric's (DERIVED), or None."""
     for m in tables()["metrics"]:
         if m["name"] == name:
             return m
-    return None
+    return DERIVED.get(name)
 
 
 def metric_title(name):

@@ -107,7 +107,11 @@ class Sweep:
         for r in self.seed_rows():
             if r.get("point") == str(point) and r.get("policy") == policy and \
                     r.get("status", "ok") == "ok":
-                v = number(r.get(metric))
+                if metric == "served_share":
+                    served, offered = number(r.get("served_flow")), number(r.get("offered_flow"))
+                    v = served / offered if served is not None and offered else None
+                else:
+                    v = number(r.get(metric))
                 if v is not None:
                     out.append(v)
         return out
@@ -246,6 +250,8 @@ def metric_names(sweep):
             names.append(c)
     if "encounters" in cols and "encounters_per_hour" not in names:
         names.append("encounters_per_hour")  # an older aggregate.csv: derived below
+    if "served_flow" in cols and "offered_flow" in cols:
+        names.append("served_share")  # style.DERIVED
     return names
 
 
@@ -260,6 +266,17 @@ def value_of(sweep, row, metric):
         if enc is None or not runs or not seconds or not style.plays_game(row["policy"]):
             return None, None, None, None
         return enc / runs / (seconds / 3600.0), None, None, None
+    if metric == "served_share":
+        # The seeds' own ratios where results.csv has them (their mean and t
+        # interval), else the ratio of the means.
+        ratios = sweep.seeds(row["point"], row["policy"], metric)
+        if ratios:
+            mean, lo, hi = stats.mean_interval(ratios)
+            return mean, (lo if len(ratios) > 1 else None), (hi if len(ratios) > 1 else None), None
+        served, offered = number(row.get("served_flow")), number(row.get("offered_flow"))
+        if served is None or not offered:
+            return None, None, None, None
+        return served / offered, None, None, None
     y = number(row.get(metric))
     if y is None:
         return None, None, None, None

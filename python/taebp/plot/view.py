@@ -559,6 +559,18 @@ class SweepView:
                         for i, lab in enumerate(self.variant_labels)]
         extra = []
         caption = self.caption
+        if self.by:  # the rows' metrics, as the metric table describes them
+            def described(y):
+                ms = _metrics_of(y)
+                if len(ms) > 1:
+                    stem = os.path.commonprefix(ms)
+                    name = "%s{%s}" % (stem, ", ".join(m[len(stem):] for m in ms))
+                    return "%s: %s" % (name, "; ".join(
+                        style.metric(m)["description"] for m in ms if style.metric(m)))
+                m = style.metric(ms[0])
+                return "%s: %s" % (ms[0], m["description"] if m else ms[0])
+            rows = "; ".join(described(y) for y in self.ys)
+            caption = "Rows: %s.%s" % (rows, (" " + caption) if caption else "")
         failed = [(r["policy"], r, sum(s.runs(r))) for r in self.rows if s.runs(r)[1]]
         if failed:
             shown = ["%s at %s = %s (%d/%d)" % (style.policy_label(policy), self.x_title,
@@ -588,8 +600,19 @@ class SweepView:
             facet_text = (self.facet_title(facet) if self.facet_title else
                           "%s = %s" % (self.by, self.bykey.label(facet)))
         title = self.metric_titles.get(item, style.metric_title(metric))
+        if facet_text is not None:
+            # Panel columns: the facet on top of each column, each row's metric
+            # by its y label (name and unit) and in the caption.
+            title = facet_text if self.ys.index(item) == 0 or len(self.facets) > \
+                style.MAX_COLUMNS else ""
+            facet_text = None
+        ylabel = style.axis_label(metric)
+        if len(metrics) > 1:  # time_loss_mean_av, time_loss_mean_hv -> time_loss_mean_{av, hv}
+            stem = os.path.commonprefix(metrics)
+            ylabel = "%s{%s}" % (stem, ", ".join(m[len(stem):] for m in metrics)) + \
+                (" (%s)" % style.metric_unit(metric) if style.metric_unit(metric) else "")
         p = Panel(title=title + ("\n" + facet_text if facet_text else ""), xlabel=self.x_title,
-                  ylabel=style.axis_label(metric), group=item,
+                  ylabel=ylabel, group=item,
                   zero=self.zero.get(item, metric != "served_flow"),
                   categories=(self.xkey.labels if self.xkey is not None and
                               not self.xkey.numeric else None), name=metric)
