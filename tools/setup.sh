@@ -19,7 +19,7 @@ TAEBP_PACKAGES=(
   libglpk-dev libgtest-dev libgmock-dev libpugixml-dev
   openmpi-bin libopenmpi-dev
   python3 python3-dev python3-pybind11 python3-numpy python3-pandas python3-pytest
-  python3-matplotlib python3-pil
+  python3-matplotlib python3-pil python3-seaborn
   xvfb xauth
   doxygen mkdocs mkdocs-material
   strace

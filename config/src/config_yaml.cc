@@ -144,11 +144,30 @@ class YamlReader {
       Fail(key, node, "key '" + key + "' expects " + expected + ", got " + Show(node));
   }
 
+  // A number is written as one: a quoted scalar ("0.7", as JSON writes a
+  // string) is text, refused with the fix, in a YAML file and a Python dict alike.
+  void RejectQuoted(const YAML::Node& node, const std::string& key, const char* expected) {
+    if (node.Tag() == "!")
+      Fail(key, node, "key '" + key + "' expects " + expected + ", got the string " +
+                          Show(node) + " (quoted: write the number without quotes)");
+  }
+  // An integer's text: an integral number written with a decimal point
+  // (8.0, as a float of Python or pandas prints) is that integer; any other
+  // fraction stays, to be refused.
+  static std::string WholeNumberText(const std::string& s) {
+    const std::size_t dot = s.find('.');
+    if (dot == std::string::npos || dot == 0 || dot + 1 == s.size() ||
+        s.find_first_not_of('0', dot + 1) != std::string::npos ||
+        s.find_first_not_of("+-0123456789") != dot)
+      return s;
+    return s.substr(0, dot);
+  }
   void Read(const YAML::Node& node, const std::string& key, int* value) {
     ReadScalarCheck(node, key, "an integer");
+    RejectQuoted(node, key, "an integer");
     // Decimal digits only: YAML 1.1 (yaml-cpp) reads 010 as octal 8 and 0x10
     // as 16, while the tables would show the text (010): refused, not guessed.
-    const std::string& s = node.Scalar();
+    const std::string s = WholeNumberText(node.Scalar());
     const std::size_t digits = s.find_first_not_of("+-") == 1 ? 1 : 0;
     const bool decimal = s.size() > digits &&
                          s.find_first_not_of("0123456789", digits) == std::string::npos;
@@ -159,7 +178,7 @@ class YamlReader {
     long long v = 0;
     if (decimal && s.size() - digits > 10)
       v = std::numeric_limits<long long>::max();  // out of range below, not "not an integer"
-    else if (!decimal || !YAML::convert<long long>::decode(node, v))
+    else if (!decimal || !YAML::convert<long long>::decode(YAML::Node(s), v))
       Fail(key, node, "key '" + key + "' expects an integer (decimal digits), got " + Show(node));
     if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
       Fail(key, node, "key '" + key + "' = " + Show(node) + " is out of range (at most " +
@@ -168,7 +187,8 @@ class YamlReader {
   }
   void Read(const YAML::Node& node, const std::string& key, std::uint64_t* value) {
     ReadScalarCheck(node, key, "a non-negative integer");
-    const std::string& s = node.Scalar();
+    RejectQuoted(node, key, "a non-negative integer");
+    const std::string s = WholeNumberText(node.Scalar());
     if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos)
       Fail(key, node, "key '" + key + "' expects a non-negative integer, got " + Show(node));
     try {
@@ -179,6 +199,7 @@ class YamlReader {
   }
   void Read(const YAML::Node& node, const std::string& key, double* value) {
     ReadScalarCheck(node, key, "a number");
+    RejectQuoted(node, key, "a number");
     double v = 0;
     const std::string& s = node.Scalar();
     bool is_bool_word = s == "true" || s == "false" || s == "yes" || s == "no";

@@ -43,30 +43,30 @@ std::vector<std::string> Join(std::initializer_list<const std::vector<std::strin
 
 const std::vector<PolicyInfo>& Table() {
   static const std::vector<PolicyInfo> table = {
-      {PolicyKind::kSumoNative, "sumo_native", "SUMO native", false, Policy::kNoEbp, false, false, false,
+      {PolicyKind::kSumoNative, "sumo_native", "SUMO native", "#000000", false, Policy::kNoEbp, false, false, false,
        kGameOnly,
        "SUMO's own junction logic, no controller: the baseline for flow, delay and SUMO's "
        "collisions"},
-      {PolicyKind::kNoEbp, "no_ebp", "No EBP", true, Policy::kNoEbp, true, false, true,
+      {PolicyKind::kNoEbp, "no_ebp", "No EBP", "#7f7f7f", true, Policy::kNoEbp, true, false, true,
        Join({&kKnowledge, &kLearning}),
        "the AV never nudges; it goes when the HV, deciding from the prior, drives if clear"},
-      {PolicyKind::kNoTrust, "no_trust", "No Trust", true, Policy::kNoTrust, true, false, true,
+      {PolicyKind::kNoTrust, "no_trust", "No Trust", "#d62728", true, Policy::kNoTrust, true, false, true,
        Join({&kKnowledge, &kLearning}),
        "classic Bayesian persuasion: the AV designs its nudge for a fully trusting HV "
        "(theta_hat = 1)"},
-      {PolicyKind::kTaEbp, "ta_ebp", "TA-EBP", true, Policy::kTaEbp, true, false, true, kLearning,
+      {PolicyKind::kTaEbp, "ta_ebp", "TA-EBP", "#1f77b4", true, Policy::kTaEbp, true, false, true, kLearning,
        "trust-aware persuasion: the AV designs for the HV's trust (model.trust_knowledge)"},
-      {PolicyKind::kFullReveal, "full_reveal", "Full reveal", true, Policy::kFullReveal, true,
+      {PolicyKind::kFullReveal, "full_reveal", "Full reveal", "#2ca02c", true, Policy::kFullReveal, true,
        false, false, Join({&kKnowledge, &kLearning}),
        "the AV nudges s_max exactly when it means to go"},
-      {PolicyKind::kPopulationMean, "population_mean", "Population mean", true,
+      {PolicyKind::kPopulationMean, "population_mean", "Population mean", "#ff7f0e", true,
        Policy::kPopulationMean, true, true, false, Join({&kKnowledge, &kLearning}),
        "TA-EBP with one design for every HV, for the mean of model.trust"},
-      {PolicyKind::kTaEbpLearned, "ta_ebp_learned", "TA-EBP learned", true,
+      {PolicyKind::kTaEbpLearned, "ta_ebp_learned", "TA-EBP learned", "#9467bd", true,
        Policy::kTaEbpLearned, true, true, false, kKnowledge,
        "TA-EBP for a safe lower bound of each HV's trust, learned from its responses "
        "(model.learning)"},
-      {PolicyKind::kAlwaysNudge, "always_nudge", "Always nudge", true, Policy::kAlwaysNudge,
+      {PolicyKind::kAlwaysNudge, "always_nudge", "Always nudge", "#17becf", true, Policy::kAlwaysNudge,
        true, true, false, kLearning,
        "nudges TA-EBP's s* in every encounter whatever its intent and goes on its Go intent "
        "(the deterministic strategy of the paper's Section I; docs/influence.md)"},
@@ -183,6 +183,7 @@ std::string PoliciesJson() {
   for (const PolicyInfo& p : Table())
     rows.push_back({{"name", p.name},
                     {"label", p.label},
+                    {"colour", p.colour},
                     {"plays_game", p.plays_game},
                     {"needs_avs", p.needs_avs},
                     {"beyond_paper", p.beyond_paper},

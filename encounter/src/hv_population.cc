@@ -408,6 +408,7 @@ BeyondRun HvPopulation::Results(double end) {
   out.series = std::move(series_);
   out.hv_series = std::move(hv_series_);
   out.hvs = hvs_added_;
+  out.trust_moves = dynamic_ || experience_.has_value();
   const ModelConfig& m = config_.model;
   out.initial_mean_trust = hvs_added_ ? trust_sum_ / static_cast<double>(hvs_added_) : kNoValue;
   double sum = 0;

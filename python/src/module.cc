@@ -7,6 +7,7 @@
 #include "taebp/config/config.h"
 #include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_adapter.h"
+#include "taebp/persuasion/number_text.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/persuasion.h"
 #include "taebp/report/metrics.h"
@@ -20,15 +21,64 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <csignal>
 #include <cstdio>
+#include <mutex>
 #include <optional>
+#include <thread>
+
+#include <pthread.h>
 #include <string>
 #include <vector>
 
 namespace py = pybind11;
 
 namespace {
+
+// run(..., timeout=): a thread that, once `seconds` of wall time have passed,
+// delivers SIGINT to the thread running the experiment; the InterruptGuard
+// notes it, and the run stops at its next simulation step as after Ctrl-C
+// (nothing written, the folder as it was). Declared after the guard, so it
+// is stopped and joined before the guard gives the signals back to Python.
+class Watchdog {
+ public:
+  explicit Watchdog(std::optional<double> seconds) {
+    if (!seconds) return;
+    const pthread_t target = pthread_self();
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                              std::chrono::duration<double>(*seconds));
+    thread_ = std::thread([this, target, deadline] {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (!cv_.wait_until(lock, deadline, [this] { return stop_; })) {
+        fired_ = true;
+        pthread_kill(target, SIGINT);
+      }
+    });
+  }
+  ~Watchdog() {
+    if (!thread_.joinable()) return;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();
+  }
+  Watchdog(const Watchdog&) = delete;
+  Watchdog& operator=(const Watchdog&) = delete;
+  bool fired() const { return fired_; }
+
+ private:
+  std::thread thread_;
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool stop_ = false;
+  std::atomic<bool> fired_{false};
+};
 
 taebp::TheoryRequest Request(double prior, double penalty, double trust,
                              std::optional<double> assumed_trust, double s_max,
@@ -222,6 +272,7 @@ PYBIND11_MODULE(_taebp, m) {
   m.def("theory_defaults", &TheoryDefaults);
   m.def("policy_names", &PolicyNames);
 
+  m.def("source_dir", [] { return std::string(TAEBP_SOURCE_DIR); });
   m.def("encounter_columns",
         [](bool beyond, bool network, bool ssm) {
           return taebp::EncounterCsvColumns(beyond, network, ssm);
@@ -233,19 +284,22 @@ PYBIND11_MODULE(_taebp, m) {
   m.def(
       "run",
       [](const std::string& config, const std::vector<std::string>& overrides,
-         std::optional<std::string> out, bool progress) {
+         std::optional<std::string> out, bool progress, std::optional<double> timeout) {
         taebp::ExperimentResult result;
         // Checked, not a sweep's, locked before the run (as `taebp run --out`).
         std::optional<taebp::RunFolder> folder;
         if (out) folder.emplace(*out, "out=");
         std::string replaced;
         int interrupted = 0;
+        bool timed_out = false;
         std::string interrupted_message;
         try {
           py::gil_scoped_release release;
           // Ctrl-C, SIGTERM, SIGHUP: noted, the run stops at its next step
           // with the folder as it was; Python's handlers back afterwards.
           const taebp::InterruptGuard interrupts;
+          std::optional<Watchdog> watchdog;
+          watchdog.emplace(timeout);
           taebp::ExperimentObserver observer;
           if (progress) {
             observer.policy_done = [](const taebp::PolicyRun& run, double wall) {
@@ -254,11 +308,26 @@ PYBIND11_MODULE(_taebp, m) {
                            run.encounters.size());
             };
           }
-          result = taebp::RunExperiment(config, overrides, {}, observer);
-          if (folder) replaced = taebp::WriteExperiment(result, *folder);
+          try {
+            result = taebp::RunExperiment(config, overrides, {}, observer);
+            if (folder) replaced = taebp::WriteExperiment(result, *folder);
+          } catch (const taebp::Interrupted&) {
+            timed_out = watchdog->fired();
+            throw;
+          }
         } catch (const taebp::Interrupted& e) {
           interrupted = e.signal();
           interrupted_message = e.what();
+        }
+        if (timed_out) {
+          folder.reset();  // unlocked, as it was
+          PyErr_SetString(PyExc_TimeoutError,
+                          ("taebp.run(timeout=" + taebp::NumberText(*timeout, 6) +
+                           "): stopped after " + taebp::NumberText(*timeout, 6) +
+                           " s of wall time at its next simulation step; nothing written" +
+                           (out ? ", " + *out + " as it was" : std::string()))
+                              .c_str());
+          throw py::error_already_set();
         }
         if (interrupted) {
           folder.reset();  // unlocked, as it was
@@ -277,7 +346,8 @@ PYBIND11_MODULE(_taebp, m) {
         r["replaced"] = replaced;
         return r;
       },
-      py::arg("config"), py::arg("overrides"), py::arg("out"), py::arg("progress"));
+      py::arg("config"), py::arg("overrides"), py::arg("out"), py::arg("progress"),
+      py::arg("timeout") = std::nullopt);
 
   // The sweep engine, tasks in forked workers; returns its exit code (0 ok,
   // 1 a task failed, 130 Ctrl-C). The GIL is released throughout and

@@ -23,13 +23,15 @@ lists a DataFrame, one row per point)
     predict(...)  one policy's predicted DC / collision / nudge rates
     solve(problem)  the trust-aware LP for a finite game (``taebp solve --json``;
                   DataFrames in, DataFrames out)
-    run(config, overrides=(), out=None)  every policy of a config in SUMO (a
-                  path or a dict; overrides a dict or KEY=VALUE strings)
+    run(config, overrides=(), out=None, timeout=None)  every policy of a config
+                  in SUMO (a path or a dict; overrides a dict or KEY=VALUE strings)
     sweep(config, overrides=(), out=None, jobs=None, quiet=True, shard=None,
           grid=None, replicates=None)  a study with the sweep engine
     load_run(dir), load_sweep(dir)  results already written (taebp.results)
     policies()    every policy a config may list
-    stats.wilson(k, n, z)  the Wilson interval the outputs report (taebp.stats)
+    stats.wilson(k, n, z)  the Wilson interval the outputs report (taebp.stats;
+                  arrays broadcast)
+    plot.sweep(...), plot.run(...)  the figures tools/plot draws (taebp.plot)
     dists         swept distributions: their mean, sd and label
 
 Errors are exceptions with the program's messages: ConfigError and
@@ -51,7 +53,7 @@ import json
 import os
 
 from . import _taebp
-from . import dists, stats
+from . import dists, plot, stats
 from .results import (RunResult, SweepResult, Table, _flatten, _pandas, load_run, load_sweep,
                       set_metric_types, to_pandas)
 
@@ -59,7 +61,8 @@ __all__ = [
     "theory", "design", "predict", "solve", "run", "sweep", "load_run", "load_sweep",
     "Table", "RunResult", "SweepResult", "to_pandas", "encounter_columns", "metrics", "metric_sections",
     "ConfigError", "InvalidArgument", "OutputError", "SumoError", "BusyError", "StallError",
-    "SweepError", "Interrupted", "EXIT_CODES", "stats", "dists", "policies", "policy_table",
+    "SweepError", "Interrupted", "EXIT_CODES", "stats", "dists", "plot", "policies",
+    "policy_table", "shipped_config",
     "__version__",
 ]
 
@@ -168,12 +171,36 @@ def _call(function, point, call):
         raise InvalidArgument("%s(%s): %s" % (function, shown, message)) from None
 
 
-def _request(p):
-    return (float(p["prior_go"]), float(p["collision_penalty"]), float(p["trust"]),
-            None if p["assumed_trust"] is None or p["assumed_trust"] != p["assumed_trust"]
-            else float(p["assumed_trust"]),
-            float(p["s_max"]), str(p["likelihood"]), float(p["steepness"]),
-            float(p["midpoint"]))
+def _number(function, point, name):
+    """An argument as a float, or InvalidArgument naming it: a number (numpy's
+    included), never a string or a bool (the config loader's rule)."""
+    v = point[name]
+    bad = isinstance(v, (str, bytes, bool)) or (hasattr(v, "dtype") and v.dtype.kind in "bUSO")
+    if not bad:
+        try:
+            return float(v)
+        except (TypeError, ValueError):
+            bad = True
+    shown = ", ".join("%s=%r" % (k, x) for k, x in point.items() if x is not None)
+    raise InvalidArgument("%s(%s): %s must be a number, got %r%s" % (
+        function, shown, name, v, " (a string: write the number itself)"
+        if isinstance(v, (str, bytes)) else ""))
+
+
+def _request(p, function="theory"):
+    num = lambda name: _number(function, p, name)  # noqa: E731
+    likelihood = p["likelihood"]
+    if not isinstance(likelihood, str):
+        raise InvalidArgument("%s(likelihood=%r): likelihood must be the name of a "
+                              "likelihood (e.g. 'linear')" % (function, likelihood))
+    assumed = p["assumed_trust"]
+    if assumed is None or (isinstance(assumed, float) and assumed != assumed):
+        assumed = None
+    else:
+        assumed = num("assumed_trust")
+        assumed = None if assumed != assumed else assumed
+    return (num("prior_go"), num("collision_penalty"), num("trust"), assumed, num("s_max"),
+            likelihood, num("steepness"), num("midpoint"))
 
 
 def _frame(points, rows):
@@ -214,7 +241,7 @@ def theory(prior_go=_DEFAULTS["prior_go"], collision_penalty=_DEFAULTS["collisio
                                      likelihood=likelihood, steepness=steepness,
                                      midpoint=midpoint), old)
     points, many = _points(args)
-    rows = [_call("theory", p, lambda p=p: json.loads(_taebp.theory_json(*_request(p))))
+    rows = [_call("theory", p, lambda r=_request(p): json.loads(_taebp.theory_json(*r)))
             for p in points]
     return _frame(points, rows) if many else rows[0]
 
@@ -234,7 +261,7 @@ def design(prior_go=_DEFAULTS["prior_go"], collision_penalty=_DEFAULTS["collisio
     points, many = _points(args)
     rows = []
     for p in points:
-        r = _request(p)
+        r = _request(p, "design")
         rows.append(_call("design", p, lambda r=r: dict(_taebp.design(*(r[:3] + r[4:])))))
     for p in points:
         p.pop("assumed_trust")
@@ -259,7 +286,8 @@ def predict(policy, prior_go=_DEFAULTS["prior_go"],
                                       likelihood=likelihood, steepness=steepness,
                                       midpoint=midpoint), old)
     points, many = _points(args)
-    rows = [_call("predict", p, lambda p=p: dict(_taebp.predict(str(p["policy"]), *_request(p))))
+    rows = [_call("predict", p, lambda p=p, r=_request(p, "predict"):
+                  dict(_taebp.predict(str(p["policy"]), *r)))
             for p in points]
     return _frame(points, rows) if many else rows[0]
 
@@ -421,7 +449,9 @@ class _ConfigFile:
     """A config given as a dict, as a file while it is used: JSON (which is
     YAML) in the working directory, so that relative paths in it (networks,
     routes) are relative to the working directory; named by its content, so
-    the same dict gives the same provenance; removed afterwards."""
+    the same dict gives the same provenance; removed afterwards. The errors
+    of the program name the file; for a dict they name "config dict" (the
+    file is gone after the call), the key and the value."""
 
     def __init__(self, config):
         self.config = config
@@ -441,15 +471,29 @@ class _ConfigFile:
         raise TypeError("config: a dict or the path of a config YAML file, not %s"
                         % type(self.config).__name__)
 
-    def __exit__(self, *exc):
+    def __exit__(self, kind, error, tb):
         if self.path:
             try:
                 os.remove(self.path)
             except OSError:
                 pass
+            if error is not None and isinstance(error, (ConfigError, InvalidArgument)):
+                message = _dict_message(str(error), self.path)
+                if message != str(error):
+                    raise type(error)(message).with_traceback(tb) from None
+        return False
 
 
-def run(config, overrides=(), out=None, progress=False):
+def _dict_message(message, path):
+    """A message naming the temporary file of a dict config, naming the dict
+    instead: "PATH:LINE:COL: scenario.avs ..." -> "config dict: scenario.avs ..."."""
+    import re
+    for shown in (path, os.path.basename(path)):
+        message = re.sub(re.escape(shown) + r"(:\d+)*", "config dict", message)
+    return message
+
+
+def run(config, overrides=(), out=None, progress=False, timeout=None):
     """Runs every listed policy of the experiment config in SUMO (``taebp run``).
 
     ``config`` is the path of a config YAML file or the config as a dict
@@ -459,15 +503,23 @@ def run(config, overrides=(), out=None, progress=False):
     {"scenario.duration": 600, "policies": ["ta_ebp"]} or a list of strings
     ["scenario.duration=600", "policies=[ta_ebp]"]. With ``out`` the result files are written there (as
     ``--out``; atomically); without, nothing is written. ``progress`` prints
-    each policy's wall time on stderr. The GIL is released while SUMO runs.
+    each policy's wall time on stderr. ``timeout``: seconds of wall time
+    after which the run stops at its next simulation step and raises
+    TimeoutError (nothing written, ``out`` as it was; None: no limit). The
+    GIL is released while SUMO runs.
     Raises ConfigError, InvalidArgument, OutputError, SumoError or BusyError;
     StallError (with the result so far, written to ``out``) when a run stalled
     under scenario.stall_action: error; Interrupted on Ctrl-C. Each carries
     ``exit_code``, the code ``taebp run`` exits with for the same error."""
     overrides = _override_list(overrides)
     out = None if out is None else os.fspath(out)
+    if timeout is not None:
+        if isinstance(timeout, (bool, str)) or not float(timeout) > 0:
+            raise ValueError("run(timeout=%r): seconds of wall time, a number > 0 (or None)"
+                             % (timeout,))
+        timeout = float(timeout)
     with _ConfigFile(config) as (path, _name):
-        r = _taebp.run(path, overrides, out, bool(progress))
+        r = _taebp.run(path, overrides, out, bool(progress), timeout)
     result = RunResult(r["files"], table=r["table"], warnings=r["warnings"], out=out)
     if r["stopped"]:
         raise StallError(r["error"], result)
@@ -527,6 +579,21 @@ def sweep(config, overrides=(), out=None, jobs=None, quiet=True, shard=None, gri
                          % (config, len(failed), (": " + detail) if detail else "", out),
                          result, failed)
     return result
+
+
+def shipped_config(name):
+    """The path of a config shipped with taebp (configs/NAME of the source
+    tree this module was built from), so that a script runs from any folder:
+    ``taebp.run(taebp.shipped_config("paper.yaml"))``. FileNotFoundError
+    naming the configs there when there is none of that name."""
+    folder = os.path.join(_taebp.source_dir(), "configs")
+    path = os.path.join(folder, name)
+    if not os.path.isfile(path):
+        shipped = sorted(f for f in os.listdir(folder) if f.endswith(".yaml")) \
+            if os.path.isdir(folder) else []
+        raise FileNotFoundError("%s: no shipped config %r (in %s: %s)"
+                                % (path, name, folder, ", ".join(shipped) or "none"))
+    return path
 
 
 def policies():

@@ -5,7 +5,8 @@ reads sweeps through them without the built module.
 
 Column types: a column named in the metric table (``taebp metrics``) gets the
 table's type in every frame (real -> float64 even when every value is 0,
-count -> Int64, flag -> bool; in aggregate.csv a flag pooled by sum, e.g.
+count -> int64, float64 where a cell is empty, flag -> bool: numpy dtypes, no
+pandas extension types; in aggregate.csv a flag pooled by sum, e.g.
 ``stalled``, counts the runs that had it); ``set_metric_types`` installs the
 table (``import taebp`` does). A swept value that is a map (a trust
 distribution) keeps its text and gains numeric columns beside it:
@@ -85,36 +86,46 @@ def _pandas():
 def typed_frame(df, level="run", keys=()):
     """``df`` with the metric table's dtypes and, for each swept key in
     ``keys`` whose values include a distribution, KEY.dist, KEY.mean and
-    KEY.sd inserted after it."""
+    KEY.sd inserted after it. Numpy dtypes only, so that numpy takes every
+    column as it is (``np.log``, ``np.corrcoef``): real -> float64, count ->
+    int64 (float64 with NaN where a cell is empty), flag -> bool."""
     pd = _pandas()
     types = column_types(level)
+    columns = {}
     for c in df.columns:
         t = types.get(c)
-        if t == "real":
-            df[c] = pd.to_numeric(df[c], errors="coerce").astype("float64")
-        elif t == "count":
-            df[c] = pd.to_numeric(df[c], errors="coerce").astype("Int64")
+        col = df[c]
+        if t in ("real", "count"):
+            col = pd.to_numeric(col, errors="coerce").astype("float64")
+            if t == "count" and not col.isna().any():
+                col = col.astype("int64")
         elif t == "flag":
-            df[c] = df[c].map(lambda v: bool(v) if v is not None and v == v and v != "" else False)
-            df[c] = df[c].astype(bool)
-    for key in keys:
-        if key not in df.columns:
-            continue
-        parsed = []
-        for v in df[key]:
-            try:
-                parsed.append(dists.value(v))
-            except ValueError:
-                parsed.append(v)
-        if not any(dists.is_distribution(p) for p in parsed):
-            continue
-        described = [dists.describe(p) for p in parsed]
-        at = list(df.columns).index(key) + 1
-        for i, (suffix, dtype) in enumerate((("dist", "object"), ("mean", "float64"),
-                                             ("sd", "float64"))):
-            col = pd.Series([d[i] for d in described], index=df.index, dtype=dtype)
-            df.insert(at + i, key + "." + suffix, col)
-    return df
+            col = col.map(lambda v: bool(v) if v is not None and v == v and v != "" else False)
+            col = col.astype(bool)
+        columns[c] = col
+        if c in keys:
+            columns.update(_distribution_columns(pd, c, col))
+    # One frame built at once (inserting column by column fragments it, and
+    # pandas warns: PerformanceWarning).
+    return pd.DataFrame(columns, index=df.index)
+
+
+def _distribution_columns(pd, key, values):
+    """{KEY.dist, KEY.mean, KEY.sd} of a swept key whose values include a
+    distribution (taebp.dists), else {}."""
+    parsed = []
+    for v in values:
+        try:
+            parsed.append(dists.value(v))
+        except ValueError:
+            parsed.append(v)
+    if not any(dists.is_distribution(p) for p in parsed):
+        return {}
+    described = [dists.describe(p) for p in parsed]
+    return {key + "." + suffix: pd.Series([d[i] for d in described], index=values.index,
+                                          dtype=dtype)
+            for i, (suffix, dtype) in enumerate((("dist", "object"), ("mean", "float64"),
+                                                 ("sd", "float64")))}
 
 
 class Table:
@@ -177,7 +188,7 @@ class Table:
 
 def to_pandas(obj):
     """pandas DataFrames of a result: a Table -> one DataFrame; a RunResult ->
-    {"encounters", "junctions", "policies"}; a SweepResult -> {"results",
+    {"encounters", "junctions", "collisions", "policies"}; a SweepResult -> {"results",
     "aggregate", "encounters", "junctions"}."""
     if isinstance(obj, (Table, RunResult, SweepResult)):
         return obj.to_pandas()
@@ -198,6 +209,9 @@ class RunResult:
     encounters  encounters.csv as a Table (one row per AV-HV encounter)
     junctions   junctions.csv as a Table (one row per controlled junction and
                 policy: crossings, waits, queues, encounters, rates)
+    collisions  collisions.csv as a Table (one row per collision SUMO reported
+                after the warm-up: when, where, the two vehicles, the count it
+                is in)
     config      config.yaml: the resolved configuration (YAML text)
     table       the Table I printout of ``taebp run``
     warnings    the run's warnings (also in summary.json's provenance)
@@ -211,6 +225,7 @@ class RunResult:
         self.summary = json.loads(self.files["summary.json"])
         self.encounters = Table.from_csv(self.files["encounters.csv"], "encounters.csv")
         self.junctions = Table.from_csv(self.files.get("junctions.csv", ""), "junctions.csv")
+        self.collisions = Table.from_csv(self.files.get("collisions.csv", ""), "collisions.csv")
         self.timeseries = (Table.from_csv(self.files["timeseries.csv"], "timeseries.csv")
                            if "timeseries.csv" in self.files else None)
         self.hv_trust = (Table.from_csv(self.files["hv_trust.csv"], "hv_trust.csv")
@@ -227,7 +242,8 @@ class RunResult:
 
     def to_pandas(self):
         """{"encounters": one row per encounter, "junctions": one row per
-        junction and policy, "policies": one row per policy with summary.json's
+        junction and policy, "collisions": one row per collision SUMO reported,
+        "policies": one row per policy with summary.json's
         metrics (the names of the metric table, e.g. theory_dc_rate;
         sections such as scheme flattened: scheme.nudge)}, plus "timeseries" and
         "hv_trust" for runs beyond the paper."""
@@ -239,6 +255,7 @@ class RunResult:
             rows.append(flat)
         out = {"encounters": self.encounters.to_pandas(),
                "junctions": self.junctions.to_pandas(),
+               "collisions": self.collisions.to_pandas(),
                "policies": typed_frame(pd.DataFrame(rows))}
         for name in ("timeseries", "hv_trust"):
             if getattr(self, name) is not None:
@@ -253,8 +270,8 @@ class RunResult:
 def load_run(out_dir):
     """The RunResult of a directory that ``taebp run --out`` (or run(out=...)) wrote."""
     files = {}
-    for name in ("summary.json", "encounters.csv", "junctions.csv", "config.yaml",
-                 "timing.json", "timeseries.csv", "hv_trust.csv"):
+    for name in ("summary.json", "encounters.csv", "junctions.csv", "collisions.csv",
+                 "config.yaml", "timing.json", "timeseries.csv", "hv_trust.csv"):
         path = os.path.join(out_dir, name)
         if os.path.isfile(path):
             with open(path, encoding="utf-8") as f:
@@ -333,6 +350,17 @@ class SweepResult:
                                 "results.csv), got %r"
                                 % (what, "a grid point's" if what == "point" else "a", v))
         return load_run(os.path.join(self.out, "tasks", "%d-%d" % (point, replicate)))
+
+    def tidy(self, metrics=None):
+        """The sweep as one long pandas DataFrame, the table every figure is
+        drawn from (taebp.plot.tidy): one row per point x policy x metric
+        with a value, the swept keys as numbers where they are (a
+        distribution with KEY.dist, KEY.mean, KEY.sd), value / lo / hi /
+        theory as float64 (lo, hi: a rate's interval as aggregate.csv has it,
+        a mean's t interval over the seeds), runs / failed / stalled as int64.
+        ``metrics``: a list of metric names (default: every one)."""
+        from .plot import tidy
+        return tidy.to_pandas(self, metrics)
 
     def to_pandas(self):
         """{"results", "aggregate", "encounters", "junctions"} as pandas DataFrames."""

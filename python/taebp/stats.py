@@ -18,7 +18,7 @@ import math
 
 __all__ = ["Z95", "Z999", "MIN_CLUSTERS", "wilson", "wilson_at", "clustered_rate", "pooled_rate",
            "encounter_rate", "normal_quantile", "bonferroni_level", "rate_difference",
-           "student_t_quantile", "mean_interval", "welch_interval"]
+           "student_t_quantile", "mean_interval", "mean_interval_of", "welch_interval"]
 
 # Two-sided standard normal quantiles: 95 % (what every output reports) and
 # 99.9 % (a measured rate against its theory, where a false alarm should be rare).
@@ -31,7 +31,14 @@ def wilson(k, n, z=Z95):
     quantile z (Wilson 1927; Newcombe 1998, method 3, no continuity correction).
 
     Edges: n = 0 gives (0, 1); k = 0 gives low exactly 0; k = n gives high
-    exactly 1; always inside [0, 1]. Needs 0 <= k <= n."""
+    exactly 1; always inside [0, 1]. Needs 0 <= k <= n.
+
+    ``k`` and ``n`` may be numpy arrays, pandas Series or lists (numpy's
+    broadcasting rules): then (low, high) are two float arrays of their
+    broadcast shape, element by element the same numbers as for scalars,
+    e.g. ``lo, hi = taebp.stats.wilson(df.collisions, df.encounters)``."""
+    if _is_array(k) or _is_array(n) or _is_array(z):
+        return _wilson_arrays(k, n, z)
     if not 0 <= k <= n:
         raise ValueError("wilson: need 0 <= k <= n, got k=%r, n=%r" % (k, n))
     if n == 0:
@@ -42,6 +49,34 @@ def wilson(k, n, z=Z95):
     c = (p + z2 / (2 * n)) / d
     h = z * math.sqrt(p * (1 - p) / n + z2 / (4 * n * n)) / d
     return (0.0 if k == 0 else max(0.0, c - h)), (1.0 if k == n else min(1.0, c + h))
+
+
+
+def _is_array(v):
+    return not isinstance(v, (str, bytes)) and (hasattr(v, "__len__") or getattr(v, "ndim", 0) > 0)
+
+
+
+def _wilson_arrays(k, n, z):
+    """wilson() element by element over broadcast arrays (the same formula)."""
+    import numpy as np
+    k, n, z = np.broadcast_arrays(np.asarray(k, dtype=float), np.asarray(n, dtype=float),
+                                  np.asarray(z, dtype=float))
+    bad = ~((0 <= k) & (k <= n))
+    if bad.any():
+        i = np.argwhere(bad)[0]
+        raise ValueError("wilson: need 0 <= k <= n, got k=%r, n=%r at index %s"
+                         % (k[tuple(i)].item(), n[tuple(i)].item(), tuple(int(x) for x in i)))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p = k / n
+        z2 = z * z
+        d = 1 + z2 / n
+        c = (p + z2 / (2 * n)) / d
+        h = z * np.sqrt(p * (1 - p) / n + z2 / (4 * n * n)) / d
+        low = np.where(k == 0, 0.0, np.maximum(0.0, c - h))
+        high = np.where(k == n, 1.0, np.minimum(1.0, c + h))
+    empty = n == 0
+    return np.where(empty, 0.0, low), np.where(empty, 1.0, high)
 
 
 # Below this many clusters (HVs met, or runs) no interval can account for
@@ -231,6 +266,17 @@ def mean_interval(values, level=0.95):
     sd = math.sqrt(sum((x - mean) ** 2 for x in xs) / (n - 1))
     half = student_t_quantile(n - 1, level) * sd / math.sqrt(n)
     return mean, mean - half, mean + half
+
+
+def mean_interval_of(mean, sd, n, level=0.95):
+    """(low, high): the Student t interval of a mean over n independent
+    values (one per seed) given their sample sd, as aggregate.csv holds them
+    (NAME, NAME_sd, runs_ok); (None, None) for n < 2 or no sd."""
+    if mean is None or sd is None or n is None or n < 2:
+        return None, None
+    half = student_t_quantile(int(n) - 1, level) * sd / math.sqrt(n)
+    return mean - half, mean + half
+
 
 
 def welch_interval(a, b, level=0.95):

@@ -270,6 +270,12 @@ const std::vector<Metric>& RunMetrics() {
     {"encounters_unfinished", T::kCount, "", kP, S::kAll, Pool::kSum, nullptr, nullptr, nullptr,
      "encounters still in progress at the end",
      [](const MetricFacts& f) { return D(f.run->encounters_unfinished); }},
+    {"encounters_per_hour", T::kReal, "1/h", kPJ, S::kAll, Pool::kMean, nullptr, nullptr,
+     nullptr,
+     "AV-HV encounters per measured hour (none for a policy that plays no game)",
+     [](const MetricFacts& f) {
+       return PlaysGame(f.run->policy) ? PerHour(D(f.s.n), f.run->measured_seconds) : kNaN;
+     }},
     // Traffic at the controlled junctions.
     {"crossings_av", T::kCount, "", kPJ, S::kAll, Pool::kSum, nullptr, nullptr, "crossings.av",
      "AVs through the controlled junctions",
@@ -583,7 +589,8 @@ const std::vector<MetricSection>& RunSections() {
       {"scheme", false, MetricScope::kAll, nullptr,
        "the committed scheme: av_may_go, nudge (m), p_nudge_given_go, p_nudge_given_stop"},
       {"sumo_warnings_first", false, MetricScope::kAll, "sumo_warnings.first",
-       "the first few of SUMO's warnings"},
+       "the first few of SUMO's warnings other than its collision reports (those are the "
+       "rows of collisions.csv)"},
       {"stalls", false, MetricScope::kAll, nullptr,
        "every stall found: junction, since (last crossing, s), detected (s)"},
       {"stall_error", false, MetricScope::kAll, nullptr,

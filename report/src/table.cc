@@ -16,6 +16,16 @@
 #include <vector>
 
 namespace taebp {
+namespace {
+
+// Whether a run measured more than an hour: only then is its last hour not
+// the whole run.
+bool LongerThanAnHour(const std::vector<PolicyRun>& runs) {
+  return std::any_of(runs.begin(), runs.end(),
+                     [](const PolicyRun& r) { return r.measured_seconds > 3600.0 + 1e-9; });
+}
+
+}  // namespace
 
 void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
                 const std::vector<std::string>& warnings) {
@@ -150,13 +160,16 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       for (const PolicyRun& r : runs) out << std::setw(w) << cell(r);
       out << "\n";
     };
-    row("Last hour DC rate", [&](const PolicyRun& r) {
-      if (!PlaysGame(r.policy)) return std::string("-");
-      const LastHourWindow win = LastHour(r);
-      char buf[96];
-      std::snprintf(buf, sizeof buf, " or %.3f", win.n ? win.oracle_dc / win.n : 0.0);
-      return interval(RunRateInterval(r, "last_hour_dc_rate")) + buf;
-    });
+    // The last hour apart from the whole run only where the run measured
+    // more than an hour (a shorter run's last hour is the run).
+    if (LongerThanAnHour(runs))
+      row("Last hour DC rate", [&](const PolicyRun& r) {
+        if (!PlaysGame(r.policy)) return std::string("-");
+        const LastHourWindow win = LastHour(r);
+        char buf[96];
+        std::snprintf(buf, sizeof buf, " or %.3f", win.n ? win.oracle_dc / win.n : 0.0);
+        return interval(RunRateInterval(r, "last_hour_dc_rate")) + buf;
+      });
     row("Regret / encounter", [](const PolicyRun& r) {
       if (!PlaysGame(r.policy) || r.encounters.empty()) return std::string("-");
       double regret = 0;
@@ -165,17 +178,22 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       std::snprintf(buf, sizeof buf, "%.4f (total %.1f)", regret / r.encounters.size(), regret);
       return std::string(buf);
     });
-    row("Mean trust start/end", [](const PolicyRun& r) {
-      if (!PlaysGame(r.policy)) return std::string("-");
-      char buf[96];
-      if (r.beyond.long_run)
-        std::snprintf(buf, sizeof buf, "%.3f / %.3f (long run %.3f)", r.beyond.initial_mean_trust,
-                      r.beyond.final_mean_trust, r.beyond.expected_long_run_mean);
-      else
-        std::snprintf(buf, sizeof buf, "%.3f / %.3f", r.beyond.initial_mean_trust,
-                      r.beyond.final_mean_trust);
-      return std::string(buf);
-    });
+    // Mean trust at the start and the end only where trust moves (dynamic
+    // trust, experience); otherwise the two are the same draw.
+    const bool moves = std::any_of(runs.begin(), runs.end(),
+                                   [](const PolicyRun& r) { return r.beyond.trust_moves; });
+    if (moves)
+      row("Mean trust start/end", [](const PolicyRun& r) {
+        if (!PlaysGame(r.policy)) return std::string("-");
+        char buf[96];
+        if (r.beyond.long_run)
+          std::snprintf(buf, sizeof buf, "%.3f / %.3f (long run %.3f)", r.beyond.initial_mean_trust,
+                        r.beyond.final_mean_trust, r.beyond.expected_long_run_mean);
+        else
+          std::snprintf(buf, sizeof buf, "%.3f / %.3f", r.beyond.initial_mean_trust,
+                        r.beyond.final_mean_trust);
+        return std::string(buf);
+      });
   }
   const bool stalled = std::any_of(runs.begin(), runs.end(),
                                    [](const PolicyRun& r) { return !r.stalls.empty(); });
@@ -209,8 +227,12 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
         << "\n";
   }
   if (AnyBeyond(runs))
-    out << "(or = the oracle, TA-EBP for each HV's exact trust, on the same encounters; regret "
-           "= DC lost + r x collisions against it)\n";
+    out << (LongerThanAnHour(runs) ? "(or = the oracle, TA-EBP for each HV's exact trust, on the "
+                                     "same encounters; regret = DC lost + r x collisions against "
+                                     "it)\n"
+                                   : "(regret = DC lost + r x collisions against the oracle, "
+                                     "TA-EBP for each HV's exact trust, on the same "
+                                     "encounters)\n");
   if (flagged) out << "! the theory lies outside the measured rate's 95% interval\n";
   if (few)
     out << "~ fewer than " << kMinClusters

@@ -170,9 +170,10 @@ bool IsPolicyFolder(const std::string& name) {
 }
 
 bool IsRunFile(const std::string& name) {
-  static const char* const kFixed[] = {"summary.json", "encounters.csv", "junctions.csv",
-                                       "config.yaml",  "timing.json",    "timeseries.csv",
-                                       "hv_trust.csv", "network.net.xml", "paired.csv"};
+  static const char* const kFixed[] = {"summary.json",   "encounters.csv", "junctions.csv",
+                                       "collisions.csv", "config.yaml",    "timing.json",
+                                       "timeseries.csv", "hv_trust.csv",   "network.net.xml",
+                                       "paired.csv"};
   for (const char* f : kFixed)
     if (name == f) return true;
   if (IsPolicyFolder(name)) return true;  // SUMO's outputs of a policy

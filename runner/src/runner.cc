@@ -34,6 +34,7 @@ std::vector<std::pair<std::string, std::string>> ExperimentResult::Files() const
       {"summary.json", SummaryJson(runs, provenance, stopped)},
       {"encounters.csv", EncountersCsv(runs)},
       {"junctions.csv", JunctionsCsv(runs)},
+      {"collisions.csv", CollisionsCsv(runs)},
       {"config.yaml", ToYaml(config)},
       {"timing.json", timing.dump(2) + "\n"}};
   for (const PolicyRun& r : runs) {

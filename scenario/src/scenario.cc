@@ -5,6 +5,7 @@
 #include "taebp/scenario/demand.h"
 #include "taebp/scenario/net_file.h"
 
+#include "demand_files.h"
 #include "process.h"
 
 #include <pugixml.hpp>
@@ -100,6 +101,14 @@ net::NetFile LoadNet(const std::string& path, const std::string& key) {
 constexpr double kSumoStopGap = 0.1;  // m: SUMO halts a vehicle this far before a stop line
 const std::vector<std::string> kLap = {"C_E", "E_C", "C_W", "W_C"};
 
+// A network of the user's that is not a figure-8: most likely meant as one
+// (scenario.kind defaults to figure8); the message names the fix.
+std::string OwnNetworkHint(const ScenarioConfig& sc) {
+  if (sc.network.empty()) return "";
+  return "; scenario.kind is figure8 (its default): for a network of your own set "
+         "scenario.kind: network (and scenario.routes or scenario.demand)";
+}
+
 // Spreads the vehicles evenly over the lap (types interleaved), avoiding the
 // hold zone before the stop line and the first vehicle length of each edge.
 std::vector<PlacedVehicle> PlaceFigure8(const ScenarioConfig& sc, const net::NetFile& net,
@@ -109,7 +118,8 @@ std::vector<PlacedVehicle> PlaceFigure8(const ScenarioConfig& sc, const net::Net
     const net::Edge* e = net.FindEdge(kLap[i]);
     if (!e || e->lanes.empty())
       throw ConfigError(key + ": not a figure-8 network (no edge '" + kLap[i] +
-                        "'; the figure-8 needs edges C_E, E_C, C_W, W_C and junction C)");
+                        "'; the figure-8 needs edges C_E, E_C, C_W, W_C and junction C)" +
+                        OwnNetworkHint(sc));
     len[i] = net.FindLane(e->lanes[0])->length;
   }
   double lap = 0;
@@ -202,7 +212,8 @@ Scenario BuildFigure8(const ExperimentConfig& config, const std::string& config_
   const net::NetFile net = LoadNet(s.net, key);
   const net::Junction* c = net.FindJunction("C");
   if (!c)
-    throw ConfigError(key + ": not a figure-8 network (no junction 'C' in " + s.net + ")");
+    throw ConfigError(key + ": not a figure-8 network (no junction 'C' in " + s.net + ")" +
+                      OwnNetworkHint(sc));
   if (c->type != "allway_stop" && c->type != "priority_stop")
     throw ConfigError(key + ": junction C of " + s.net + " is '" + c->type +
                       "'; the figure-8 needs an allway_stop centre");
@@ -605,6 +616,7 @@ Scenario BuildNetwork(const ExperimentConfig& config, const std::string& config_
       throw ConfigError("scenario.additional: '" + a + "': " + why + " (" + p.string() + ")");
     s.additional_files.push_back(p.string());
   }
+  CheckDemandFiles(sc, s);
   const net::NetFile net = LoadNet(s.net, key);
   SelectJunctions(sc, net, &s);
   if (sc.demand) {

@@ -74,7 +74,8 @@ TEST(SumoOutputs, PerPolicyFoldersTheUsersEdgeDataAndTheNetworkThatRan) {
   CliResult r = RunCli({"run", config.string(), "--out", out.string(), "--quiet"});
   ASSERT_EQ(r.exit_code, 0) << r.Describe();
   const std::set<std::string> expected = {
-      "config.yaml", "encounters.csv", "junctions.csv", "network.net.xml", "summary.json",
+      "collisions.csv", "config.yaml", "encounters.csv", "junctions.csv", "network.net.xml",
+      "summary.json",
       "sumo_native", "sumo_native/edgedata.xml", "sumo_native/fcd.xml",
       "sumo_native/lanedata.xml", "sumo_native/my_edges.xml", "sumo_native/queue.xml",
       "ta_ebp", "ta_ebp/edgedata.xml", "ta_ebp/fcd.xml", "ta_ebp/lanedata.xml",
@@ -115,8 +116,9 @@ TEST(SumoOutputs, PerPolicyFoldersTheUsersEdgeDataAndTheNetworkThatRan) {
               "policies=[ta_ebp]", "--set",
               "scenario.outputs={fcd: true, edgedata: false, lanedata: false, queue: false}"});
   ASSERT_EQ(r.exit_code, 0) << r.Describe();
-  EXPECT_EQ(Tree(out), (std::set<std::string>{"config.yaml", "encounters.csv", "junctions.csv",
-                                               "network.net.xml", "notes.txt", "summary.json",
+  EXPECT_EQ(Tree(out), (std::set<std::string>{"collisions.csv", "config.yaml", "encounters.csv",
+                                               "junctions.csv", "network.net.xml", "notes.txt",
+                                               "summary.json",
                                                "ta_ebp", "ta_ebp/fcd.xml",
                                                "ta_ebp/my_edges.xml"}));
 }

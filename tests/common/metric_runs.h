@@ -6,6 +6,8 @@
 #include "taebp/report/report.h"
 #include "taebp/report/results.h"
 
+#include "csv_text.h"
+
 #include <nlohmann/json.hpp>
 
 #include <sstream>
@@ -13,28 +15,6 @@
 #include <vector>
 
 namespace taebp::test {
-
-inline std::vector<std::string> SplitCsvLine(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cell;
-  for (char c : line) {
-    if (c == ',') {
-      out.push_back(cell);
-      cell.clear();
-    } else {
-      cell += c;
-    }
-  }
-  out.push_back(cell);
-  return out;
-}
-
-inline std::vector<std::string> Lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
-}
 
 inline EncounterRecord Encounter(const std::string& junction, double time, bool collision, bool dc,
                                  double commanded) {

@@ -64,7 +64,7 @@ TEST(Beyond, PaperEncountersAreByteIdenticalToThoseBeforeTheBeyondFeatures) {
   std::vector<std::string> names;
   for (const auto& [name, text] : r.Files()) names.push_back(name);
   EXPECT_EQ(names, (std::vector<std::string>{"summary.json", "encounters.csv", "junctions.csv",
-                                             "config.yaml", "timing.json"}));
+                                             "collisions.csv", "config.yaml", "timing.json"}));
 }
 
 TEST(Beyond, EachCapabilityReducesToThePaperWithStaticKnownTrustAndNoNoise) {

@@ -68,8 +68,8 @@ def check(path, expected):
 def test_every_csv_of_a_run_and_a_sweep(tmp_path):
     docs = documented()
     assert set(docs) == {(False, "encounters.csv"), (False, "junctions.csv"),
-                         (False, "results.csv"), (False, "aggregate.csv"),
-                         (True, "encounters.csv")}, docs
+                         (False, "collisions.csv"), (False, "results.csv"),
+                         (False, "aggregate.csv"), (True, "encounters.csv")}, docs
     run_columns = docs[(False, "encounters.csv")]
     assert run_columns == taebp.encounter_columns()
 
@@ -80,8 +80,8 @@ def test_every_csv_of_a_run_and_a_sweep(tmp_path):
     swept = ["model.trust", "scenario.avs", "scenario.hvs"]
 
     written = sorted(glob.glob(str(tmp_path / "**" / "*.csv"), recursive=True))
-    # run (encounters, junctions); sweep tables + pooled; 8 tasks x 2
-    assert len(written) == 2 + 3 + 8 * 2
+    # run (encounters, junctions, collisions); sweep tables + pooled; 8 tasks x 3
+    assert len(written) == 3 + 3 + 8 * 3
     read = 0
     for path in written:
         rel = os.path.relpath(path, tmp_path)
@@ -92,8 +92,9 @@ def test_every_csv_of_a_run_and_a_sweep(tmp_path):
             expected = expand(docs[(False, name)], swept, run_columns)
         rows = check(path, expected)
         read += len(rows)
-        # Only the all-HV tasks (no AV-HV encounter) have a header and no row.
-        assert rows or name == "encounters.csv", path
+        # Only the all-HV tasks (no AV-HV encounter) have a header and no row;
+        # collisions.csv has a row per collision SUMO reported (maybe none).
+        assert rows or name in ("encounters.csv", "collisions.csv"), path
         if name == "aggregate.csv":
             # No encounter at [0, 16]: empty rates, not a broken row.
             empty = [r for r in rows if r["scenario.avs"] == "0"]

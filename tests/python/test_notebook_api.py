@@ -122,3 +122,99 @@ def test_import_taebp_gives_the_whole_api_and_docstrings_list_the_tables():
         assert p in taebp.run.__doc__, p
     for name in inspect.signature(taebp.sweep).parameters:
         assert "``%s``" % name in taebp.sweep.__doc__, name
+
+
+# ---- notebook manners (issue 44)
+def test_a_dict_configs_errors_name_the_dict_and_the_key(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    config = {"scenario": {"duration": 60, "avs": -3}, "policies": ["ta_ebp"]}
+    with pytest.raises(taebp.ConfigError) as e:
+        taebp.run(config)
+    message = str(e.value)
+    assert message.startswith("config dict") and "scenario.avs" in message, message
+    assert ".taebp-config-" not in message and ".yaml" not in message, message
+    assert list(tmp_path.iterdir()) == []  # the dict's file is gone
+    with pytest.raises(taebp.ConfigError) as e:
+        taebp.sweep(dict(config), out=str(tmp_path / "s"))
+    assert str(e.value).startswith("config dict") and ".taebp-config-" not in str(e.value)
+
+
+def test_dict_values_follow_the_yaml_loaders_rule(tmp_path, monkeypatch):
+    """An integral float for an integer key is the integer (a DataFrame gives
+    8.0); a string for a number is refused, as in a YAML file."""
+    monkeypatch.chdir(tmp_path)
+    base = {"scenario": {"duration": 30, "avs": 8.0, "hvs": 8},
+            "model": {"prior_go": 0.2, "collision_penalty": 3.0, "trust": 0.6},
+            "policies": ["ta_ebp"]}
+    r = taebp.run(base)
+    assert "avs: 8\n" in r.config
+    frame_like = json_roundtrip(base)
+    frame_like["scenario"]["avs"] = np.float64(8.0)
+    assert taebp.run(frame_like).files["encounters.csv"] == r.files["encounters.csv"]
+    for bad in ({"scenario": {"avs": 8.5}}, {"model": {"trust": "0.7"}},
+                {"scenario": {"duration": "30"}}):
+        config = json_roundtrip(base)
+        for section, values in bad.items():
+            config[section].update(values)
+        with pytest.raises(taebp.ConfigError) as e:
+            taebp.run(config)
+        key = "%s.%s" % next((s, k) for s, v in bad.items() for k in v)
+        assert key in str(e.value) and str(e.value).startswith("config dict"), str(e.value)
+    (tmp_path / "c.yaml").write_text("model: {trust: '0.7'}\npolicies: [ta_ebp]\n")
+    with pytest.raises(taebp.ConfigError) as e:
+        taebp.run(str(tmp_path / "c.yaml"))
+    assert "model.trust" in str(e.value)
+
+
+def json_roundtrip(d):
+    import json
+    return json.loads(json.dumps(d))
+
+
+def test_theory_functions_name_a_bad_argument():
+    for f in (taebp.theory, taebp.design):
+        with pytest.raises(taebp.InvalidArgument) as e:
+            f(trust="high")
+        assert "trust" in str(e.value) and "'high'" in str(e.value) and \
+            str(e.value).startswith(f.__name__ + "("), str(e.value)
+        assert isinstance(e.value, ValueError)
+    with pytest.raises(taebp.InvalidArgument, match=r"prior_go must be a number, got '0.2'"):
+        taebp.predict("ta_ebp", prior_go="0.2")
+    with pytest.raises(taebp.InvalidArgument, match="likelihood"):
+        taebp.theory(likelihood=3)
+    # numpy numbers are numbers
+    assert taebp.theory(trust=np.float64(0.6))["s_star"] == taebp.theory(trust=0.6)["s_star"]
+    assert taebp.theory(trust=np.array(0.6))["s_star"] == taebp.theory(trust=0.6)["s_star"]
+
+
+def test_stats_wilson_broadcasts():
+    k = np.array([0, 3, 10, 0])
+    n = np.array([10, 10, 10, 0])
+    lo, hi = taebp.stats.wilson(k, n)
+    assert lo.shape == hi.shape == (4,)
+    for i in range(4):
+        assert (lo[i], hi[i]) == taebp.stats.wilson(int(k[i]), int(n[i]))
+    lo, hi = taebp.stats.wilson(pd.Series([1, 2]), 10)
+    assert np.allclose(lo, [taebp.stats.wilson(1, 10)[0], taebp.stats.wilson(2, 10)[0]])
+    grid_lo, _ = taebp.stats.wilson(np.arange(3)[:, None], np.array([5, 10]))
+    assert grid_lo.shape == (3, 2)
+    with pytest.raises(ValueError, match="0 <= k <= n"):
+        taebp.stats.wilson([1, 11], [10, 10])
+
+
+def test_run_stops_at_its_timeout_and_writes_nothing(tmp_path):
+    import time
+    start = time.monotonic()
+    with pytest.raises(TimeoutError) as e:
+        taebp.run(taebp.shipped_config("paper.yaml"), out=str(tmp_path / "out"), timeout=1.5)
+    assert time.monotonic() - start < 15
+    assert "timeout=1.5" in str(e.value) and "nothing written" in str(e.value)
+    assert not (tmp_path / "out").exists() or not list((tmp_path / "out").iterdir())
+    # The lock is gone: the same folder takes a (short) run after it.
+    r = taebp.run(taebp.shipped_config("paper.yaml"), out=str(tmp_path / "out"),
+                  overrides={"scenario.duration": 30, "policies": ["ta_ebp"]}, timeout=120)
+    assert (tmp_path / "out" / "summary.json").is_file() and r.summary
+    with pytest.raises(ValueError, match="timeout"):
+        taebp.run(taebp.shipped_config("paper.yaml"), timeout=0)
+    with pytest.raises(FileNotFoundError, match="paper.yaml"):
+        taebp.shipped_config("no_such.yaml")

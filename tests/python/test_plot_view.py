@@ -13,7 +13,7 @@ import pytest
 
 import taebp
 from conftest import ROOT
-from taebp.plot import common, tidy, view
+from taebp.plot import common, style, tidy, view
 
 NARROW, WIDE = "{dist: beta, alpha: 12, beta: 8}", "{dist: beta, alpha: 1.2, beta: 0.8}"
 COLUMNS = ["point", "scenario.av_share", "model.trust", "policy", "runs_ok", "runs_failed",
@@ -49,7 +49,7 @@ def write_sweep(folder):
 
 @pytest.fixture
 def sweep(tmp_path):
-    return common.Sweep(write_sweep(tmp_path))
+    return tidy.Sweep(write_sweep(tmp_path))
 
 
 def test_long_table_leaves_out_empty_rates_and_derives_encounters_per_hour(sweep):
@@ -60,17 +60,17 @@ def test_long_table_leaves_out_empty_rates_and_derives_encounters_per_hour(sweep
     assert all(abs(r["value"] - 40 / 2 / 1.0) < 1e-12 for r in per_hour)  # 2 runs of 1 h
     flow = [r for r in rows if r["metric"] == "served_flow"][0]
     half = 12.706204736174705 * 10.0 / math.sqrt(2)  # t(1) 95 % of the mean of 2 seeds
-    assert abs(flow["high"] - flow["value"] - half) < 1e-9
+    assert abs(flow["hi"] - flow["value"] - half) < 1e-9
 
 
 def test_view_draws_one_line_per_policy_and_style(sweep, tmp_path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    v = view.View(sweep, "scenario.av_share", ["collision_rate", "served_flow"])
-    path = v.draw(plt, str(tmp_path))
+    fig, = view.SweepView(sweep, "scenario.av_share", ["collision_rate", "served_flow"]).figures()
+    path = fig.save(plt, str(tmp_path))
     assert os.path.basename(path) == "sweep_scenario.av_share.png"
-    d = v.description
+    d = fig.description
     assert d["styles"] == ["model.trust"]
     rate, flow = d["panels"]
     assert [(l["policy"], l["style"]) for l in rate["lines"]] == [
@@ -79,12 +79,15 @@ def test_view_draws_one_line_per_policy_and_style(sweep, tmp_path):
     assert all(l["points"] == 2 and l["theory_points"] == 2 for l in rate["lines"])
     assert len(flow["lines"]) == 4 and all(l["points"] == 2 for l in flow["lines"])
     assert rate["xlabel"] == "scenario.av_share" and rate["ylabel"] == "collision_rate"
+    assert flow["ylabel"] == "served_flow (veh/h)"  # the unit of the metric table
+    assert rate["title"] == style.metric_title("collision_rate") == "Collisions per encounter"
     assert "a seed stalled (k/n)" in d["legend"]
     # A distribution on the x axis: categories labelled by what they are.
-    v = view.View(sweep, "model.trust", ["served_flow"])
-    v.draw(plt, str(tmp_path))
-    assert v.keys["model.trust"].labels == ["Beta mean 0.6 sd 0.11", "Beta mean 0.6 sd 0.28"]
-    assert not v.keys["model.trust"].numeric and v.keys["scenario.av_share"].numeric
+    v = view.SweepView(sweep, "model.trust", ["served_flow"])
+    v.figures()[0].save(plt, str(tmp_path))
+    assert v.xkey.labels == ["Beta mean 0.6 sd 0.11", "Beta mean 0.6 sd 0.28"]
+    assert not v.xkey.numeric
+    assert view.SweepView(sweep, "scenario.av_share", ["served_flow"]).xkey.numeric
 
 
 def test_never_an_empty_figure(tmp_path):
@@ -94,9 +97,15 @@ def test_never_an_empty_figure(tmp_path):
     fig, ax = plt.subplots()
     ax.set_title("nothing")
     ax.plot([1, 2], [float("nan"), float("nan")])
-    with pytest.raises(common.PlotError, match="nothing to draw"):
+    with pytest.raises(common.PlotError, match="no simulated value"):
         common.save(fig, str(tmp_path / "empty.png"))
     assert not (tmp_path / "empty.png").exists()
+    # Theory alone (a line not marked as simulated) is no figure either.
+    fig, ax = plt.subplots()
+    ax.plot([0.1, 0.9], [0.2, 0.375])
+    with pytest.raises(common.PlotError, match="no simulated value"):
+        common.save(fig, str(tmp_path / "theory.png"))
+    assert not (tmp_path / "theory.png").exists()
 
 
 def test_what_cannot_be_drawn_names_what_can(sweep, tmp_path):

@@ -1,13 +1,12 @@
 """The policy table from Python: taebp.policy_table() is `taebp policies`, the
 docstrings that list policies list the table's, every game policy predicts,
 and tools/plot colours and labels every policy of the table."""
-import os
 import re
 
 import pytest
 
 import taebp
-from conftest import ROOT, cli_json
+from conftest import cli_json
 
 
 def test_policies_is_the_cli_table():
@@ -49,10 +48,13 @@ def test_predict_names_the_choices_for_a_policy_without_a_game():
 
 
 def test_plot_colours_and_labels_every_policy():
-    from taebp.plot import common as plot
+    """The figures' colour and label of every policy are the policy table's
+    (tables.json is the program's table, written by tools/refresh-docs); one
+    colour each; a policy the table does not know keeps its name."""
+    from taebp.plot import style
     rows = taebp.policy_table()
-    assert set(plot.POLICY_COLOUR) == {r["name"] for r in rows}
-    plot.load_policy_labels(os.environ.get("TAEBP_CLI") or os.path.join(ROOT, "build", "taebp"))
-    for i, r in enumerate(rows):
-        assert plot.style(r["name"], i) == (plot.POLICY_COLOUR[r["name"]], r["label"])
-    assert plot.style("my_policy", 0)[1] == "my_policy"
+    assert [p["name"] for p in style.tables()["policies"]] == [r["name"] for r in rows]
+    for r in rows:
+        assert style.style(r["name"]) == (r["colour"], r["label"])
+    assert len({r["colour"] for r in rows}) == len(rows)
+    assert style.style("my_policy")[1] == "my_policy"

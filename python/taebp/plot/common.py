@@ -1,9 +1,9 @@
-"""What every plot shares: reading a sweep's aggregate.csv (Sweep), the
-policies' colours and names, the stalled-run mark, the theory from the
-taebp binary, and save(), which refuses to write a figure with nothing drawn."""
+"""What every plot shares: the error tools/plot prints in one line, cells
+read as numbers, matplotlib (headless), save() (which refuses a figure
+without a simulated value and names a place it cannot write), the taebp
+binary and the theory it computes."""
 
 import concurrent.futures
-import csv
 import json
 import math
 import os
@@ -11,11 +11,15 @@ import shutil
 import subprocess
 import sys
 
-from .. import stats  # noqa: F401  (re-exported: the one Wilson / t interval of the Python code)
+# The marks of simulated values (artists carry it as their gid): save()
+# writes a figure only when one of them has a finite point. Theory, reference
+# lines and notes alone are never a figure.
+SIMULATED = "simulated"
 
 
 class PlotError(Exception):
-    """What tools/plot cannot draw, with its exit code (main prints it)."""
+    """What cannot be drawn or written, with the exit code tools/plot exits
+    with (1: nothing to draw; 2: bad input or a place it cannot write)."""
 
     def __init__(self, message, code=1):
         super().__init__(message)
@@ -30,72 +34,13 @@ def warn(msg):
     print("tools/plot: warning: " + msg, file=sys.stderr)
 
 
-def import_matplotlib():
-    try:
-        import matplotlib
-    except ImportError:
-        die("matplotlib is missing for %s: install the Debian package python3-matplotlib "
-            "(tools/setup.sh does)" % sys.executable)
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt
-
-
-def drawn(fig):
-    """The number of data artists with at least one finite point across the
-    figure's axes (lines, markers, bars, meshes, images)."""
-    import numpy as np
-    n = 0
-    for ax in fig.axes:
-        for line in ax.get_lines():
-            x, y = line.get_xdata(), line.get_ydata()
-            try:
-                ok = np.isfinite(np.asarray(x, dtype=float)) & np.isfinite(np.asarray(y, dtype=float))
-            except (TypeError, ValueError):
-                ok = [True]
-            if len(x) and np.any(ok):
-                n += 1
-        for c in ax.collections:
-            if len(getattr(c, "get_offsets", lambda: [])()) or getattr(c, "get_array", lambda: None)() is not None:
-                n += 1
-        n += len(ax.images) + len([p for p in ax.patches if p.get_visible()])
-    return n
-
-
-def save(fig, path, **kwargs):
-    """fig.savefig(path, **kwargs), unless nothing is drawn (then PlotError:
-    never an empty figure)."""
-    if drawn(fig) == 0:
-        import matplotlib.pyplot as plt
-        plt.close(fig)
-        die("%s: nothing to draw (no data in any panel); not written" % os.path.basename(path))
-    fig.savefig(path, **kwargs)
-
-
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
-
-POLICY_COLOUR = {
-    "sumo_native": "#000000",
-    "no_ebp": "#7f7f7f",
-    "no_trust": "#d62728",
-    "ta_ebp": "#1f77b4",
-    "full_reveal": "#2ca02c",
-    "population_mean": "#ff7f0e",
-    "ta_ebp_learned": "#9467bd",
-    "always_nudge": "#17becf",
-}
-# name -> label ("TA-EBP"), from the one table of policies (`taebp policies
-# --print json`, config/src/policies.cc); filled by load_policy_labels.
-POLICY_LABEL = {}
-EXTRA_COLOURS = ["#8c564b", "#e377c2", "#17becf", "#bcbd22"]
-
-
-# --------------------------------------------------------------- reading
 def number(text):
-    """A float, or None for an empty / non-numeric cell."""
+    """A float, or None for an empty / non-numeric / non-finite cell."""
     if text is None:
         return None
-    text = text.strip()
+    if isinstance(text, (int, float)) and not isinstance(text, bool):
+        return float(text) if math.isfinite(text) else None
+    text = str(text).strip()
     if text == "":
         return None
     try:
@@ -105,100 +50,104 @@ def number(text):
     return v if math.isfinite(v) else None
 
 
-class Sweep:
-    def __init__(self, where):
-        # A sweep directory, or an aggregate CSV file itself (e.g. a test fixture).
-        if os.path.isfile(where):
-            path, directory = where, os.path.dirname(where) or "."
-        else:
-            directory, path = where, os.path.join(where, "aggregate.csv")
-        self.dir = directory
-        if not os.path.isfile(path):
-            die("%s: no aggregate.csv (is this the --out directory of `taebp sweep`?)" % directory)
-        with open(path, newline="") as f:
-            reader = csv.DictReader(f)
-            self.header = reader.fieldnames or []
-            self.rows = list(reader)
-        for need in ("point", "policy"):
-            if need not in self.header:
-                die("%s: column '%s' is missing" % (path, need))
-        a, b = self.header.index("point"), self.header.index("policy")
-        self.keys = self.header[a + 1:b]
-        self.info = {}
-        info_path = os.path.join(directory, "sweep.json")
-        if os.path.isfile(info_path):
+def import_matplotlib():
+    try:
+        import matplotlib
+    except ImportError:
+        die("matplotlib is missing for %s: install the Debian package python3-matplotlib "
+            "(tools/setup.sh does) or use Debian's /usr/bin/python3" % sys.executable)
+    matplotlib.use("Agg")
+    from . import style
+    style.setup(matplotlib)
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def simulated_points(fig):
+    """How many simulated values a figure draws: the finite points of its
+    artists marked SIMULATED (points, seeds, curves, heat-map cells)."""
+    import numpy as np
+    n = 0
+    for ax in fig.axes:
+        for line in ax.get_lines():
+            if line.get_gid() != SIMULATED:
+                continue
             try:
-                with open(info_path) as f:
-                    self.info = json.load(f)
-            except (OSError, ValueError) as e:
-                warn("%s unreadable (%s): plotting without its context" % (info_path, e))
-        self.config = self.info.get("config", {}) if isinstance(self.info, dict) else {}
-        self.policies = []
-        for r in self.rows:
-            if r["policy"] not in self.policies:
-                self.policies.append(r["policy"])
-
-    def stalls(self):
-        """{(point, policy): (stalled runs, runs)} from aggregate.csv's
-        stalled (runs that stalled) and runs_ok (empty for older files without
-        the column)."""
-        out = {}
-        for r in self.rows:
-            k, n = number(r.get("stalled")), number(r.get("runs_ok"))
-            if k is not None and n is not None:
-                out[(int(r["point"]), r["policy"])] = (int(k), int(n))
-        return out
-
-    def model(self, key, default=None):
-        return self.config.get("model", {}).get(key, default)
-
-    def scenario(self, key, default=None):
-        return self.config.get("scenario", {}).get(key, default)
-
-    def context(self):
-        """One line: the fixed parameters and the sample behind each point."""
-        parts = []
-        lam, r = self.model("prior_go"), self.model("collision_penalty")
-        if lam is not None and "model.prior_go" not in self.keys:
-            parts.append("λ = %g" % lam)
-        if r is not None and "model.collision_penalty" not in self.keys:
-            parts.append("r = %g" % r)
-        if "model.trust" not in self.keys and isinstance(self.model("trust"), (int, float)):
-            parts.append("θ = %g" % self.model("trust"))
-        avs, hvs = self.scenario("avs"), self.scenario("hvs")
-        if avs is not None and self.scenario("kind", "figure8") != "network" and not any(
-                k.startswith("scenario.avs") or k.startswith("scenario.hvs") for k in self.keys):
-            parts.append("%d AVs + %d HVs" % (avs, hvs))
-        dur, reps = self.scenario("duration"), self.info.get("replicates") if isinstance(self.info, dict) else None
-        if dur is not None:
-            parts.append("%g s × %s seed%s per point" % (dur, reps if reps else "?",
-                                                      "" if reps == 1 else "s"))
-        return ", ".join(parts)
+                x = np.asarray(line.get_xdata(), dtype=float)
+                y = np.asarray(line.get_ydata(), dtype=float)
+                n += int(np.sum(np.isfinite(x) & np.isfinite(y)))
+            except (TypeError, ValueError):
+                n += len(line.get_xdata())
+        for c in ax.collections:
+            if c.get_gid() != SIMULATED:
+                continue
+            a = c.get_array()
+            if a is not None:
+                n += int(np.sum(np.isfinite(np.ma.filled(np.asarray(a, dtype=float), np.nan))))
+            else:
+                n += len(c.get_offsets())
+    return n
 
 
-def load_policy_labels(binary):
-    """The policies' labels from `taebp policies --print json`; without a
-    binary the plots label policies by their names (and say so)."""
-    if binary is None:
-        warn("no taebp binary found: policies labelled by their names")
-        return
-    out = subprocess.run([binary, "policies", "--print", "json"], capture_output=True, text=True)
-    if out.returncode != 0:
-        warn("%s policies failed (%s): policies labelled by their names"
-             % (binary, out.stderr.strip()))
-        return
-    POLICY_LABEL.update({row["name"]: row["label"] for row in json.loads(out.stdout)})
+def ensure_dir(out_dir):
+    """The folder to write into, made if missing; a place that cannot be one
+    (a file, no permission) is a PlotError in one line (exit 2)."""
+    if os.path.exists(out_dir) and not os.path.isdir(out_dir):
+        die("--out %s: not a folder (a file is in the way)" % out_dir, 2)
+    try:
+        os.makedirs(out_dir, exist_ok=True)
+    except OSError as e:
+        die("--out %s: cannot make the folder (%s)" % (out_dir, e.strerror or e), 2)
+    if not os.access(out_dir, os.W_OK | os.X_OK):
+        die("--out %s: cannot write there (permission denied)" % out_dir, 2)
+    return out_dir
 
 
-def style(policy, i):
-    """(colour, label) of a policy."""
-    colour = POLICY_COLOUR.get(policy) or EXTRA_COLOURS[i % len(EXTRA_COLOURS)]
-    return colour, POLICY_LABEL.get(policy, policy)
+def save(fig, path, **kwargs):
+    """fig.savefig(path) at the style's resolution, unless the figure draws no
+    simulated value (PlotError: never a figure of theory alone, never an
+    empty one); a file it cannot write is a PlotError naming it (exit 2)."""
+    import matplotlib.pyplot as plt
+    if simulated_points(fig) == 0:
+        plt.close(fig)
+        die("%s: no simulated value to draw (every point empty or failed); not written"
+            % os.path.basename(path))
+    try:
+        fig.savefig(path, **kwargs)
+    except OSError as e:
+        die("%s: cannot write it (%s)" % (path, e.strerror or e), 2)
+    finally:
+        plt.close(fig)
+    return path
 
 
-# --------------------------------------------------------------- theory
+# ------------------------------------------------------------------ taebp
+PACKAGE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # .../taebp
+
+
+def find_taebp(explicit=None):
+    """The taebp program: `explicit`, $TAEBP_BUILD_DIR/taebp, the build of the
+    source tree this package is in (python/taebp -> build/taebp), the build
+    tree this package was copied into (build/python/taebp -> build/taebp),
+    then PATH; None when there is none."""
+    if explicit:
+        if not (os.path.isfile(explicit) and os.access(explicit, os.X_OK)):
+            die("--taebp %s: not an executable" % explicit, 2)
+        return explicit
+    candidates = []
+    if os.environ.get("TAEBP_BUILD_DIR"):
+        candidates.append(os.path.join(os.environ["TAEBP_BUILD_DIR"], "taebp"))
+    root = os.path.dirname(os.path.dirname(PACKAGE))
+    candidates += [os.path.join(root, "build", "taebp"), os.path.join(root, "taebp")]
+    for c in candidates:
+        if os.path.isfile(c) and os.access(c, os.X_OK):
+            return c
+    return shutil.which("taebp")
+
+
 class Theory:
-    """Dense theory curves from `taebp theory --json` (None when unavailable)."""
+    """Dense theory curves from `taebp theory --json` (unavailable without
+    the binary: the presets then draw the theory columns)."""
 
     def __init__(self, binary, sweep):
         self.binary = binary
@@ -218,7 +167,8 @@ class Theory:
             cmd += ["--penalty", repr(float(s.model("collision_penalty")))]
         if lik.get("type"):
             cmd += ["--likelihood", str(lik["type"])]
-        for key, opt in (("s_max", "--s-max"), ("steepness", "--steepness"), ("midpoint", "--midpoint")):
+        for key, opt in (("s_max", "--s-max"), ("steepness", "--steepness"),
+                         ("midpoint", "--midpoint")):
             if lik.get(key) is not None:
                 cmd += [opt, repr(float(lik[key]))]
         if assumed is not None:
@@ -238,34 +188,3 @@ class Theory:
     def many(self, pairs):
         with concurrent.futures.ThreadPoolExecutor(max_workers=max(2, os.cpu_count() or 2)) as pool:
             return list(pool.map(lambda p: self.one(*p), pairs))
-
-
-def find_taebp(explicit):
-    if explicit:
-        if not (os.path.isfile(explicit) and os.access(explicit, os.X_OK)):
-            die("--taebp %s: not an executable" % explicit, 2)
-        return explicit
-    candidates = []
-    if os.environ.get("TAEBP_BUILD_DIR"):
-        candidates.append(os.path.join(os.environ["TAEBP_BUILD_DIR"], "taebp"))
-    candidates.append(os.path.join(ROOT, "build", "taebp"))
-    for c in candidates:
-        if os.path.isfile(c) and os.access(c, os.X_OK):
-            return c
-    return shutil.which("taebp")
-
-
-STALL_RING = dict(ls="", marker="o", ms=11, mfc="none", mec="red", mew=1.6)
-
-
-def mark_stalled(ax, x, y, stalled, note=None, va="baseline"):
-    ax.plot([x], [y], zorder=5, **STALL_RING)
-    if note is not None:
-        ax.annotate("%d/%d stalled" % stalled, (x, y), xytext=note, textcoords="offset points",
-                    fontsize=7, color="red", va=va)
-
-
-def add_stall_legend(handles, labels):
-    from matplotlib.lines import Line2D
-    handles.append(Line2D([], [], **STALL_RING))
-    labels.append("a seed stalled (k/n)")

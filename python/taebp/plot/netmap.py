@@ -4,7 +4,8 @@ import json
 import math
 import os
 
-from .common import die, save, style
+from . import style
+from .common import SIMULATED, die, save
 
 
 def run_network_file(run_dir, summary):
@@ -127,15 +128,15 @@ def plot_map(plt, run_dir, out_dir):
     max_enc = max([e for _, rows in panels for _, e, _ in rows] + [1])
 
     def size(e):  # marker area (pt^2) by encounters; a junction without any: a small dot
-        return 30 + 250 * math.sqrt(e / max_enc) if e > 0 else 14
+        return 14 + 110 * math.sqrt(e / max_enc) if e > 0 else 8
 
     xs = [x for line in lanes for x, _ in line] or [x for x, _ in nodes.values()]
     ys = [y for line in lanes for _, y in line] or [y for _, y in nodes.values()]
     x0, x1, y0, y1 = min(xs), max(xs), min(ys), max(ys)
     w, h = max(x1 - x0, 1.0), max(y1 - y0, 1.0)
     n = len(panels)
-    panel_w = 6.0 if n > 1 else 8.0
-    fig, axes = plt.subplots(1, n, figsize=(panel_w * n + 1.2, panel_w * 1.11 * h / w + 1.3),
+    panel_w = (style.PRINT_WIDTH - 0.9) / n  # at the printed width, the colour bar beside
+    fig, axes = plt.subplots(1, n, figsize=(style.PRINT_WIDTH, panel_w * 1.11 * h / w + 1.6),
                              squeeze=False)
     for ax, (p, rows) in zip(axes[0], panels):
         ax.add_collection(LineCollection(lanes, colors="0.6", linewidths=0.4, zorder=1))
@@ -148,11 +149,14 @@ def plot_map(plt, run_dir, out_dir):
                     for _, _, c in group]
             ax.scatter([q[0][0] for q in group], [q[0][1] for q in group],
                        s=[size(e) for _, e, _ in group], c=cols, edgecolors=edge,
-                       linewidths=0.4 if group is none else 0.7, zorder=3 if group is none else 4)
-        _, label = style(p, 0)
+                       linewidths=0.4 if group is none else 0.7, zorder=3 if group is none else 4,
+                       gid=SIMULATED)
+        label = style.policy_label(p)
         total = sum(e for _, e, _ in rows)
-        ax.set_title("%s: %d AV-HV encounter%s at %d controlled junctions"
-                     % (label, total, "" if total == 1 else "s", len(rows)), fontsize=10)
+        ax.set_title("%s: %d AV-HV encounter%s\nat %d controlled junctions"
+                     % (label, total, "" if total == 1 else "s", len(rows)),
+                     fontsize=style.TITLE_FONT)
+        ax.grid(False)
         ax.set_xlim(x0 - 0.03 * w, x1 + 0.03 * w)
         ax.set_ylim(y0 - 0.08 * h, y1 + 0.03 * h)
         ax.set_aspect("equal")
@@ -160,26 +164,26 @@ def plot_map(plt, run_dir, out_dir):
         ax.set_yticks([])
         # North up (SUMO's net coordinates: +y is north) and a scale bar.
         ax.annotate("N", xy=(0.97, 0.97), xytext=(0.97, 0.86), xycoords="axes fraction",
-                    ha="center", va="bottom", fontsize=10, fontweight="bold",
+                    ha="center", va="bottom", fontsize=style.TITLE_FONT, fontweight="bold",
                     arrowprops=dict(arrowstyle="-|>", color="black", lw=1.2))
         bar = nice_length(w)
         bx, by = x0, y0 - 0.05 * h
         ax.plot([bx, bx + bar], [by, by], color="black", lw=2.5, solid_capstyle="butt", zorder=4)
         ax.text(bx + bar / 2, by + 0.012 * h, ("%g km" % (bar / 1000)) if bar >= 1000 else "%g m" % bar,
-                ha="center", va="bottom", fontsize=8)
+                ha="center", va="bottom", fontsize=style.FONT)
     # Panels first, then the colour bar beside the last one at its height.
-    fig.subplots_adjust(left=0.02, right=0.88, wspace=0.06)
+    fig.subplots_adjust(left=0.02, right=0.86, wspace=0.06)
     fig.canvas.draw()  # the panels' places, their aspect applied
     last = axes[0][-1].get_position()
-    top = max(ax.get_position().y1 for ax in axes[0])
     bottom = min(ax.get_position().y0 for ax in axes[0])
-    cax = fig.add_axes([last.x1 + 0.015, last.y0, 0.015, last.height])
+    cax = fig.add_axes([last.x1 + 0.015, last.y0, 0.02, last.height])
     sm = plt.cm.ScalarMappable(norm=norm, cmap=cmap)
     sm.set_array([])
     cbar = fig.colorbar(sm, cax=cax, extend="both" if native else "max")
     cbar.set_label(("queueing delay against SUMO native (s per crossing vehicle)\n"
                     "red: slower, blue: faster") if native else
-                   "queueing delay (s per crossing vehicle; no sumo_native in this run)", fontsize=8)
+                   "queueing delay (s per crossing vehicle; no sumo_native in this run)",
+                   fontsize=style.FONT)
     ticks = sorted({1, nice_length(max_enc * 2.5) if max_enc >= 10 else 1, max_enc})
     handles = [Line2D([], [], ls="", marker="o", markersize=math.sqrt(size(t)), markerfacecolor="0.8",
                       markeredgecolor="black", label="%d encounter%s" % (t, "" if t == 1 else "s"))
@@ -190,18 +194,30 @@ def plot_map(plt, run_dir, out_dir):
     handles.append(Line2D([], [], ls="", marker="o", markersize=math.sqrt(size(0)),
                           markerfacecolor=(0.6, 0.6, 0.6, 1), markeredgecolor="0.45",
                           label="no vehicle crossed"))
-    # Title and legend hug the panels (their aspect is the net's, so the
-    # figure's height is not theirs).
-    fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, bottom - 0.01),
-               ncol=len(handles), frameon=False, fontsize=8)
     prov = summary.get("provenance", {})
-    import textwrap
-    title = textwrap.fill(
-        "Controlled junctions of %s: marker area by AV-HV encounters, colour by the queueing "
-        "delay on the approaches (Little's law: summed mean queue / crossing rate), seed %s"
-        % (os.path.basename(net), prov.get("seed")), int((panel_w * n + 1.2) * 12))
-    fig.suptitle(title, fontsize=10, y=top + 0.05, va="bottom")
+    from .view import wrap_to
+    title = wrap_to(fig, "Controlled junctions of %s: marker area by AV-HV encounters, colour by "
+                    "the queueing delay on the approaches (Little's law: summed mean queue / "
+                    "crossing rate), seed %s" % (os.path.basename(net), prov.get("seed")),
+                    style.TITLE_FONT, style.PRINT_WIDTH - 0.2)
+    # The title above the panels' titles, inside the figure: the figure grows
+    # by the title's height.
+    lines = title.count("\n") + 1
+    title_in = lines * style.TITLE_FONT * 1.35 / 72 + 0.1
+    above = max(ax.get_tightbbox(fig.canvas.get_renderer()).y1 for ax in axes[0]) / fig.dpi
+    height = fig.get_figheight()
+    grow = max(0.0, above + title_in - height)
+    if grow:
+        fig.set_figheight(height + grow)
+        for ax in list(axes[0]) + [cax]:
+            box = ax.get_position()
+            scale = height / (height + grow)
+            ax.set_position([box.x0, box.y0 * scale, box.width, box.height * scale])
+    fig.suptitle(title, fontsize=style.TITLE_FONT, y=1 - 0.05 / fig.get_figheight(), va="top")
+    # The legend hugs the panels (their aspect is the net's, so the figure's
+    # height is not theirs); savefig's tight box keeps what is drawn.
+    bottom = min(ax.get_position().y0 for ax in axes[0])
+    fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, bottom - 0.01),
+               ncol=3, frameon=False, fontsize=style.FONT)
     path = os.path.join(out_dir, "network_map.png")
-    save(fig, path, dpi=120, bbox_inches="tight")
-    plt.close(fig)
-    return path
+    return save(fig, path, bbox_inches="tight")

@@ -21,6 +21,7 @@ struct PolicyInfo {
   PolicyKind kind;
   const char* name;   // as the config and the result folders write it
   const char* label;  // as tables and figures print it
+  const char* colour; // as figures draw it (python/taebp/plot reads it: tables.json)
   // Plays the AV-HV game (an AV designs a signal); false: SUMO's own logic.
   bool plays_game;
   persuasion::Policy game;  // the game's policy (meaningful when plays_game)

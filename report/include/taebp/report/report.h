@@ -83,6 +83,16 @@ std::vector<std::string> HvTrustCsvColumns();
 // junctions.csv text: one row per (policy, controlled junction): crossings,
 // throughput, waits, queues, encounters and rates with the theory.
 std::string JunctionsCsv(const std::vector<PolicyRun>& runs);
+// collisions.csv text: one row per collision SUMO reported after the warm-up
+// (PolicyRun::collisions), policy first: when, where (junction, lane, pos),
+// SUMO's type, the two vehicles (AV or HV, in a game or not), whether they
+// were an encounter's pair or a move of the game hit a third vehicle, and
+// the count of summary.json it is in (counted_in: collisions,
+// collisions_after_handback, other_collisions_game_move, other_collisions,
+// or none). collisions_total = the rows counted in collisions and in
+// other_collisions_game_move.
+std::string CollisionsCsv(const std::vector<PolicyRun>& runs);
+std::vector<std::string> CollisionCsvColumns();
 // A CSV cell (RFC 4180): quoted when it holds a comma, quote or line break.
 std::string CsvCell(const std::string& s);
 

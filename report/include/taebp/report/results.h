@@ -85,6 +85,25 @@ struct EncounterRecord {
   BeyondEncounter beyond;
 };
 
+// One collision SUMO reported after the warm-up (collisions.csv), each
+// episode once (the step it started). The controller records what it saw;
+// report/ says which count it is in (CollisionsCsv: the encounters' rows).
+struct CollisionRecord {
+  double time = 0;            // simulated time SUMO reported it (s)
+  std::string lane;           // where (SUMO's lane; empty when SUMO gave none)
+  double pos = 0;             // m along the lane
+  std::string type;           // SUMO's collision type (collision, frontal, junction, ...)
+  std::string collider, victim;
+  bool collider_av = false, victim_av = false;
+  // In a game: part of an AV-HV encounter formed and not yet recorded.
+  bool collider_in_game = false, victim_in_game = false;
+  // The two are one encounter's AV and HV (that encounter's collision).
+  bool encounter_pair = false;
+  // Not that pair, and one of the two was making a move of the game (released
+  // with SUMO's right of way off): other_collisions_game_move.
+  bool game_move = false;
+};
+
 // A controlled junction's totals over the measured time (after the warm-up).
 struct ApproachStats {
   std::string lane;          // the incoming lane
@@ -176,6 +195,9 @@ struct BeyondRun {
   bool on = false;  // the config is beyond the paper (ExperimentConfig::BeyondPaper)
   std::vector<TimeSample> series;
   std::vector<HvSample> hv_series;
+  // The HVs' trust moves during the run (model.trust_dynamics or
+  // model.experience): the table's mean trust start / end row.
+  bool trust_moves = false;
   double initial_mean_trust = 0;  // mean drawn trust of every HV registered
   double final_mean_trust = 0;    // mean trust of the HVs in the network at the end
   long hvs = 0;  // HVs registered
@@ -263,6 +285,7 @@ struct PolicyRun {
   // of way off (the HV driving recklessly, the AV that goes) and the other a
   // third vehicle (at a two-way stop: the major road)
   long other_collisions_game_move = 0;
+  std::vector<CollisionRecord> collisions;  // every SUMO collision after the warm-up
   // Vehicles SUMO kept waiting inside a junction for a nudged AV, in the way
   // of a move of the game, that the controller let past it (after the warm-up)
   long unblocked = 0;

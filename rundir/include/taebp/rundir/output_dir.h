@@ -48,7 +48,7 @@ class FolderLock {
 };
 
 // A file a run writes into its folder (summary.json, encounters.csv,
-// junctions.csv, config.yaml, timing.json, timeseries.csv, hv_trust.csv,
+// junctions.csv, collisions.csv, config.yaml, timing.json, timeseries.csv, hv_trust.csv,
 // tripinfo-*.xml, summary-*.xml) or a temporary one of an earlier version's
 // writer (NAME.tmp.PID).
 bool IsRunFile(const std::string& name);
