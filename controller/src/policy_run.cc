@@ -279,9 +279,12 @@ void ReadTripinfo(const std::string& path, const ScenarioConfig& sc, NetworkRun*
 }
 
 // SUMO's SSM conflicts of this policy (scenario.outputs.ssm, report/ssm.h),
-// placed at the controlled junctions by their internal lanes.
+// placed at the controlled junctions by their internal lanes; those of a pair
+// SUMO's collision check found colliding then are that collision, not a
+// conflict (the collisions after the warm-up, CollisionRecord).
 SsmRun ReadSsm(const fs::path& file, const ScenarioConfig& sc, const Scenario& scenario,
-               const std::vector<EncounterRecord>& encounters) {
+               const std::vector<EncounterRecord>& encounters,
+               const std::vector<CollisionRecord>& collisions) {
   const SsmConfig& c = *sc.outputs.ssm;
   SsmRules rules;
   rules.on = {c.Measures("TTC"), c.Measures("DRAC"), c.Measures("PET")};
@@ -305,7 +308,10 @@ SsmRun ReadSsm(const fs::path& file, const ScenarioConfig& sc, const Scenario& s
   std::vector<SsmGame> games;
   games.reserve(encounters.size());
   for (const EncounterRecord& e : encounters) games.push_back({e.av, e.hv, e.junction, e.time});
-  return ReadSsmOutput(file.string(), rules, areas, games);
+  std::vector<SsmCollision> collided;
+  collided.reserve(collisions.size());
+  for (const CollisionRecord& c : collisions) collided.push_back({c.collider, c.victim, c.time});
+  return ReadSsmOutput(file.string(), rules, areas, games, collided);
 }
 
 }  // namespace
@@ -434,7 +440,7 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
       run.sumo_output_files.emplace_back(policy + "/" + name, (dir / name).string());
     }
     if (config.scenario.outputs.ssm) {
-      run.ssm = ReadSsm(dir / "ssm.xml", config.scenario, scenario, run.encounters);
+      run.ssm = ReadSsm(dir / "ssm.xml", config.scenario, scenario, run.encounters, run.collisions);
       for (std::size_t k = 0; k < run.encounters.size() && k < run.ssm.games.size(); ++k)
         run.encounters[k].ssm = run.ssm.games[k];
       run.ssm.device_warnings = warned.ssm;

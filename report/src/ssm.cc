@@ -121,7 +121,8 @@ bool SsmPasses(const SsmRules& r, SsmMeasure m, double v) {
 
 SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
                      const std::vector<SsmJunctionArea>& areas,
-                     const std::vector<SsmGame>& games) {
+                     const std::vector<SsmGame>& games,
+                     const std::vector<SsmCollision>& collisions) {
   pugi::xml_document doc;
   const pugi::xml_parse_result ok = doc.load_file(path.c_str());
   if (!ok) throw std::runtime_error(path + ": cannot read SUMO's SSM output (" + ok.description() + ")");
@@ -186,8 +187,25 @@ SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
     run.games.push_back(pair);
   }
 
+  // The collisions by pair: a conflict over one of them is that collision.
+  std::map<std::pair<std::string, std::string>, std::vector<double>> collided;
+  for (const SsmCollision& c : collisions)
+    collided[c.a < c.b ? std::make_pair(c.a, c.b) : std::make_pair(c.b, c.a)].push_back(c.time);
+  auto is_collision = [&](const Record& c) {
+    const auto it = collided.find({c.a, c.b});
+    if (it == collided.end()) return false;
+    for (double t : it->second)
+      if (t >= c.begin - kSsmCollisionSlack && t <= c.end + kSsmCollisionSlack) return true;
+    return false;
+  };
   for (const Record& c : conflicts) {
     if (c.begin < rules.warmup) continue;
+    if (is_collision(c)) {
+      bool counted = false;
+      for (int k = 0; k < kSsmMeasures; ++k) counted = counted || Passes(rules, k, c.m[k].value);
+      run.collided += counted;
+      continue;
+    }
     int first = -1;  // the measure placing the conflict itself
     for (int k = 0; k < kSsmMeasures; ++k) {
       if (!Passes(rules, k, c.m[k].value)) continue;
@@ -349,6 +367,11 @@ std::vector<Metric> SsmMetricRows() {
     {"ssm_pet_near_miss_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate, "ssm_pet_near_misses",
      "encounters_no_collision", nullptr, "ssm_pet_near_misses per encounter without a collision",
      NearMissRate<kPet>},
+    {"ssm_conflicts_collided", T::kCount, "", kPolicyLevel, S::kSsm, Pool::kSum, nullptr, nullptr,
+     nullptr,
+     "conflicts the device logged between two vehicles SUMO's collision check found colliding "
+     "then: the collision, counted once in the collisions and not among ssm_conflicts",
+     [](const MetricFacts& f) { return static_cast<double>(f.run->ssm.collided); }},
     {"ssm_device_warnings", T::kCount, "", kPolicyLevel, S::kSsm, Pool::kSum, nullptr, nullptr,
      nullptr,
      "the SSM device's warnings, apart from sumo_warnings (a collision it saw; 'Cannot compute "

@@ -175,10 +175,15 @@ class FakeJunction : public ::testing::Test {
   }
 
   std::unique_ptr<NetworkController> Controller(const std::string& policy) {
-    // The fake world's vehicles are of types AV and HV (the routes only
-    // declare them: the cars come from the tests).
-    const std::string routes =
-        dir_.Write("types.rou.xml", "<routes>\n  <vType id=\"AV\"/>\n  <vType id=\"HV\"/>\n</routes>\n");
+    // The fake world's vehicles are of types AV and HV; its cars come from the
+    // tests. The one trip departs after the run's end: the loader refuses a
+    // route file without demand (SUMO would run an empty network), and the fake
+    // world never reads it.
+    const std::string routes = dir_.Write(
+        "types.rou.xml",
+        "<routes>\n  <vType id=\"AV\"/>\n  <vType id=\"HV\"/>\n"
+        "  <trip id=\"after_the_end\" type=\"HV\" depart=\"1000\" from=\"in_w\" to=\"out_e\"/>\n"
+        "</routes>\n");
     config_ = ParseExperimentConfig(
         "scenario:\n  kind: network\n  network: " + net_path_ + "\n  routes: [" + routes +
             "]\n  duration: 100\n  warmup: 0\n"

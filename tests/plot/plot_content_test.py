@@ -238,9 +238,10 @@ check(len(rings) == 3 and all(list(l.get_xdata()) == [300] or abs(l.get_xdata()[
       "network: the stalled point (TA-EBP at 300 veh/h) ringed on each of the 3 panels")
 notes = [t.get_text() for t in flow_ax.texts]
 check("2/3 stalled" in notes, "network: the stalled point says 2 of its 3 seeds stalled")
-per_hour = [ax for ax in fig.axes
-            if " ".join(ax.get_title().split()).startswith("AV-HV encounters per measured hour")]
+per_hour = [ax for ax in fig.axes if ax.get_ylabel().startswith("encounters_per_hour")]
 check(len(per_hour) == 1, "network: an encounters-per-hour panel")
+check(any("encounters_per_hour: AV-HV encounters per measured hour" in " ".join(t.split())
+          for t in texts(fig)), "network: the caption says what encounters_per_hour is")
 from matplotlib.colors import to_hex  # noqa: E402
 check(per_hour and plot._plot.style.policy_colour("sumo_native") not in {
     to_hex(l.get_color()) for l in per_hour[0].get_lines()

@@ -179,6 +179,25 @@ def test_encounter_rate_gives_the_intervals_the_outputs_report(tmp_path):
         assert c["deff"] == pytest.approx(p[rate + "_deff"], rel=1e-12), rate
         assert c["clusters"] == p[rate + "_clusters"] == 8
     assert p["dc_rate_deff"] > 3
+    # The plots' and docs/influence.md's table's intervals are the same
+    # clustered ones: over the run's one hour, the table's DC and collisions.
+    from taebp.plot import presets, tidy
+    clusters = {}
+    for r in rows:
+        c = clusters.setdefault((0, r["hv"]), [0, 0, 0])
+        c[0] += 1
+        c[1] += r["hv_action"] == "DC"
+        c[2] += r["collision"] == "1"
+    for k, rate in ((1, "dc_rate"), (2, "collision_rate")):
+        lo, hi = tidy.rate_interval(clusters, k)
+        assert (lo, hi) == (pytest.approx(p[rate + "_lo"], abs=1e-12),
+                            pytest.approx(p[rate + "_hi"], abs=1e-12)), rate
+    row = [c.strip() for c in presets.influence_table(tidy.Runs(out)).splitlines()[2].split("|")]
+    last_dc, last_coll = row[5], row[6]
+    assert last_dc == "%.3f [%.3f, %.3f]" % (p["dc_rate"], p["dc_rate_lo"], p["dc_rate_hi"])
+    assert last_coll == "%.3f [%.3f, %.3f]" % (p["collision_rate"], p["collision_rate_lo"],
+                                                p["collision_rate_hi"])
+    assert row[10].startswith("%.2f / " % p["dc_rate_deff"]), row[10]
 
 
 def test_normal_quantile_bonferroni_and_the_mover_difference():

@@ -80,6 +80,30 @@ TEST(SsmOutput, MergesBothDevicesRecordsAndCountsEachMeasurePastItsThreshold) {
   EXPECT_TRUE(std::isnan(r.junction.at("K").ttc_min));
 }
 
+// A conflict over a collision SUMO's check reported between the same two (its
+// span, within a second) is that collision, counted once, in the collisions:
+// not among the conflicts, by any measure. Another pair's collision, or the
+// same pair's at another time, leaves it a conflict.
+TEST(SsmOutput, AConflictOverACollisionOfItsPairIsTheCollision) {
+  test::TempDir dir;
+  const std::string path = dir.Write("ssm.xml", Log());
+  // A-B's later conflict (40-45 s: TTC 2.9, DRAC 4.0) over their collision at 45.5 s.
+  const SsmRun r = ReadSsmOutput(path, Rules(), kAreas, {}, {{"B", "A", 45.5}});
+  EXPECT_EQ(r.collided, 1);
+  EXPECT_EQ(r.network.conflicts, 2);  // A-B (10-20 s), B-C
+  EXPECT_EQ(r.network.by_measure[0], 1);
+  EXPECT_EQ(r.network.by_measure[1], 1);  // B-C's DRAC only
+  EXPECT_DOUBLE_EQ(r.network.drac_max, 3.5);
+  EXPECT_EQ(r.junction.at("J").conflicts, 1);
+  // The same pair long after, or another pair at that time: still a conflict.
+  const SsmRun later = ReadSsmOutput(path, Rules(), kAreas, {}, {{"A", "B", 200}});
+  EXPECT_EQ(later.collided, 0);
+  EXPECT_EQ(later.network.conflicts, 3);
+  const SsmRun other = ReadSsmOutput(path, Rules(), kAreas, {}, {{"A", "C", 42}});
+  EXPECT_EQ(other.collided, 0);
+  EXPECT_EQ(other.network.conflicts, 3);
+}
+
 TEST(SsmOutput, OnlyTheMeasuresSumoComputedAndTheRadiusPlaceTheConflicts) {
   test::TempDir dir;
   const std::string path = dir.Write("ssm.xml", Log());

@@ -10,6 +10,8 @@ their time series, pooling only runs of one config (a sweep's point, or run
 folders that differ only in their seed)."""
 
 
+import bisect
+
 from . import style, tidy
 from .common import PlotError, die, number, warn
 from .view import Figure, Mark, Panel, SweepView
@@ -465,7 +467,7 @@ def learned(plt, runs, out):
                 continue
             xs = [(a + b) / 2 / 3600 + _dodge(i, len(policies), 0.3) for a, b, *_ in rows]
             for panel, k in ((dc, 3), (coll, 4)):
-                ivs = [tidy.rate_interval(row[k], row[2]) for row in rows]
+                ivs = [tidy.rate_interval(row[6], k - 2) for row in rows]
                 panel.add(Mark("points", xs, [row[k] / row[2] for row in rows],
                                lo=[c[0] for c in ivs], hi=[c[1] for c in ivs], policy=policy))
             if policy == "ta_ebp_learned":
@@ -638,7 +640,7 @@ def influence(plt, runs, out):
         x = [(a + b) / 2 / 3600 for (a, b), _ in bins]
         for panel, k, th, lr in ((panels[0], 1, 3, e["long_run"][0]),
                                  (panels[1], 2, 4, e["long_run"][1])):
-            ivs = [tidy.rate_interval(acc[k], acc[0]) for _, acc in bins]
+            ivs = [tidy.rate_interval(acc[5], k) for _, acc in bins]
             panel.add(Mark("points", x, [acc[k] / acc[0] for _, acc in bins],
                            lo=[c[0] for c in ivs], hi=[c[1] for c in ivs], policy=policy,
                            variant=v, ls="none"))
@@ -677,40 +679,57 @@ def _width(data):
 
 def influence_data(runs):
     """{(policy, design): {"bins": {(t0, t1): [n, dc, coll, theory dc, theory
-    coll]}, "long_run": (dc, coll), "first": {k: [n, dc, theory dc]}, "runs",
-    "design"}} pooled over the runs of each policy and design (timeseries.csv's
-    cumulative counts; encounters.csv for each HV's first encounters)."""
+    coll, clusters]}, "long_run": (dc, coll), "first": {k: [n, dc, theory
+    dc]}, "runs", "design"}} pooled over the runs of each policy and design:
+    the bins are timeseries.csv's (outputs.interval), filled from
+    encounters.csv's rows with t0 < time <= t1, clusters = {(run, hv): [n, dc,
+    coll]} for the intervals (tidy.rate_interval); each HV's first encounters
+    for (c)."""
     out = {}
     for i in range(len(runs.dirs)):
         exp = (runs.config(i).get("model", {}) or {}).get("experience") or {}
         design = exp.get("design", "guarded")
-        series = {}
+        edges = {}
         for r in runs.csv(i, "timeseries.csv"):
-            series.setdefault(r["policy"], []).append(r)
-        for policy, rows in series.items():
+            edges.setdefault(r["policy"], set()).add(float(r["time"]))
+        per_policy = {}
+        for r in runs.csv(i, "encounters.csv"):
+            per_policy.setdefault(r["policy"], []).append(r)
+        for policy, times in edges.items():
+            times = sorted(times)
             e = out.setdefault((policy, design), {"bins": {}, "long_run": (None, None),
                                                   "first": {}, "runs": 0, "design": design})
             e["runs"] += 1
-            rows.sort(key=lambda r: float(r["time"]))
-            for a, b in zip(rows, rows[1:]):
-                acc = e["bins"].setdefault((float(a["time"]), float(b["time"])), [0, 0, 0, 0.0, 0.0])
-                acc[0] += int(b["encounters"]) - int(a["encounters"])
-                acc[1] += int(b["dc"]) - int(a["dc"])
-                acc[2] += int(b["collisions"]) - int(a["collisions"])
-                acc[3] += float(b["theory_dc"]) - float(a["theory_dc"])
-                acc[4] += float(b["theory_collisions"]) - float(a["theory_collisions"])
+            rows = sorted(per_policy.get(policy, []), key=lambda r: float(r["time"]))
+            for a, b in zip(times, times[1:]):
+                e["bins"].setdefault((a, b), [0, 0, 0, 0.0, 0.0, {}])
+            for r in rows:
+                t = float(r["time"])
+                k = bisect.bisect_left(times, t)  # times[k-1] < t <= times[k]
+                if k == 0 or k == len(times):
+                    continue
+                acc = e["bins"][(times[k - 1], times[k])]
+                dc, coll = r["hv_action"] == "DC", r["collision"] == "1"
+                acc[0] += 1
+                acc[1] += dc
+                acc[2] += coll
+                acc[3] += float(r["theory_dc"])
+                acc[4] += float(r["theory_collision"])
+                c = acc[5].setdefault((i, r["hv"]), [0, 0, 0])
+                c[0] += 1
+                c[1] += dc
+                c[2] += coll
             p = runs.summaries[i]["policies"][policy]
             e["long_run"] = (p.get("long_run_theory_dc_rate"), p.get("long_run_theory_collision_rate"))
-        per_hv = {}
-        for r in runs.csv(i, "encounters.csv"):
-            per_hv.setdefault((r["policy"], r["hv"]), []).append(r)
-        for (policy, _hv), rows in per_hv.items():
-            rows.sort(key=lambda r: float(r["time"]))
-            for k, r in enumerate(rows[:40]):
-                t = out[(policy, design)]["first"].setdefault(k, [0, 0, 0.0])
-                t[0] += 1
-                t[1] += r["hv_action"] == "DC"
-                t[2] += float(r["theory_dc"])
+            per_hv = {}
+            for r in rows:
+                per_hv.setdefault(r["hv"], []).append(r)
+            for hv_rows in per_hv.values():
+                for k, r in enumerate(hv_rows[:40]):
+                    t = e["first"].setdefault(k, [0, 0, 0.0])
+                    t[0] += 1
+                    t[1] += r["hv_action"] == "DC"
+                    t[2] += float(r["theory_dc"])
     for e in out.values():
         e["bins"] = {k: v for k, v in e["bins"].items() if v[0] > 0}
     return out
@@ -723,32 +742,44 @@ def influence_table(runs):
     from .. import stats
     lines = ["| policy | runs | first hour DC [95 %] | first hour collisions [95 %] | "
              "last hour DC [95 %] | last hour collisions [95 %] | last hour mean field DC / coll. | "
-             "long-run theory DC / coll. | long run in last hour's 99.9 % |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "long-run theory DC / coll. | long run in last hour's 99.9 % | "
+             "last hour design effect DC / coll. (clusters) |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     names = {"guarded": "(guarded)", "paper": "(paper's scheme)"}
     for (policy, design), e in influence_data(runs).items():
         bins = sorted(e["bins"].items())
         per_hour = max(1, round(3600 / (bins[0][0][1] - bins[0][0][0])))
 
         def pool(chosen):
-            return [sum(acc[j] for _, acc in chosen) for j in range(5)]
+            sums = [sum(acc[j] for _, acc in chosen) for j in range(5)]
+            clusters = {}
+            for _, acc in chosen:
+                for key, c in acc[5].items():
+                    m = clusters.setdefault(key, [0, 0, 0])
+                    for j in range(3):
+                        m[j] += c[j]
+            return sums + [clusters]
 
-        def fmt(k, n):
-            lo, hi = stats.wilson(k, n)
-            return "%.3f [%.3f, %.3f]" % (k / n if n else float("nan"), lo, hi)
+        def fmt(k, counts):
+            n = counts[0]
+            lo, hi = tidy.rate_interval(counts[5], k)
+            return "%.3f [%.3f, %.3f]" % (counts[k] / n if n else float("nan"), lo, hi)
 
         f, l = pool(bins[:per_hour]), pool(bins[-per_hour:])
         lr_dc, lr_co = e["long_run"]
         inside = []
-        for k, want in ((l[1], lr_dc), (l[2], lr_co)):
-            lo, hi = stats.wilson(k, l[0], stats.Z999)
+        for k, want in ((1, lr_dc), (2, lr_co)):
+            lo, hi = tidy.rate_interval(l[5], k, stats.Z999)
             inside.append(lo <= want <= hi)
+        d_dc, d_co = tidy.clustered_counts(l[5], 1), tidy.clustered_counts(l[5], 2)
         label = policy + (" " + names.get(design, design) if policy == "ta_ebp" else "")
-        lines.append("| %s | %d | %s | %s | %s | %s | %.3f / %.3f | %.3f / %.3f | %s |" % (
-            label, e["runs"], fmt(f[1], f[0]), fmt(f[2], f[0]), fmt(l[1], l[0]), fmt(l[2], l[0]),
+        lines.append("| %s | %d | %s | %s | %s | %s | %.3f / %.3f | %.3f / %.3f | %s | %s |" % (
+            label, e["runs"], fmt(1, f), fmt(2, f), fmt(1, l), fmt(2, l),
             l[3] / l[0], l[4] / l[0], lr_dc, lr_co,
             "DC %s, collisions %s (n = %d)" % ("yes" if inside[0] else "**no**",
-                                               "yes" if inside[1] else "**no**", l[0])))
+                                               "yes" if inside[1] else "**no**", l[0]),
+            "%.2f / %.2f (%d%s)" % (d_dc["deff"], d_co["deff"], d_dc["clusters"],
+                                    " ~ too few" if d_dc["few_clusters"] else "")))
     return "\n".join(lines) + "\n"
 
 

@@ -494,7 +494,9 @@ class Runs:
 def binned_rates(runs, idx, width, policy_key=lambda i, p: p):
     """Per series and time bin of `width` s (from the warm-up's end) over
     the runs `idx`, pooled: {series: [(bin start, bin end, n, dc, collisions,
-    oracle_dc_sum)]} from encounters.csv; series = policy_key(run, policy)."""
+    oracle_dc_sum, clusters)]} from encounters.csv; series = policy_key(run,
+    policy); clusters = {(run, hv): [n, dc, collisions]}, who was sampled
+    (rate_interval)."""
     acc = {}
     for i in idx:
         warm, _ = runs.measured(i)
@@ -503,11 +505,16 @@ def binned_rates(runs, idx, width, policy_key=lambda i, p: p):
             if t is None:
                 continue
             b = int(math.floor((t - warm) / width))
-            a = acc.setdefault(policy_key(i, r["policy"]), {}).setdefault(b, [0, 0, 0, 0.0])
+            a = acc.setdefault(policy_key(i, r["policy"]), {}).setdefault(b, [0, 0, 0, 0.0, {}])
+            dc, coll = r.get("hv_action") == "DC", r.get("collision") == "1"
             a[0] += 1
-            a[1] += r.get("hv_action") == "DC"
-            a[2] += r.get("collision") == "1"
+            a[1] += dc
+            a[2] += coll
             a[3] += number(r.get("oracle_dc")) or 0.0
+            c = a[4].setdefault((i, r.get("hv")), [0, 0, 0])
+            c[0] += 1
+            c[1] += dc
+            c[2] += coll
     out = {}
     for series, bins in acc.items():
         warm = runs.measured(idx[0])[0]
@@ -515,6 +522,26 @@ def binned_rates(runs, idx, width, policy_key=lambda i, p: p):
     return out
 
 
-def rate_interval(k, n):
-    """A pooled rate's interval computed in Python (a time bin): taebp.stats."""
-    return stats.wilson(k, n)
+def rate_interval(clusters, k, z=stats.Z95):
+    """A pooled rate's interval computed in Python (a time bin) as the
+    outputs' are (docs/metrics.md): clustered by HV within each run and by
+    run over several runs. `clusters` = {(run, hv): [n, k0, k1, ...]}; the
+    rate is the k-th count (1: DC, 2: collisions) over n. (low, high)."""
+    r = clustered_counts(clusters, k, z)
+    return r["low"], r["high"]
+
+
+def clustered_counts(clusters, k, z=stats.Z95):
+    """rate_interval's whole answer: the dict of taebp.stats.pooled_rate
+    (rate, low, high, deff, clusters, few_clusters)."""
+    by_run = {}
+    for (run, _hv), c in clusters.items():
+        by_run.setdefault(run, []).append((c[k], c[0]))
+    ys, ns, deffs, gs = [], [], [], []
+    for members in by_run.values():
+        one = stats.clustered_rate([a for a, _ in members], [b for _, b in members], z)
+        ys.append(sum(a for a, _ in members))
+        ns.append(sum(b for _, b in members))
+        deffs.append(one["deff"])
+        gs.append(one["clusters"])
+    return stats.pooled_rate(ys, ns, deffs, gs, z)

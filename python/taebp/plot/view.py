@@ -584,8 +584,8 @@ class SweepView:
                           "rate over the seeds' encounters, 95 % interval"))
         if any(style.pooled_by_mean(m) for m in flat):
             extra.append((dict(color="black", marker="o", ls="none", ms=4),
-                          "mean over the seeds (95 %% t interval from %d seeds)"
-                          % tidy.SEEDS_FOR_INTERVAL))
+                          "mean over the seeds (95 %% t interval from %d seeds; "
+                          "with fewer, each seed's value)" % tidy.SEEDS_FOR_INTERVAL))
         return Figure(name, panels, title=title, caption=caption,
                       ncols=self.ncols or ncols, variants=variants, legend_extra=extra,
                       description={"view": "generic", "x": self.x, "y": list(self.ys),

@@ -54,6 +54,16 @@ struct SsmGame {
 inline constexpr double kSsmGameBefore = 30;  // s
 inline constexpr double kSsmGameAfter = 60;   // s
 
+// A collision SUMO's collision check reported (after the warm-up): its two
+// vehicles and when it began. A conflict the device logged between the same
+// two over a span that holds it (within kSsmCollisionSlack s) is that
+// collision, counted once, in the collisions: not among the conflicts.
+struct SsmCollision {
+  std::string a, b;
+  double time = 0;
+};
+inline constexpr double kSsmCollisionSlack = 1;  // s
+
 // A game's pair measures: the worst value of each measure over the conflicts
 // logged between its AV and HV in its window (least TTC and PET, greatest
 // DRAC), whether or not it passes its threshold; NaN where none was logged
@@ -87,6 +97,7 @@ struct SsmRun {
   SsmTally at_junctions;                    // those at a controlled junction
   std::map<std::string, SsmTally> junction; // by controlled junction id
   std::vector<SsmPair> games;               // the games' pair measures, in the order given
+  long collided = 0;                        // conflicts left out: their pair collided (SsmCollision)
   long records = 0;                         // conflict elements SUMO wrote (all times)
   // The device's warnings (a collision it saw; "Cannot compute SSM due to bad
   // internal lane geometry at junction J": crossings there go unmeasured).
@@ -98,6 +109,7 @@ struct SsmRun {
 // `games`: the run's games (after the warm-up), for the games' conflicts.
 SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
                      const std::vector<SsmJunctionArea>& areas,
-                     const std::vector<SsmGame>& games = {});
+                     const std::vector<SsmGame>& games = {},
+                     const std::vector<SsmCollision>& collisions = {});
 
 }  // namespace taebp
