@@ -208,6 +208,9 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   if (c.ok() && s.duration / s.step_length > kMaxSteps)
     c.Fail("scenario.duration / scenario.step_length = " + NumberText(s.duration / s.step_length, 10) +
            " steps is above " + NumberText(kMaxSteps, 10));
+  if (s.seed > kMaxSeed)
+    c.Fail("scenario.seed = " + std::to_string(s.seed) + " is above " + std::to_string(kMaxSeed) +
+           " (SUMO takes its seed modulo 2147483647: a larger one would repeat a smaller one's run)");
   c.Positive("scenario.vehicle_length", s.vehicle_length);
   c.Positive("scenario.vehicle_width", s.vehicle_width);
   c.Positive("scenario.accel", s.accel);
@@ -270,6 +273,19 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     c.Positive("scenario.outputs.ssm.thresholds.DRAC", ssm.thresholds.drac);
     c.Positive("scenario.outputs.ssm.thresholds.PET", ssm.thresholds.pet);
     c.NonNegative("scenario.outputs.ssm.junction_radius", ssm.junction_radius);
+    // A threshold given for a measure not measured would be silently ignored.
+    const SsmThresholds defaults;
+    const std::pair<const char*, double> given[] = {
+        {"TTC", ssm.thresholds.ttc - defaults.ttc},
+        {"DRAC", ssm.thresholds.drac - defaults.drac},
+        {"PET", ssm.thresholds.pet - defaults.pet}};
+    std::string listed;
+    for (const std::string& m : ssm.measures) listed += (listed.empty() ? "" : ", ") + m;
+    for (const auto& [m, change] : given)
+      if (change != 0 && !ssm.Measures(m))
+        c.Fail(std::string("scenario.outputs.ssm.thresholds.") + m + " is set but " + m +
+               " is not among scenario.outputs.ssm.measures [" + listed +
+               "]: add it there or drop the threshold");
   }
   if (s.demand) {
     const DemandConfig& d = *s.demand;
@@ -440,6 +456,12 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   if (sweep) {
     if (sweep->replicates < 1)
       c.Fail("sweep.replicates = " + std::to_string(sweep->replicates) + " must be >= 1");
+    else if (s.seed <= kMaxSeed &&
+             static_cast<std::uint64_t>(sweep->replicates) - 1 > kMaxSeed - s.seed)
+      c.Fail("sweep.replicates = " + std::to_string(sweep->replicates) + " from scenario.seed = " +
+             std::to_string(s.seed) + " would reach seed " +
+             std::to_string(s.seed + static_cast<std::uint64_t>(sweep->replicates) - 1) +
+             ", above " + std::to_string(kMaxSeed) + " (SUMO takes its seed modulo 2147483647)");
     for (const auto& [key, values] : sweep->grid) {
       if (key.empty()) c.Fail("sweep.grid has an empty key");
       if (key == "sweep" || key.rfind("sweep.", 0) == 0)

@@ -191,6 +191,10 @@ class YamlReader {
     const std::string s = WholeNumberText(node.Scalar());
     if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos)
       Fail(key, node, "key '" + key + "' expects a non-negative integer, got " + Show(node));
+    if (s.size() > 1 && s[0] == '0')  // as for int: YAML 1.1 would read 010 as octal 8
+      Fail(key, node, "key '" + key + "' = " + Show(node) +
+                          ": an integer with a leading zero (YAML 1.1 reads it as octal); "
+                          "write it without the zero");
     try {
       *value = std::stoull(s);
     } catch (const std::exception&) {

@@ -550,6 +550,9 @@ def sweep(config, overrides=(), out=None, jobs=None, quiet=True, shard=None, gri
         overrides.append("sweep.grid=" + json.dumps(_plain(dict(grid))))
     if replicates is not None:
         overrides.append("sweep.replicates=%d" % int(replicates))
+    if jobs is not None and (isinstance(jobs, bool) or not float(jobs).is_integer() or int(jobs) < 1):
+        raise ValueError("sweep: jobs = %r: give a whole number >= 1 (None: the number of cores)"
+                         % (jobs,))
     with _ConfigFile(config) as (path, name):
         if out is None:
             out = os.path.join("results", name)

@@ -194,11 +194,11 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
   if (!plan.base.sweep)
     throw ConfigError(config_path +
                       ": no 'sweep:' section (taebp sweep needs sweep.grid and sweep.replicates)");
-  if (plan.base.scenario.outputs.Any())
-    throw ConfigError(config_path +
-                      ": scenario.outputs: SUMO's outputs are kept by `taebp run` (a folder per "
-                      "run, DIR/<policy>/...); a sweep keeps its tables only: run the point you "
-                      "want to look at with `taebp run CONFIG --set KEY=VALUE...`");
+  const std::string outputs_refused =
+      "scenario.outputs: SUMO's outputs are kept by `taebp run` (a folder per run, "
+      "DIR/<policy>/...); a sweep keeps its tables only: run the point you want to look at "
+      "with `taebp run CONFIG --set KEY=VALUE...`";
+  if (plan.base.scenario.outputs.Any()) throw ConfigError(config_path + ": " + outputs_refused);
   plan.hash = ConfigHash(plan.base);
   const SweepConfig& spec = *plan.base.sweep;
   plan.replicates = spec.replicates;
@@ -295,8 +295,14 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
       for (std::size_t k = 0; k < plan.columns.size(); ++k)
         point_overrides.push_back(plan.columns[k] + "=" + point.values[k]);
       ExperimentConfig c = config_template.Load(point_overrides);
+      if (c.scenario.outputs.Any()) throw ConfigError(outputs_refused);  // swept into the grid
       point.policies = c.policies;
       seed = c.scenario.seed;
+      if (static_cast<std::uint64_t>(plan.replicates) - 1 > kMaxSeed - seed)
+        throw ConfigError("scenario.seed = " + std::to_string(seed) + " with sweep.replicates = " +
+                          std::to_string(plan.replicates) + " would reach seed " +
+                          std::to_string(seed + plan.replicates - 1) + ", above " +
+                          std::to_string(kMaxSeed) + " (SUMO takes its seed modulo 2147483647)");
       beyond = c.BeyondPaper();
       const Json config_json = Json::parse(ToJson(c));  // once per point
       for (const std::string& p : c.policies) identities[p] = IdentityOf(config_json, beyond, p);

@@ -67,6 +67,8 @@ TEST(CliExitCodes, ArgumentErrorsExitTwoHelpAndVersionZero) {
       {{"theory", "--trust", "abc"}, "--trust"},
       {{"run", kPaper, "--no-such-flag"}, "--no-such-flag"},
       {{"sweep", kSweepTrust, "--jobs", "many"}, "--jobs"},
+      {{"sweep", kSweepTrust, "--jobs", "0", "--list"}, "--jobs"},  // as -1: no worker is none
+      {{"sweep", kSweepTrust, "--jobs", "-1", "--list"}, "--jobs"},
       {{"merge"}, "OUT"},
       {{"snapshot", kPaper}, "--out"},
   };

@@ -340,3 +340,53 @@ TEST(Folders, SigtermAndSighupOnASweepExit143And129WithItsTablesAndItResumes) {
 }
 
 }  // namespace
+
+// ------------------------------------------------------------------ issue 45, items 2-4
+
+// A seed is what SUMO runs: a leading zero (YAML 1.1 octal: the tables would
+// say 010, sweep.json 8) and a seed SUMO would take modulo 2^31 - 1 (1 and
+// 2147483648 run alike) are refused in a file, by --set and in a sweep's
+// grid, naming the key and the value; SUMO's outputs cannot enter a sweep
+// through its grid any more than through --set.
+TEST(Folders, SeedsSumoCannotTakeAndOutputsInAGridAreRefused) {
+  TempDir dir;
+  const std::string sweep = dir.Write("sweep.yaml", kSweep);
+  const fs::path out = dir.path() / "out";
+  const std::string file = dir.Write(
+      "seed.yaml", "scenario: {avs: 2, hvs: 2, duration: 30, seed: 010}\npolicies: [ta_ebp]\n");
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", file, "--out", out.string()},
+        std::vector<std::string>{"sweep", sweep, "--list", "--set",
+                                 "sweep.grid={scenario.seed: [010, 12]}"}}) {
+    const CliResult r = RunCli(args);
+    EXPECT_EQ(r.exit_code, 2) << r.Describe();
+    EXPECT_THAT(r.err, HasSubstr("scenario.seed")) << r.Describe();
+    EXPECT_THAT(r.err, HasSubstr("010")) << r.Describe();
+    EXPECT_THAT(r.err, HasSubstr("leading zero")) << r.Describe();
+  }
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"sweep", sweep, "--list", "--set", "scenario.seed=2147483647"},
+        std::vector<std::string>{"sweep", sweep, "--list", "--set",
+                                 "sweep.grid={scenario.seed: [1, 2147483648]}"},
+        std::vector<std::string>{"sweep", sweep, "--list", "--set", "scenario.seed=2147483646",
+                                 "--set", "sweep.replicates=2"},
+        std::vector<std::string>{"sweep", sweep, "--list", "--set", "scenario.seed=18446744073709551615"}}) {
+    const CliResult r = RunCli(args);
+    EXPECT_EQ(r.exit_code, 2) << r.Describe();
+    EXPECT_THAT(r.err, HasSubstr("scenario.seed")) << r.Describe();
+    EXPECT_THAT(r.err, HasSubstr("2147483646")) << r.Describe();
+    EXPECT_THAT(r.err, HasSubstr("modulo 2147483647")) << r.Describe();
+  }
+  {  // the largest seed SUMO takes is a seed
+    const CliResult r = RunCli({"sweep", sweep, "--list", "--set", "scenario.seed=2147483646"});
+    EXPECT_EQ(r.exit_code, 0) << r.Describe();
+  }
+  {  // 4: scenario.outputs swept into the grid
+    const CliResult r = RunCli({"sweep", sweep, "--list", "--set",
+                                "sweep.grid={scenario.outputs.fcd: [false, true]}"});
+    EXPECT_EQ(r.exit_code, 2) << r.Describe();
+    EXPECT_THAT(r.err, HasSubstr("scenario.outputs")) << r.Describe();
+    EXPECT_THAT(r.err, HasSubstr("taebp run")) << r.Describe();
+    EXPECT_FALSE(fs::exists(out));
+  }
+}

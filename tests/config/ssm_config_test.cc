@@ -58,6 +58,10 @@ TEST(SsmConfig, BadMeasuresAndThresholdsNameKeyValueAndFile) {
        "unknown key 'scenario.outputs.ssm.thresholds.BR'"},
       {"scenario: {outputs: {ssm: {junction_radius: -2}}}\n",
        "scenario.outputs.ssm.junction_radius = -2 must be >= 0"},
+      // A threshold for a measure not measured would be silently ignored.
+      {"scenario: {outputs: {ssm: {measures: [PET], thresholds: {TTC: 1.5}}}}\n",
+       "scenario.outputs.ssm.thresholds.TTC is set but TTC is not among "
+       "scenario.outputs.ssm.measures [PET]: add it there or drop the threshold"},
   };
   for (const Case& c : cases) {
     std::string path;

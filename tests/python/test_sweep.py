@@ -136,3 +136,11 @@ def test_signals_are_python_s_again_and_a_second_sweep_resumes(tmp_path, config)
 def test_sweep_config_errors_raise_config_error(tmp_path):
     with pytest.raises(taebp.ConfigError, match="no 'sweep:' section"):
         taebp.sweep(os.path.join(ROOT, "configs", "paper.yaml"), out=tmp_path / "x")
+
+
+@pytest.mark.parametrize("jobs", [0, -1, 1.5, True])
+def test_jobs_below_one_is_refused_as_the_command_line_does(tmp_path, jobs):
+    config = os.path.join(ROOT, "configs", "sweep_trust.yaml")
+    with pytest.raises(ValueError, match=r"jobs = .*>= 1"):
+        taebp.sweep(config, out=tmp_path / "out", jobs=jobs)
+    assert not (tmp_path / "out").exists()

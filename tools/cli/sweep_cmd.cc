@@ -30,7 +30,8 @@ Commands::Commands(CLI::App& app, RunFunction run) : impl_(std::make_unique<Impl
       ->allow_extra_args(false);  // one value per --set: CONFIG may follow
   sw->add_option("--out", s.out, "output directory (default: results/<config name>)");
   sw->add_option("--jobs,-j", s.jobs,
-                 "worker processes at once (default: the number of cores; 1 per MPI rank)");
+                 "worker processes at once, >= 1 (default: the number of cores; 1 per MPI rank)")
+      ->check(CLI::PositiveNumber);
   sw->add_option("--shard", s.shard,
                  "I/N: run only the tasks whose index % N == I (for Slurm arrays; join with "
                  "`taebp merge`)");

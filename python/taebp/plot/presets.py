@@ -480,7 +480,8 @@ def learned(plt, runs, out):
             "learned_rates%s.png" % _suffix(name), [dc, coll], ncols=2,
             title="Learned trust: " + ctx,
             legend_extra=[(dict(color="black", marker="o", ls="none", ms=4),
-                           "rate over the hour's encounters, 95 % interval")]), out)
+                           "rate over the hour's encounters, 95 % interval clustered by "
+                           "HV and seed")]), out)
         paths += _save_group(plt, _regret(runs, idx, policies, name, ctx), out)
     return paths
 
@@ -667,7 +668,7 @@ def influence(plt, runs, out):
                  title="HVs who learn what a nudge meant: %s; up to %d seeds per policy"
                  % (runs.context([0]).rsplit(",", 1)[0], n_runs),
                  legend_extra=[(dict(color="black", marker="o", ls="none", ms=4),
-                                "SUMO, pooled over the runs (95 % interval)")])
+                                "SUMO, pooled over the runs (95 % interval clustered by HV and run)")])
     return [fig.save(plt, out)]
 
 

@@ -581,7 +581,7 @@ class SweepView:
         flat = [m for y in self.ys for m in _metrics_of(y)]
         if any(style.is_rate(m) for m in flat):
             extra.append((dict(color="black", marker="o", ls="none", ms=4),
-                          "rate over the seeds' encounters, 95 % interval"))
+                          "rate over the seeds' encounters, 95 % interval clustered by HV and seed"))
         if any(style.pooled_by_mean(m) for m in flat):
             extra.append((dict(color="black", marker="o", ls="none", ms=4),
                           "mean over the seeds (95 %% t interval from %d seeds; "
