@@ -25,12 +25,27 @@ namespace {
 // Where a key came from, for error messages: the file, or the --set that wrote it.
 // A value as an error message shows it: at most 200 characters (a 10 MB
 // value gives a short message, not a 20 MB one).
-std::string Clip(const std::string& text) {
+// A value as an error message shows it: control characters (a NUL, which
+// would cut the message, a tab, an escape) as \xNN so that they can be seen;
+// clipped past 200 characters.
+std::string Clip(const std::string& raw) {
+  std::string text;
+  for (const char ch : raw) {
+    const unsigned char u = static_cast<unsigned char>(ch);
+    if (u < 0x20 || u == 0x7F) {
+      static const char kHex[] = "0123456789abcdef";
+      text += "\\x";
+      text += kHex[u >> 4];
+      text += kHex[u & 15];
+    } else {
+      text += ch;
+    }
+  }
   constexpr std::size_t kMax = 200;
   if (text.size() <= kMax) return text;
   std::size_t cut = kMax;
   while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // UTF-8
-  return text.substr(0, cut) + "... (" + std::to_string(text.size()) + " characters)";
+  return text.substr(0, cut) + "... (" + std::to_string(raw.size()) + " characters)";
 }
 
 class Origins {

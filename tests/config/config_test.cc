@@ -96,7 +96,7 @@ TEST(ConfigLoad, ToYamlRoundTripGivesIdenticalJson) {
   // A config that sets every kind of field: optional, distribution, logistic
   // likelihood, awkward doubles, a sweep grid and a non-default policy list.
   const ExperimentConfig rich = ParseExperimentConfig(
-      "scenario: {avs: 3, hvs: 5, duration: 123.45, seed: 18446744073709551615,\n"
+      "scenario: {avs: 3, hvs: 5, duration: 123.45, seed: 2147483644,\n"
       "           step_length: 0.05, auto_length: false, network: some/net.xml,\n"
       "           creep_speed: 0.1}\n"
       "model:\n"
@@ -113,7 +113,7 @@ TEST(ConfigLoad, ToYamlRoundTripGivesIdenticalJson) {
       "    model.trust: [0.1, 0.5, {dist: uniform, low: 0.2, high: 0.9}]\n"
       "    scenario.avs: [0, 8]\n",
       "rich.yaml");
-  EXPECT_EQ(rich.scenario.seed, 18446744073709551615ull);
+  EXPECT_EQ(rich.scenario.seed, 2147483644u);  // the last replicate, +2, is SUMO's largest
   ASSERT_TRUE(rich.sweep.has_value());
   EXPECT_EQ(rich.sweep->grid.size(), 2u);
   const std::string rich_yaml = ToYaml(rich);
@@ -393,6 +393,17 @@ TEST(ConfigErrors, WrongTypesNameKeyValueAndLine) {
     EXPECT_THAT(LoadError("model: {prior_go: yes}\n").message, HasSubstr("model.prior_go"));
     EXPECT_THAT(LoadError("scenario: {seed: -1}\n").message, HasSubstr("scenario.seed"));
     EXPECT_THAT(LoadError("scenario: 5\n").message, HasSubstr("scenario"));
+  }
+  {
+    // A control character in a value is shown (\xNN), not printed raw: an
+    // escape or a NUL would hide the value or cut the message.
+    const FileError e = LoadError("scenario: {avs: \"1\\x01\\x1b\"}\n");
+    EXPECT_THAT(e.message, HasSubstr("'1\\x01\\x1b'")) << e.message;
+    const std::string nul = ConfigErrorOf(
+        [] { ParseExperimentConfig("scenario: {avs: 1}\n", "nul.yaml",
+                                   {std::string("scenario.avs=\"2\\0x\"")}); });
+    EXPECT_THAT(nul, HasSubstr("\\x00x")) << nul;
+    EXPECT_THAT(nul, HasSubstr("scenario.avs")) << nul;
   }
 }
 
