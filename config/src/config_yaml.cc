@@ -522,12 +522,38 @@ void RequireUtf8(const std::string& text, const std::string& origin, bool lines)
 // One YAML document, or a ConfigError naming `origin`: a second document
 // (after a --- line) would be ignored by YAML::Load, and a run would use the
 // first without a word.
+// The nodes of `node` with its aliases expanded (*a counts a's nodes again),
+// counted up to `limit` (then `limit`): a few aliases nested ("alias bomb")
+// name 10^8 nodes in a few lines, which reading or printing would walk.
+std::size_t ExpandedNodes(const YAML::Node& node, std::size_t limit) {
+  std::size_t n = 0;
+  std::vector<YAML::Node> stack = {node};
+  while (!stack.empty() && n < limit) {
+    const YAML::Node x = stack.back();
+    stack.pop_back();
+    ++n;
+    if (x.IsSequence()) {
+      for (const YAML::Node& c : x) stack.push_back(c);
+    } else if (x.IsMap()) {
+      for (const auto& kv : x) {
+        stack.push_back(kv.first);
+        stack.push_back(kv.second);
+      }
+    }
+  }
+  return n;
+}
+
 YAML::Node OneDocument(const std::string& text, const std::string& origin) {
   std::vector<YAML::Node> docs = YAML::LoadAll(text);
   if (docs.size() > 1)
     throw ConfigError(origin + ": holds " + std::to_string(docs.size()) +
                       " YAML documents (separated by --- lines); a config is one document: "
                       "remove all but one");
+  if (!docs.empty() && ExpandedNodes(docs.front(), kMaxConfigNodes + 1) > kMaxConfigNodes)
+    throw ConfigError(origin + ": more than " + std::to_string(kMaxConfigNodes) +
+                      " YAML values once its aliases (*name) are expanded: a config that "
+                      "large is an alias repeated inside an alias; write the values out");
   return docs.empty() ? YAML::Node() : docs.front();
 }
 

@@ -390,3 +390,38 @@ TEST(Folders, SeedsSumoCannotTakeAndOutputsInAGridAreRefused) {
     EXPECT_FALSE(fs::exists(out));
   }
 }
+
+// ------------------------------------------------------------------ issue 45, item 8
+
+// An alias bomb (aliases of aliases: 10^8 values in nine lines) in a sweep's
+// grid is a config error naming the file, before anything walks it (it hung
+// `sweep --list` at 1.3 GB).
+TEST(Folders, AnAliasBombIsAConfigErrorNotAHang) {
+  TempDir dir;
+  std::string bomb =
+      "scenario: {avs: 2, hvs: 2, duration: 30}\npolicies: [ta_ebp]\n"
+      "sweep:\n  replicates: 1\n  grid:\n    model.trust: [0.3, &a [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]";
+  for (char name = 'b'; name <= 'h'; ++name) {
+    const std::string prev(1, static_cast<char>(name - 1));
+    bomb += std::string(", &") + name + " [";
+    for (int k = 0; k < 10; ++k) bomb += (k ? ", *" : "*") + prev;
+    bomb += "]";
+  }
+  bomb += "]\n";
+  const std::string sweep = dir.Write("bomb.yaml", bomb);
+  const CliResult r = RunCli({"sweep", sweep, "--list"});
+  EXPECT_EQ(r.exit_code, 2) << r.Describe();
+  EXPECT_THAT(r.err, HasSubstr(sweep)) << r.Describe();
+  EXPECT_THAT(r.err, HasSubstr("aliases")) << r.Describe();
+  // The same through --set.
+  const std::string base = dir.Write("base.yaml", kSweep);
+  const CliResult set = RunCli(
+      {"sweep", base, "--list", "--set",
+       "sweep.grid={model.trust: [&a [1,1,1,1,1,1,1,1,1,1], &b [*a,*a,*a,*a,*a,*a,*a,*a,*a,*a], "
+       "&c [*b,*b,*b,*b,*b,*b,*b,*b,*b,*b], &d [*c,*c,*c,*c,*c,*c,*c,*c,*c,*c], "
+       "&e [*d,*d,*d,*d,*d,*d,*d,*d,*d,*d], &f [*e,*e,*e,*e,*e,*e,*e,*e,*e,*e], "
+       "&g [*f,*f,*f,*f,*f,*f,*f,*f,*f,*f]]}"});
+  EXPECT_EQ(set.exit_code, 2) << set.Describe();
+  EXPECT_THAT(set.err, HasSubstr("--set sweep.grid")) << set.Describe();
+  EXPECT_THAT(set.err, HasSubstr("aliases")) << set.Describe();
+}

@@ -541,6 +541,9 @@ inline constexpr double kMaxDuration = 1e7;      // s (~116 simulated days)
 // step, which a signal cannot interrupt (a million took over 10 minutes).
 inline constexpr int kMaxVehicles = 10000;
 inline constexpr double kMaxSteps = 1e9;
+// A config's YAML values with its aliases expanded (a sweep grid of a
+// thousand points of a few values each is some ten thousand).
+inline constexpr std::size_t kMaxConfigNodes = 1000000;
 // scenario.seed (and a sweep's last replicate, seed + replicates - 1): SUMO
 // takes its --seed modulo 2^31 - 1, so seeds 1 and 2147483648 would run alike.
 inline constexpr std::uint64_t kMaxSeed = 2147483646;
