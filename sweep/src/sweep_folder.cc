@@ -118,10 +118,15 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
   f << "point,replicate,seed";
   for (const std::string& c : plan.columns) f << ',' << CsvCell(c);
   f << ',' << join(pooled) << '\n';
-  for (const Task& t : plan.tasks) {
-    const auto it = journal.entries.find(t.index);
-    if (it == journal.entries.end() || !IsOk(it->second) || t.runs.empty()) continue;
-    const fs::path file = TaskDir(out, t) / "encounters.csv";
+  // Each task's rows, policy by policy in its point's order: a policy it ran
+  // from its own encounters.csv, a policy it reused from the earlier task's
+  // (Task::reused_from), so that the file is the one a sweep without reuse
+  // writes (docs/results-folders.md). The rows of one policy of one task
+  // file at a time.
+  auto write_policy = [&](const Task& t, const Task& source, const std::string& policy) {
+    const auto it = journal.entries.find(source.index);
+    if (it == journal.entries.end() || !IsOk(it->second) || source.runs.empty()) return;
+    const fs::path file = TaskDir(out, source) / "encounters.csv";
     std::ifstream in(file, std::ios::binary);
     std::string line;
     const bool read = in && std::getline(in, line);
@@ -135,30 +140,45 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
       std::fprintf(stderr, "taebp sweep: warning: %s %s; its encounters are not in %s\n",
                    file.c_str(), in ? "has other columns (another taebp version?)" : "is missing",
                    (out / "encounters.csv").c_str());
-      continue;
+      return;
     }
-    // Where each pooled column comes from in this task's rows (-1: empty).
+    // Where each pooled column comes from in this file's rows (-1: empty).
     const std::vector<std::string>& cols = k->second;
     std::vector<int> from;
     for (const std::string& c : pooled) {
       const auto at = std::find(cols.begin(), cols.end(), c);
       from.push_back(at == cols.end() ? -1 : static_cast<int>(at - cols.begin()));
     }
+    const std::size_t policy_at = static_cast<std::size_t>(
+        std::find(cols.begin(), cols.end(), "policy") - cols.begin());
     const bool same = cols == pooled;
     std::string prefix = std::to_string(t.point) + ',' + std::to_string(t.replicate) + ',' +
                          std::to_string(t.seed);
     for (const std::string& v : plan.points[static_cast<std::size_t>(t.point)].values)
       prefix += ',' + CsvCell(v);
+    const std::string lead = CsvCell(policy) + ',';  // the policy is the first column
     while (std::getline(in, line)) {
       if (line.empty()) continue;
-      if (same) {
+      if (policy_at == 0 ? line.compare(0, lead.size(), lead) != 0 : false) continue;
+      if (same && policy_at == 0) {
         f << prefix << ',' << line << '\n';
         continue;
       }
       const std::vector<std::string> cells = SplitCsvRow(line);
+      if (policy_at >= cells.size() || cells[policy_at] != CsvCell(policy)) continue;
       f << prefix;
       for (int i : from) f << ',' << (i >= 0 && i < static_cast<int>(cells.size()) ? cells[i] : "");
       f << '\n';
+    }
+  };
+  for (const Task& t : plan.tasks) {
+    if (journal.entries.find(t.index) == journal.entries.end()) continue;
+    for (const std::string& policy : plan.points[static_cast<std::size_t>(t.point)].policies) {
+      const auto reused = t.reused_from.find(policy);
+      const Task& source = reused == t.reused_from.end()
+                               ? t
+                               : plan.tasks[static_cast<std::size_t>(reused->second)];
+      write_policy(t, source, policy);
     }
   }
   f.flush();

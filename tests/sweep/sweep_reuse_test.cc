@@ -189,6 +189,16 @@ TEST_F(SweepCli, ReuseChangesNoNumber) {
   EXPECT_NE(a, b);  // reused_from is filled where reused
   EXPECT_EQ(strip(a), strip(b));
   EXPECT_EQ(ReadFile(with / "aggregate.csv"), ReadFile(without / "aggregate.csv"));
+  // The pooled encounters.csv holds the reused runs' rows too (issue 45 item 1:
+  // they were left out), at the task that reuses them: the same file as
+  // without the reuse, with no_trust's rows at the second point.
+  const std::string ea = ReadFile(with / "encounters.csv"), eb = ReadFile(without / "encounters.csv");
+  EXPECT_EQ(ea, eb);
+  int no_trust_at_point_1 = 0;
+  std::istringstream rows(ea);
+  for (std::string line; std::getline(rows, line);)
+    no_trust_at_point_1 += line.rfind("1,", 0) == 0 && line.find(",no_trust,") != std::string::npos;
+  EXPECT_GT(no_trust_at_point_1, 0) << "no reused run's encounters at point 1";
 }
 
 }  // namespace
