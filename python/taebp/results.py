@@ -330,12 +330,18 @@ class SweepResult:
                 if r.get("status") == "ok":
                     tasks.setdefault((r["point"], r["replicate"]), [r[c] for c in front])
             for (point, replicate), values in tasks.items():
-                path = os.path.join(self.out, "tasks", "%d-%d" % (point, replicate),
-                                    "junctions.csv")
-                if not os.path.isfile(path):
-                    continue
-                with open(path, encoding="utf-8", newline="") as f:
-                    t = Table.from_csv(f.read(), "junctions.csv")
+                files, _ = self._task_files(point, replicate)  # reused runs' rows put in
+                if files is not None:
+                    if "junctions.csv" not in files:
+                        continue
+                    t = Table.from_csv(files["junctions.csv"], "junctions.csv")
+                else:
+                    path = os.path.join(self.out, "tasks", "%d-%d" % (point, replicate),
+                                        "junctions.csv")
+                    if not os.path.isfile(path):
+                        continue
+                    with open(path, encoding="utf-8", newline="") as f:
+                        t = Table.from_csv(f.read(), "junctions.csv")
                 columns = columns or front + t.columns
                 rows.extend(tuple(values) + row for row in t.rows)
             self._tables["junctions.csv"] = Table(columns or front, rows, "junctions",
@@ -349,7 +355,79 @@ class SweepResult:
                 raise TypeError("SweepResult.run: %s must be %s number (an int, as in "
                                 "results.csv), got %r"
                                 % (what, "a grid point's" if what == "point" else "a", v))
-        return load_run(os.path.join(self.out, "tasks", "%d-%d" % (point, replicate)))
+        files, reused = self._task_files(point, replicate)
+        if files is None:
+            return load_run(os.path.join(self.out, "tasks", "%d-%d" % (point, replicate)))
+        here = os.path.join(self.out, "tasks", "%d-%d" % (point, replicate))
+        return RunResult(files, out=here if os.path.isdir(here) else None)  # None: all reused
+
+    def _task_files(self, point, replicate):
+        """A task's result files with the runs it reused put in (results.csv's
+        reused_from: a policy whose run at this task could not differ from an
+        earlier task's): each CSV's rows policy by policy in the point's order,
+        summary.json's policies likewise, and summary["reused_from"] {policy:
+        "P-R"}; (None, {}) for a task that reused nothing."""
+        if "_tasks" not in self._tables:  # (point, replicate) -> ([policies], {reused})
+            tasks = {}
+            for r in self.results:
+                order, reused = tasks.setdefault((r["point"], r["replicate"]), ([], {}))
+                order.append(r["policy"])
+                if r.get("reused_from"):
+                    reused[r["policy"]] = r["reused_from"]
+            self._tables["_tasks"] = tasks
+        order, reused = self._tables["_tasks"].get((point, replicate), ([], {}))
+        if not reused:
+            return None, {}
+        here = os.path.join(self.out, "tasks", "%d-%d" % (point, replicate))
+        folders = {}
+
+        def files_of(task):
+            if task not in folders:
+                folder = os.path.join(self.out, "tasks", task)
+                got = {}
+                for name in ("summary.json", "encounters.csv", "junctions.csv", "collisions.csv",
+                             "config.yaml", "timeseries.csv", "hv_trust.csv"):
+                    path = os.path.join(folder, name)
+                    if os.path.isfile(path):
+                        with open(path, encoding="utf-8", newline="") as f:
+                            got[name] = f.read()
+                folders[task] = got
+            return folders[task]
+
+        own_task = "%d-%d" % (point, replicate)
+        sources = {p: reused.get(p, own_task) for p in order}
+        missing = sorted({t for t in sources.values() if "summary.json" not in files_of(t)})
+        if missing:
+            raise FileNotFoundError("%s: the run(s) of task %s are in tasks/%s, which has no "
+                                    "summary.json (not finished?)" % (here, own_task,
+                                                                       ", tasks/".join(missing)))
+        base = files_of(own_task) if "summary.json" in files_of(own_task) else \
+            files_of(sources[order[0]])
+        summary = json.loads(base["summary.json"])
+        summary["policies"] = {p: json.loads(files_of(sources[p])["summary.json"])["policies"][p]
+                               for p in order}
+        summary["reused_from"] = dict(reused)
+        files = {"summary.json": json.dumps(summary, indent=2) + "\n"}
+        for name in ("encounters.csv", "junctions.csv", "collisions.csv", "timeseries.csv",
+                     "hv_trust.csv"):
+            header, rows = None, []
+            for p in order:
+                text = files_of(sources[p]).get(name)
+                if text is None:
+                    continue
+                lines = list(csv.reader(io.StringIO(text)))
+                if not lines:
+                    continue
+                header = header or lines[0]
+                at = lines[0].index("policy") if "policy" in lines[0] else None
+                rows.extend(r for r in lines[1:] if at is not None and at < len(r) and r[at] == p)
+            if header is not None:
+                out = io.StringIO()
+                csv.writer(out, lineterminator="\n").writerows([header] + rows)
+                files[name] = out.getvalue()
+        if "config.yaml" in files_of(own_task):
+            files["config.yaml"] = files_of(own_task)["config.yaml"]
+        return files, reused
 
     def tidy(self, metrics=None):
         """The sweep as one long pandas DataFrame, the table every figure is

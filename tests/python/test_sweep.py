@@ -144,3 +144,31 @@ def test_jobs_below_one_is_refused_as_the_command_line_does(tmp_path, jobs):
     with pytest.raises(ValueError, match=r"jobs = .*>= 1"):
         taebp.sweep(config, out=tmp_path / "out", jobs=jobs)
     assert not (tmp_path / "out").exists()
+
+
+def test_a_task_lists_the_runs_it_reused(tmp_path):
+    """Issue 45 item 1: a point that differs from an earlier one only in a key
+    a policy does not read reuses that policy's run; load_sweep(DIR).run(P, R)
+    still lists every policy of the point, with the reused run's summary and
+    rows (summary["reused_from"] says whence), and the sweep's junctions and
+    encounters hold them: as a sweep without the reuse has them."""
+    path = tmp_path / "reuse.yaml"
+    path.write_text("scenario: {avs: 4, hvs: 4, stop_distance: 3.0, duration: 300, seed: 4}\n"
+                    "model: {trust_knowledge: assumed, assumed_trust: 0.5}\n"
+                    "policies: [no_trust, ta_ebp]\n"
+                    "sweep:\n  replicates: 1\n  grid:\n    model.assumed_trust: [0.4, 0.9]\n")
+    cli("sweep", path, "--out", tmp_path / "with", "--jobs", 1, "--quiet")
+    cli("sweep", path, "--out", tmp_path / "without", "--jobs", 1, "--quiet", "--no-reuse")
+    w, wo = taebp.load_sweep(tmp_path / "with"), taebp.load_sweep(tmp_path / "without")
+    assert [r["reused_from"] for r in w.results] == [None, None, "0-0", None]
+    run = w.run(1, 0)
+    assert run.policies == ["no_trust", "ta_ebp"]
+    assert run.summary["reused_from"] == {"no_trust": "0-0"}
+    plain = wo.run(1, 0)
+    assert len(run.encounters) == len(plain.encounters) > 0
+    assert run.encounters.rows == plain.encounters.rows
+    for p in ("no_trust", "ta_ebp"):
+        assert run.summary["policies"][p] == plain.summary["policies"][p], p
+    assert w.junctions.rows == wo.junctions.rows
+    assert len(w.encounters) == len(wo.encounters) == sum(
+        len(w.run(p, 0).encounters) for p in (0, 1))
