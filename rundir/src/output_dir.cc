@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <vector>
 #include <algorithm>
 
 #include <cstdio>  // renameat2
@@ -214,18 +215,37 @@ long StagingPid(const std::string& name, const std::string& prefix) {
 }
 
 // A copy of `from` at `to`, on disk (fsync) before it counts.
+// Copied by read and write, not std::filesystem::copy_file: its kernel copy
+// (sendfile) reports a full disk as "Input/output error"; write(2) says "No
+// space left on device".
 void CopySynced(const fs::path& from, const fs::path& to) {
-  std::error_code ec;
-  fs::copy_file(from, to, fs::copy_options::overwrite_existing, ec);
-  if (ec) throw std::runtime_error("cannot copy " + from.string() + " to " + to.string() + ": " +
-                                   ec.message());
-  const int fd = ::open(to.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0 || ::fsync(fd) != 0) {
+  const auto fail = [&](const std::string& what, int in, int out) {
     const std::string why = Errno();
-    if (fd >= 0) ::close(fd);
-    throw std::runtime_error("cannot write " + to.string() + ": fsync: " + why);
+    if (in >= 0) ::close(in);
+    if (out >= 0) ::close(out);
+    throw std::runtime_error("cannot copy " + from.string() + " to " + to.string() + ": " + what +
+                             why);
+  };
+  const int in = ::open(from.c_str(), O_RDONLY | O_CLOEXEC);
+  if (in < 0) fail("", -1, -1);
+  const int out = ::open(to.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (out < 0) fail("", in, -1);
+  std::vector<char> buffer(1 << 20);
+  for (;;) {
+    const ssize_t n = ::read(in, buffer.data(), buffer.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail("read: ", in, out);
+    if (n == 0) break;
+    for (ssize_t done = 0; done < n;) {
+      const ssize_t w = ::write(out, buffer.data() + done, static_cast<std::size_t>(n - done));
+      if (w < 0 && errno == EINTR) continue;
+      if (w < 0) fail("", in, out);
+      done += w;
+    }
   }
-  ::close(fd);
+  if (::fsync(out) != 0) fail("fsync: ", in, out);
+  ::close(in);
+  if (::close(out) != 0) fail("close: ", -1, -1);
 }
 
 bool SameDevice(const fs::path& a, const fs::path& b) {

@@ -271,3 +271,29 @@ TEST_F(CliFaults, FullOutputFolderFailsCleanlyAndKeepsEarlierResults) {
 }
 
 }  // namespace
+
+namespace {
+
+// The disk fills while SUMO's own outputs are copied in (fcd.xml, the
+// largest; a 256 KiB tmpfs, root only): the error says the disk is full, as
+// write(2) does ("No space left on device", not the kernel copy's
+// "Input/output error"), and the earlier results stay.
+TEST_F(CliFaults, AFullDiskWhileCopyingSumosOutputsSaysSo) {
+  TempDir dir;
+  const fs::path out = dir.path() / "small";
+  fs::create_directories(out);
+  std::string why;
+  auto mount = taebp::test::Tmpfs::Mount(out, 256 << 10, /*read_only=*/false, &why);
+  if (!mount) GTEST_SKIP() << "cannot mount a small tmpfs: " << why;
+  WriteEarlierResults(out);
+  const CliResult r = RunCli({"run", kPaper, "--set", "scenario.duration=120", "--set",
+                              "policies=[ta_ebp]", "--set", "scenario.outputs.fcd=true", "--out",
+                              out.string(), "--quiet"});
+  EXPECT_EQ(r.exit_code, 1) << r.Describe();
+  EXPECT_THAT(r.err, HasSubstr("fcd.xml")) << r.Describe();
+  EXPECT_THAT(r.err, HasSubstr("No space left on device")) << r.Describe();
+  EXPECT_THAT(r.err, testing::Not(HasSubstr("Input/output error"))) << r.Describe();
+  ExpectEarlierResultsUntouched(out);
+}
+
+}  // namespace
