@@ -15,6 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace taebp::sweep::internal {
@@ -191,7 +192,18 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
                              (err != 0 ? std::strerror(err) : "the stream failed (disk full?)"));
   }
   f.close();
+  // On disk before it replaces the last one (as rundir's WriteSynced does).
+  const int fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0 || ::fsync(fd) != 0) {
+    const std::string why = std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw std::runtime_error("cannot write " + tmp.string() + ": fsync: " + why);
+  }
+  ::close(fd);
   fs::rename(tmp, out / "encounters.csv");
+  SyncFolder(out.string());
 }
 
 }  // namespace
