@@ -4,6 +4,7 @@
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/number_text.h"
 #include "taebp/rundir/interrupt.h"
+#include "taebp/report/exit_codes.h"
 #include "taebp/report/ssm.h"
 #include "taebp/scenario/ssm_args.h"
 
@@ -214,7 +215,7 @@ extern "C" void OnSumoAbort(int) {
   // Not async-signal-safe; the process ends here either way.
   std::error_code ec;
   if (a.scratch[0]) fs::remove_all(a.scratch, ec);
-  ::_exit(3);
+  ::_exit(kExitSumo);
 }
 
 class AbortGuard {

@@ -3,6 +3,7 @@
 #include "taebp/encounter/design.h"
 #include "taebp/persuasion/lp.h"
 #include "taebp/persuasion/noise.h"
+#include "taebp/persuasion/number_text.h"
 
 #include <cmath>
 
@@ -22,11 +23,11 @@ ordered_json Num(double v) {
 void TheoryRequest::Validate() const {
   Params().Validate();
   if (!(trust >= 0 && trust <= 1))
-    throw per::InvalidArgument("--trust theta = " + std::to_string(trust) + " is outside [0, 1]");
+    throw per::InvalidArgument("--trust theta = " + NumberText(trust) + " is outside [0, 1]");
   if (noise != "none" || noise_bias != 0.0) {
     Noise().Validate();
     if (!(noise_delta > 0 && noise_delta < 1))
-      throw per::InvalidArgument("--noise-delta = " + std::to_string(noise_delta) +
+      throw per::InvalidArgument("--noise-delta = " + NumberText(noise_delta) +
                                  " is outside (0, 1)");
   }
 }
@@ -160,7 +161,7 @@ per::Game ProblemGame(const ProblemConfig& pc, const std::string& path) {
   std::string why;
   if (!g.IsValid(&why)) throw ConfigError(path + ": " + why);
   if (!(pc.trust >= 0 && pc.trust <= 1))
-    throw ConfigError(path + ": key 'trust' = " + std::to_string(pc.trust) +
+    throw ConfigError(path + ": key 'trust' = " + NumberText(pc.trust) +
                       " is outside [0, 1]");
   return g;
 }
