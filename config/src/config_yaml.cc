@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/depthguard.h>
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -544,17 +545,54 @@ std::size_t ExpandedNodes(const YAML::Node& node, std::size_t limit) {
   return n;
 }
 
+// Counts a text's documents, nothing else.
+struct NoEvents : YAML::EventHandler {
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+// The text's documents, counted up to one more than its "---" / "..." lines
+// allow: yaml-cpp 0.7's parser does not advance past a stray flow indicator
+// at the top level (a lone ',': YAML::LoadAll then returns empty documents
+// without end, allocating until the memory is gone).
+std::size_t DocumentCount(const std::string& text, const std::string& origin) {
+  std::size_t markers = 0;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);)
+    markers += line.rfind("---", 0) == 0 || line.rfind("...", 0) == 0;
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  NoEvents events;
+  std::size_t docs = 0;
+  while (parser.HandleNextDocument(events))
+    if (++docs > markers + 1)
+      throw ConfigError(origin + ": not YAML that can be read: the parser stops advancing (a "
+                        "stray ',' or other flow indicator outside [ ] or { }?)");
+  return docs;
+}
+
 YAML::Node OneDocument(const std::string& text, const std::string& origin) {
-  std::vector<YAML::Node> docs = YAML::LoadAll(text);
-  if (docs.size() > 1)
-    throw ConfigError(origin + ": holds " + std::to_string(docs.size()) +
+  const std::size_t docs = DocumentCount(text, origin);
+  if (docs > 1)
+    throw ConfigError(origin + ": holds " + std::to_string(docs) +
                       " YAML documents (separated by --- lines); a config is one document: "
                       "remove all but one");
-  if (!docs.empty() && ExpandedNodes(docs.front(), kMaxConfigNodes + 1) > kMaxConfigNodes)
+  if (docs == 0) return YAML::Node();
+  YAML::Node root = YAML::Load(text);
+  if (ExpandedNodes(root, kMaxConfigNodes + 1) > kMaxConfigNodes)
     throw ConfigError(origin + ": more than " + std::to_string(kMaxConfigNodes) +
                       " YAML values once its aliases (*name) are expanded: a config that "
                       "large is an alias repeated inside an alias; write the values out");
-  return docs.empty() ? YAML::Node() : docs.front();
+  return root;
 }
 
 YAML::Node ParseYaml(const std::string& text, const std::string& origin) {

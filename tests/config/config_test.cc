@@ -493,6 +493,16 @@ TEST(ConfigErrors, MalformedYamlNamesFileAndLine) {
   const FileError brace = LoadError("scenario:\n  avs: 8\nmodel: {prior_go: 0.2}}\n");
   EXPECT_THAT(brace.message, HasSubstr("malformed YAML"));
   EXPECT_THAT(brace.message, HasSubstr(brace.path + ":3:"));
+  // A lone ',' (yaml-cpp 0.7's parser stops advancing there: LoadAll made
+  // empty documents until the memory was gone, found by tools/fuzz problem).
+  for (const std::string& text : {std::string(","), std::string(",\x18"),
+                                   std::string("scenario: {avs: 8}\n,\n")}) {
+    const FileError stray = LoadError(text);
+    EXPECT_THAT(stray.message, HasSubstr(stray.path)) << text;
+    EXPECT_THAT(stray.message, ::testing::AnyOf(HasSubstr("parser stops advancing"),
+                                                HasSubstr("malformed YAML")))
+        << text;
+  }
 }
 
 TEST(ConfigErrors, MissingFileNamesThePath) {
