@@ -98,11 +98,13 @@ bool TrustUpdateRule::IsValid(std::string* why) const {
     if (why != nullptr) *why = message;
     return false;
   };
-  if (!(success_weight >= 0.0 && std::isfinite(success_weight))) {
-    return fail("success_weight w_s = " + NumberText(success_weight) + " must be finite and >= 0");
+  if (!(success_weight >= 0.0 && success_weight <= kMaxWeight)) {
+    return fail("success_weight w_s = " + NumberText(success_weight) + " is outside [0, " + NumberText(kMaxWeight) +
+                "]");
   }
-  if (!(failure_weight >= 0.0 && std::isfinite(failure_weight))) {
-    return fail("failure_weight w_f = " + NumberText(failure_weight) + " must be finite and >= 0");
+  if (!(failure_weight >= 0.0 && failure_weight <= kMaxWeight)) {
+    return fail("failure_weight w_f = " + NumberText(failure_weight) + " is outside [0, " + NumberText(kMaxWeight) +
+                "]");
   }
   if (!(forgetting >= 0.0 && forgetting <= 1.0)) {
     return fail("forgetting rho = " + NumberText(forgetting) + " is outside [0, 1]");

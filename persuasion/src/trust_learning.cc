@@ -22,6 +22,18 @@ namespace {
 // slower here, for digits the posterior does not need).
 using DoublePrecision = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
 
+// The smallest x in [lo, hi] where the monotone predicate `reached` holds
+// (hi if it holds nowhere before), to adjacent doubles.
+template <typename Reached>
+double Bisect(double lo, double hi, Reached reached) {
+  for (int i = 0; i < 2000 && lo < hi; ++i) {
+    const double mid = lo + 0.5 * (hi - lo);
+    if (mid <= lo || mid >= hi) break;
+    if (reached(mid)) hi = mid; else lo = mid;
+  }
+  return hi;
+}
+
 // Below this width a Beta density is taken as constant across [lo, hi): the
 // CDF difference would lose its digits, the constant density loses none that
 // matter (relative error ~ width * |f'/f|).
@@ -203,14 +215,29 @@ double TrustPrior::QuantileWithin(double lo, double hi, double p, bool upper) co
     case Kind::kBeta: {
       // A positive density: the lower and the upper quantile coincide.
       if (top - lo <= kNarrow) return clamp(lo + p * (top - lo));
+      // Boost's Newton iteration gives up on levels far in a tail (a learning
+      // delta of 1e-300: "no root to be found"); bisection on the monotone
+      // distribution function then finds the quantile to the last double.
       if (lo >= a_ / (a_ + b_)) {
         const double tail = boost::math::ibetac(a_, b_, lo, DoublePrecision()) - target;
         if (tail <= 0.0) return top;
-        return clamp(boost::math::ibetac_inv(a_, b_, tail, DoublePrecision()));
+        try {
+          return clamp(boost::math::ibetac_inv(a_, b_, tail, DoublePrecision()));
+        } catch (const boost::math::evaluation_error&) {
+          return Bisect(lo, top, [&](double x) {
+            return boost::math::ibetac(a_, b_, x, DoublePrecision()) <= tail;
+          });
+        }
       }
       const double cdf = boost::math::ibeta(a_, b_, lo, DoublePrecision()) + target;
       if (cdf >= 1.0) return top;
-      return clamp(boost::math::ibeta_inv(a_, b_, cdf, DoublePrecision()));
+      try {
+        return clamp(boost::math::ibeta_inv(a_, b_, cdf, DoublePrecision()));
+      } catch (const boost::math::evaluation_error&) {
+        return Bisect(lo, top, [&](double x) {
+          return boost::math::ibeta(a_, b_, x, DoublePrecision()) >= cdf;
+        });
+      }
     }
     case Kind::kHistogram: {
       const auto k_count = static_cast<double>(cells_.size());

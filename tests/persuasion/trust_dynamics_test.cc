@@ -76,9 +76,13 @@ TEST(OutcomeQuality, DefaultsAndValidation) {
 
 TEST(TrustUpdateRule, Validation) {
   EXPECT_THAT(InvalidArgumentMessage([] { Weights(-1.0, 1.0).Validate(); }),
-              HasSubstr("success_weight w_s = -1 must be finite and >= 0"));
+              HasSubstr("success_weight w_s = -1 is outside [0, 1e+09]"));
   EXPECT_THAT(InvalidArgumentMessage([] { Weights(1.0, INFINITY).Validate(); }),
-              HasSubstr("failure_weight w_f = inf must be finite and >= 0"));
+              HasSubstr("failure_weight w_f = inf is outside [0, 1e+09]"));
+  // Issue 45 item 10: a weight of 1e308 overflowed alpha + beta to inf mid-run.
+  EXPECT_THAT(InvalidArgumentMessage([] { Weights(1e308, 1.0).Validate(); }),
+              HasSubstr("success_weight w_s = 1e+308 is outside [0, 1e+09]"));
+  EXPECT_NO_THROW(Weights(TrustUpdateRule::kMaxWeight, TrustUpdateRule::kMaxWeight).Validate());
   EXPECT_THAT(InvalidArgumentMessage([] { Weights(1.0, 1.0, 1.5).Validate(); }),
               HasSubstr("forgetting rho = 1.5 is outside [0, 1]"));
   EXPECT_TRUE(Weights(0.0, 0.0, 0.0).IsStatic());

@@ -53,6 +53,28 @@ TEST(TrustPrior, BetaAgainstClosedForms) {
   }
 }
 
+TEST(TrustPrior, BetaQuantilesFarInATailAreFound) {
+  // Issue 45 item 10: model.learning.delta = 1e-300 (allowed) failed with Boost's
+  // "newton_raphson_iterate: no root to be found". Closed forms: Beta(4, 2) has
+  // F = 5x^4 - 4x^5 (evaluated at the quantile found, it gives p back);
+  // Beta(2, 1) has F = x^2, Beta(1, 3) has 1 - F = (1 - x)^3.
+  const TrustPrior b42 = TrustPrior::Beta(4.0, 2.0);
+  const TrustPrior b21 = TrustPrior::Beta(2.0, 1.0);
+  const TrustPrior b13 = TrustPrior::Beta(1.0, 3.0);
+  for (double p : {1e-300, 1e-200, 1e-100, 1e-30}) {
+    for (bool upper : {false, true}) {
+      const double x42 = b42.QuantileWithin(0.0, TrustPrior::kAboveOne, p, upper);
+      EXPECT_NEAR((5.0 * std::pow(x42, 4) - 4.0 * std::pow(x42, 5)) / p, 1.0, 1e-9) << p;
+      const double x21 = b21.QuantileWithin(0.0, TrustPrior::kAboveOne, p, upper);
+      EXPECT_NEAR(x21 / std::sqrt(p), 1.0, 1e-9) << p;
+      // Beta(1, 3) restricted to [0.5, 1): the upper tail from 0.5 holds 1/8;
+      // the quantile q has (1 - 0.5)^3 - (1 - q)^3 = p / 8.
+      const double x13 = b13.QuantileWithin(0.5, TrustPrior::kAboveOne, p, upper);
+      EXPECT_NEAR(x13, 1.0 - std::cbrt(0.125 - p / 8.0), 1e-15) << p;
+    }
+  }
+}
+
 TEST(TrustPrior, BetaNarrowIntervalsStayAccurate) {
   // Below 1e-7 the density is taken as constant: compare with the exact mass
   // of Beta(3, 2) (F = 4x^3 - 3x^4) differentiated: f = 12 x^2 (1 - x).

@@ -73,8 +73,12 @@ struct OutcomeQuality {
 };
 
 struct TrustUpdateRule {
-  double success_weight = 1.0;  // w_s >= 0
-  double failure_weight = 1.0;  // w_f >= 0
+  // A weight's bound: 10^9 encounters' worth of evidence per encounter sets the
+  // trust to 0 or 1 at once already, and keeps α + β finite over any run (a
+  // weight of 1e308 overflowed it to inf, and θ to NaN, mid-run).
+  static constexpr double kMaxWeight = 1e9;
+  double success_weight = 1.0;  // w_s in [0, kMaxWeight]
+  double failure_weight = 1.0;  // w_f in [0, kMaxWeight]
   double forgetting = 0.0;      // rho in [0, 1]
   OutcomeQuality quality;
   // Static trust: nothing ever changes the state.
