@@ -23,6 +23,8 @@
 
 #include "taebp/config/model.h"
 
+#include "taebp/report/sample_spool.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -42,6 +44,11 @@ std::unique_ptr<HvPopulation> MakePopulation(const RunState& s, persuasion::Poli
 void MakePopulations(RunState& s, persuasion::Policy policy) {
   // Each HV's trust, the AV's design for it, its reading (hv_population.h).
   s.population = MakePopulation(s, policy, false);
+  // Its time series go to disk as sampled (report/sample_spool.h), beside
+  // SUMO's outputs in the scenario's scratch folder.
+  if (s.population->Beyond())
+    s.population->SampleInto(std::make_shared<SampleSpool>(
+        PolicyName(policy), s.scenario.scratch ? s.scenario.scratch->path() : std::string()));
   if (s.sc.major_road) s.major_population = MakePopulation(s, policy, true);
 }
 

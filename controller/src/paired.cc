@@ -170,6 +170,8 @@ void Pairing::StartBranch(persuasion::Policy policy, bool major, EncounterGame& 
   InterruptGuard::ResetInChild();
   std::signal(SIGABRT, SIG_DFL);  // SUMO aborting ends the branch only (the parent says so)
   SilenceDescriptors(fd);
+  // The run's time series are the host's: a branch writes none into its files.
+  if (s_.population) s_.population->SampleInto(nullptr);
   // This game is played under `policy`, by the same HV with the trust it was
   // drawn (the paper's model: an HV's trust does not depend on what it met;
   // config.cc refuses the rest); every other game stays the run's own.

@@ -1,5 +1,7 @@
 #include "taebp/encounter/hv_population.h"
 
+#include "taebp/report/sample_spool.h"
+
 #include "taebp/config/model.h"
 #include "taebp/encounter/design.h"
 #include "taebp/persuasion/number_text.h"
@@ -362,7 +364,8 @@ void HvPopulation::Sample(double now) {
   s.oracle_collisions = t.oracle_collisions;
   s.regret = t.regret;
   s.expected_failures = t.expected_failures;
-  series_.push_back(s);
+  if (!spool_) spool_ = std::make_shared<SampleSpool>("", "");  // unnamed files
+  spool_->Add(s);
   if (!config_.outputs.per_hv) return;
   std::optional<per::TrustBelief> fresh;
   for (const auto& [id, h] : hvs_) {
@@ -384,7 +387,7 @@ void HvPopulation::Sample(double now) {
       hs.observations = belief->Observations();
       hs.contradictions = belief->Contradictions();
     }
-    hv_series_.push_back(std::move(hs));
+    spool_->Add(hs);
   }
 }
 
@@ -405,8 +408,7 @@ BeyondRun HvPopulation::Results(double end) {
     next_sample_ = end;
     Sample(end);
   }
-  out.series = std::move(series_);
-  out.hv_series = std::move(hv_series_);
+  out.samples = spool_;
   out.hvs = hvs_added_;
   out.trust_moves = dynamic_ || experience_.has_value();
   const ModelConfig& m = config_.model;

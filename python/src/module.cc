@@ -22,6 +22,8 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <fstream>
+#include <sstream>
 #include <chrono>
 #include <condition_variable>
 #include <csignal>
@@ -335,6 +337,14 @@ PYBIND11_MODULE(_taebp, m) {
         }
         py::dict files;
         for (const auto& [name, text] : result.Files()) files[py::str(name)] = py::str(text);
+        for (const auto& [name, path] : result.sample_files) {  // the time series, on disk
+          std::ifstream in(path, std::ios::binary);
+          std::ostringstream text;
+          text << in.rdbuf();
+          if (!in.good() && !in.eof())
+            throw std::runtime_error("cannot read " + path + " (" + name + ")");
+          files[py::str(name)] = py::str(text.str());
+        }
         py::dict r;
         r["files"] = files;
         r["table"] = result.Table();

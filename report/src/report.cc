@@ -7,12 +7,15 @@
 #include "taebp/report/clustered.h"
 #include "taebp/report/metrics.h"
 #include "taebp/report/paired.h"
+#include "taebp/report/sample_spool.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -217,7 +220,7 @@ template <typename Sample>
 struct SampleColumn {
   const char* name;
   const char* description;
-  std::string (*cell)(const PolicyRun& run, const Sample& s);
+  std::string (*cell)(const std::string& policy, const Sample& s);
 };
 std::string Int(long v) { return std::to_string(v); }
 std::string Opt(double v) { return std::isfinite(v) ? NumberText(v) : std::string(); }
@@ -225,30 +228,30 @@ std::string Opt(double v) { return std::isfinite(v) ? NumberText(v) : std::strin
 const std::vector<SampleColumn<TimeSample>>& TimeseriesColumns() {
   using C = SampleColumn<TimeSample>;
   static const std::vector<C> cols = {
-      {"policy", "the policy", [](const PolicyRun& r, const TimeSample&) { return CsvCell(r.policy); }},
-      {"time", "simulated time (s)", [](const PolicyRun&, const TimeSample& t) { return NumberText(t.time); }},
-      {"hvs", "HVs in the network", [](const PolicyRun&, const TimeSample& t) { return Int(t.hvs); }},
+      {"policy", "the policy", [](const std::string& policy, const TimeSample&) { return CsvCell(policy); }},
+      {"time", "simulated time (s)", [](const std::string&, const TimeSample& t) { return NumberText(t.time); }},
+      {"hvs", "HVs in the network", [](const std::string&, const TimeSample& t) { return Int(t.hvs); }},
       {"mean_trust", "their mean current trust",
-       [](const PolicyRun&, const TimeSample& t) { return Opt(t.mean_trust); }},
+       [](const std::string&, const TimeSample& t) { return Opt(t.mean_trust); }},
       {"mean_field_trust", "the mean-field prediction for the same HVs (dynamic trust)",
-       [](const PolicyRun&, const TimeSample& t) { return Opt(t.mean_field_trust); }},
-      {"encounters", "encounters so far", [](const PolicyRun&, const TimeSample& t) { return Int(t.encounters); }},
-      {"dc", "DC choices so far", [](const PolicyRun&, const TimeSample& t) { return Int(t.dc); }},
-      {"collisions", "collisions so far", [](const PolicyRun&, const TimeSample& t) { return Int(t.collisions); }},
-      {"nudges", "nudges so far", [](const PolicyRun&, const TimeSample& t) { return Int(t.nudges); }},
+       [](const std::string&, const TimeSample& t) { return Opt(t.mean_field_trust); }},
+      {"encounters", "encounters so far", [](const std::string&, const TimeSample& t) { return Int(t.encounters); }},
+      {"dc", "DC choices so far", [](const std::string&, const TimeSample& t) { return Int(t.dc); }},
+      {"collisions", "collisions so far", [](const std::string&, const TimeSample& t) { return Int(t.collisions); }},
+      {"nudges", "nudges so far", [](const std::string&, const TimeSample& t) { return Int(t.nudges); }},
       {"failures", "nudged-then-DR encounters so far",
-       [](const PolicyRun&, const TimeSample& t) { return Int(t.failures); }},
+       [](const std::string&, const TimeSample& t) { return Int(t.failures); }},
       {"theory_dc", "sum of the encounters' predicted DC rates",
-       [](const PolicyRun&, const TimeSample& t) { return NumberText(t.theory_dc); }},
+       [](const std::string&, const TimeSample& t) { return NumberText(t.theory_dc); }},
       {"theory_collisions", "sum of their predicted collision rates",
-       [](const PolicyRun&, const TimeSample& t) { return NumberText(t.theory_collisions); }},
+       [](const std::string&, const TimeSample& t) { return NumberText(t.theory_collisions); }},
       {"oracle_dc", "sum of the oracle's predicted DC rates",
-       [](const PolicyRun&, const TimeSample& t) { return NumberText(t.oracle_dc); }},
+       [](const std::string&, const TimeSample& t) { return NumberText(t.oracle_dc); }},
       {"oracle_collisions", "sum of the oracle's predicted collision rates",
-       [](const PolicyRun&, const TimeSample& t) { return NumberText(t.oracle_collisions); }},
-      {"regret", "regret so far", [](const PolicyRun&, const TimeSample& t) { return NumberText(t.regret); }},
+       [](const std::string&, const TimeSample& t) { return NumberText(t.oracle_collisions); }},
+      {"regret", "regret so far", [](const std::string&, const TimeSample& t) { return NumberText(t.regret); }},
       {"expected_failures", "the fleet's predicted failures so far",
-       [](const PolicyRun&, const TimeSample& t) { return NumberText(t.expected_failures); }},
+       [](const std::string&, const TimeSample& t) { return NumberText(t.expected_failures); }},
   };
   return cols;
 }
@@ -256,23 +259,23 @@ const std::vector<SampleColumn<TimeSample>>& TimeseriesColumns() {
 const std::vector<SampleColumn<HvSample>>& HvTrustColumns() {
   using C = SampleColumn<HvSample>;
   static const std::vector<C> cols = {
-      {"policy", "the policy", [](const PolicyRun& r, const HvSample&) { return CsvCell(r.policy); }},
-      {"time", "simulated time (s)", [](const PolicyRun&, const HvSample& h) { return NumberText(h.time); }},
-      {"hv", "the HV's SUMO id", [](const PolicyRun&, const HvSample& h) { return CsvCell(h.hv); }},
-      {"trust", "its current trust", [](const PolicyRun&, const HvSample& h) { return NumberText(h.trust); }},
-      {"encounters", "its encounters so far", [](const PolicyRun&, const HvSample& h) { return Int(h.encounters); }},
+      {"policy", "the policy", [](const std::string& policy, const HvSample&) { return CsvCell(policy); }},
+      {"time", "simulated time (s)", [](const std::string&, const HvSample& h) { return NumberText(h.time); }},
+      {"hv", "the HV's SUMO id", [](const std::string&, const HvSample& h) { return CsvCell(h.hv); }},
+      {"trust", "its current trust", [](const std::string&, const HvSample& h) { return NumberText(h.trust); }},
+      {"encounters", "its encounters so far", [](const std::string&, const HvSample& h) { return Int(h.encounters); }},
       {"belief_lower", "the fleet's lower bound on its trust (learned trust)",
-       [](const PolicyRun&, const HvSample& h) { return Opt(h.belief_lower); }},
+       [](const std::string&, const HvSample& h) { return Opt(h.belief_lower); }},
       {"belief_upper", "the fleet's upper bound",
-       [](const PolicyRun&, const HvSample& h) { return Opt(h.belief_upper); }},
+       [](const std::string&, const HvSample& h) { return Opt(h.belief_upper); }},
       {"belief_mean", "the fleet's posterior mean",
-       [](const PolicyRun&, const HvSample& h) { return Opt(h.belief_mean); }},
+       [](const std::string&, const HvSample& h) { return Opt(h.belief_mean); }},
       {"design_trust", "the trust its next design would assume",
-       [](const PolicyRun&, const HvSample& h) { return Opt(h.design_trust); }},
+       [](const std::string&, const HvSample& h) { return Opt(h.design_trust); }},
       {"observations", "its responses the fleet learned from",
-       [](const PolicyRun&, const HvSample& h) { return Int(h.observations); }},
+       [](const std::string&, const HvSample& h) { return Int(h.observations); }},
       {"contradictions", "of those, contradicting the belief",
-       [](const PolicyRun&, const HvSample& h) { return Int(h.contradictions); }},
+       [](const std::string&, const HvSample& h) { return Int(h.contradictions); }},
   };
   return cols;
 }
@@ -284,19 +287,38 @@ std::vector<std::string> Names(const std::vector<SampleColumn<Sample>>& cols) {
   return names;
 }
 
-template <typename Sample, typename Samples>
-std::string SampleCsv(const std::vector<PolicyRun>& runs,
-                      const std::vector<SampleColumn<Sample>>& cols, Samples samples) {
+template <typename Sample>
+std::string Header(const std::vector<SampleColumn<Sample>>& cols) {
   std::string out;
   for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + std::string(cols[i].name);
-  out += '\n';
-  for (const PolicyRun& r : runs) {
-    for (const Sample& s : samples(r)) {
-      for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + cols[i].cell(r, s);
-      out += '\n';
-    }
+  return out + '\n';
+}
+
+template <typename Sample>
+std::string Row(const std::vector<SampleColumn<Sample>>& cols, const std::string& policy,
+                const Sample& s) {
+  std::string out;
+  for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + cols[i].cell(policy, s);
+  return out + '\n';
+}
+
+// The header, then each run's spooled rows in the runs' order, streamed.
+template <typename Copy>
+void WriteSampleCsv(const std::vector<PolicyRun>& runs, const std::string& header,
+                    const std::string& path, Copy copy) {
+  std::FILE* out = std::fopen(path.c_str(), "w");
+  if (!out) throw std::runtime_error("cannot create " + path + ": " + std::strerror(errno));
+  try {
+    if (std::fwrite(header.data(), 1, header.size(), out) != header.size())
+      throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+    for (const PolicyRun& r : runs)
+      if (r.beyond.samples) copy(*r.beyond.samples, out);
+  } catch (...) {
+    std::fclose(out);
+    throw;
   }
-  return out;
+  if (std::fclose(out) != 0)
+    throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
 }
 
 template <typename Sample>
@@ -312,14 +334,21 @@ std::string ColumnsMarkdown(const char* file, const std::vector<SampleColumn<Sam
 std::vector<std::string> TimeseriesCsvColumns() { return Names(TimeseriesColumns()); }
 std::vector<std::string> HvTrustCsvColumns() { return Names(HvTrustColumns()); }
 
-std::string TimeseriesCsv(const std::vector<PolicyRun>& runs) {
-  return SampleCsv(runs, TimeseriesColumns(),
-                   [](const PolicyRun& r) -> const std::vector<TimeSample>& { return r.beyond.series; });
+std::string TimeseriesCsvRow(const std::string& policy, const TimeSample& s) {
+  return Row(TimeseriesColumns(), policy, s);
+}
+std::string HvTrustCsvRow(const std::string& policy, const HvSample& s) {
+  return Row(HvTrustColumns(), policy, s);
 }
 
-std::string HvTrustCsv(const std::vector<PolicyRun>& runs) {
-  return SampleCsv(runs, HvTrustColumns(),
-                   [](const PolicyRun& r) -> const std::vector<HvSample>& { return r.beyond.hv_series; });
+void WriteTimeseriesCsv(const std::vector<PolicyRun>& runs, const std::string& path) {
+  WriteSampleCsv(runs, Header(TimeseriesColumns()), path,
+                 [&](const SampleSpool& spool, std::FILE* out) { spool.CopyTimeRows(out, path); });
+}
+
+void WriteHvTrustCsv(const std::vector<PolicyRun>& runs, const std::string& path) {
+  WriteSampleCsv(runs, Header(HvTrustColumns()), path,
+                 [&](const SampleSpool& spool, std::FILE* out) { spool.CopyHvRows(out, path); });
 }
 
 std::string SampleColumnsMarkdown() {

@@ -45,15 +45,11 @@ std::vector<std::pair<std::string, std::string>> ExperimentResult::Files() const
   }
   if (config.scenario.paired)  // each game under every game policy (docs/paired.md)
     files.emplace_back("paired.csv", PairedCsv(runs));
-  if (BeyondPaper(runs)) {  // dynamic / learned trust, noise: the time series
-    files.emplace_back("timeseries.csv", TimeseriesCsv(runs));
-    files.emplace_back("hv_trust.csv", HvTrustCsv(runs));
-  }
   return files;
 }
 
 std::vector<std::pair<std::string, std::string>> ExperimentResult::CopiedFiles() const {
-  std::vector<std::pair<std::string, std::string>> files;
+  std::vector<std::pair<std::string, std::string>> files = sample_files;
   for (const PolicyRun& r : runs)
     files.insert(files.end(), r.sumo_output_files.begin(), r.sumo_output_files.end());
   if (!network_ran.empty()) files.emplace_back("network.net.xml", network_ran);
@@ -157,6 +153,15 @@ ExperimentResult RunExperiment(const std::string& config_path,
         result.stopped.not_run.push_back(config.policies[k]);
       break;
     }
+  }
+  // Runs beyond the paper: their time series, assembled on disk from the
+  // runs' spools (report/sample_spool.h), copied into the run folder.
+  if (BeyondPaper(result.runs)) {
+    const fs::path dir = scenario.scratch->path();
+    result.sample_files = {{"timeseries.csv", (dir / "timeseries.csv").string()},
+                           {"hv_trust.csv", (dir / "hv_trust.csv").string()}};
+    WriteTimeseriesCsv(result.runs, result.sample_files[0].second);
+    WriteHvTrustCsv(result.runs, result.sample_files[1].second);
   }
   // Its inputs by absolute paths: config.yaml (and summary.json's
   // provenance.config) rerun and find the network from any directory.

@@ -718,8 +718,10 @@ ExperimentConfig WithAbsoluteInputs(ExperimentConfig config, const std::string& 
 Scenario BuildScenario(const ExperimentConfig& config, const std::string& config_dir) {
   Scenario s = config.scenario.IsNetwork() ? BuildNetwork(config, config_dir)
                                            : BuildFigure8(config, config_dir);
-  // SUMO's outputs are written there first (per policy).
-  if (!s.scratch && (config.scenario.outputs.Any() || config.scenario.outputs.ssm))
+  // SUMO's outputs are written there first (per policy); the time series of
+  // runs beyond the paper too (report/sample_spool.h).
+  if (!s.scratch &&
+      (config.scenario.outputs.Any() || config.scenario.outputs.ssm || config.BeyondPaper()))
     s.scratch = std::make_shared<ScratchDir>();
   if (config.scenario.outputs.ssm)
     s.abort_hint = (s.abort_hint.empty() ? "" : s.abort_hint + "; or ") + SsmAbortHint();

@@ -14,11 +14,14 @@
 #include "taebp/persuasion/noise.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/trust_dynamics.h"
+#include "taebp/report/report.h"
+#include "taebp/report/sample_spool.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <random>
 #include <string>
@@ -31,6 +34,24 @@ namespace per = persuasion;
 using per::Policy;
 
 ExperimentConfig Config(const std::string& yaml) { return ParseExperimentConfig(yaml, "test.yaml"); }
+
+// The spooled rows of timeseries.csv (or hv_trust.csv), each a map from the
+// column's name to its cell, read back from the spool's files.
+std::vector<std::map<std::string, std::string>> SpooledRows(const std::string& text,
+                                                            const std::vector<std::string>& cols) {
+  std::vector<std::map<std::string, std::string>> rows;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t end = text.find('\n', at);
+    const std::vector<std::string> cells = SplitCsvRow(text.substr(at, end - at));
+    EXPECT_EQ(cells.size(), cols.size());
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < cells.size() && i < cols.size(); ++i) row[cols[i]] = cells[i];
+    rows.push_back(row);
+    at = end == std::string::npos ? text.size() : end + 1;
+  }
+  return rows;
+}
 
 void ExpectSameScheme(const per::CommittedScheme& a, const per::CommittedScheme& b) {
   EXPECT_EQ(a.av_may_go, b.av_may_go);
@@ -98,7 +119,7 @@ TEST(HvPopulation, PaperSettingIsTheControllersOwnComputation) {
       }
       const BeyondRun results = pop.Results(100.0);
       EXPECT_FALSE(results.on);
-      EXPECT_TRUE(results.series.empty());
+      EXPECT_EQ(results.samples, nullptr);
     }
   }
 }
@@ -248,8 +269,11 @@ TEST(HvPopulation, MeanFieldFollowsTheExpectedUpdateAtEachEncounter) {
     pop.Sample(k);
   }
   const BeyondRun r = pop.Results(49.0);
-  ASSERT_EQ(r.series.size(), 50u);
-  EXPECT_NEAR(r.series.back().mean_field_trust, twin.Mean(), 1e-12);
+  ASSERT_NE(r.samples, nullptr);
+  const auto series = SpooledRows(r.samples->TimeRowsText(), TimeseriesCsvColumns());
+  ASSERT_EQ(series.size(), 50u);
+  EXPECT_EQ(r.samples->TimeRows(), 50);
+  EXPECT_NEAR(std::stod(series.back().at("mean_field_trust")), twin.Mean(), 1e-12);
   EXPECT_NEAR(r.final_mean_field, twin.Mean(), 1e-12);
 }
 
@@ -417,14 +441,20 @@ TEST(HvPopulation, TimeSeriesEveryIntervalFromTheWarmUp) {
   pop.Add("b2", 0.6);
   for (int t = 1; t <= 100; ++t) pop.Sample(t);
   const BeyondRun r = pop.Results(105.0);
+  // The rows are on disk (report/sample_spool.h), as the files will hold them.
+  ASSERT_NE(r.samples, nullptr);
+  const auto series = SpooledRows(r.samples->TimeRowsText(), TimeseriesCsvColumns());
+  const auto hv_series = SpooledRows(r.samples->HvRowsText(), HvTrustCsvColumns());
   std::vector<double> times;
-  for (const TimeSample& s : r.series) times.push_back(s.time);
+  for (const auto& row : series) times.push_back(std::stod(row.at("time")));
   EXPECT_EQ(times, (std::vector<double>{20, 50, 80, 105}));
-  ASSERT_EQ(r.hv_series.size(), 8u);
-  EXPECT_EQ(r.hv_series[0].hv, "a1");
-  EXPECT_EQ(r.hv_series[1].hv, "b2");
-  EXPECT_DOUBLE_EQ(r.series[0].mean_trust, 0.6);
-  EXPECT_DOUBLE_EQ(r.series[0].mean_field_trust, 0.6);
+  ASSERT_EQ(hv_series.size(), 8u);
+  EXPECT_EQ(r.samples->HvRows(), 8);
+  EXPECT_EQ(hv_series[0].at("hv"), "a1");
+  EXPECT_EQ(hv_series[1].at("hv"), "b2");
+  EXPECT_EQ(hv_series[7].at("time"), "105");
+  EXPECT_DOUBLE_EQ(std::stod(series[0].at("mean_trust")), 0.6);
+  EXPECT_DOUBLE_EQ(std::stod(series[0].at("mean_field_trust")), 0.6);
 }
 
 TEST(HvPopulation, AnHvThatLeftBeforeItsEncounterWasRecordedKeepsItsRecord) {

@@ -80,8 +80,11 @@ class HvPopulation {
               const HvReading& reading, bool collision, bool counted, EncounterRecord* record);
 
   // Once a simulated second (cheap when no sample is due): a time-series row
-  // every outputs.interval seconds from the warm-up on.
+  // every outputs.interval seconds from the warm-up on, written to the spool
+  // (SampleInto; without one, to unnamed temporary files with no policy).
   void Sample(double now);
+  // The rows go to `spool` (a run's: its policy, the scenario's scratch folder).
+  void SampleInto(std::shared_ptr<SampleSpool> spool) { spool_ = std::move(spool); }
   // The totals; `end`: the simulated time at the end.
   BeyondRun Results(double end);
   // Mean of the per-encounter predictions so far (the theory of runs whose
@@ -155,8 +158,8 @@ class HvPopulation {
   double trust_sum_ = 0;  // of the drawn trust of every HV added
   double next_sample_ = 0;
   double last_sample_ = -1;
-  std::vector<TimeSample> series_;
-  std::vector<HvSample> hv_series_;
+  // timeseries.csv's and hv_trust.csv's rows, streamed to disk as sampled.
+  std::shared_ptr<SampleSpool> spool_;
 };
 
 }  // namespace taebp

@@ -76,10 +76,16 @@ bool BeyondPaper(const std::vector<PolicyRun>& runs);
 // their mean trust (and its mean-field prediction), cumulative counts, theory,
 // oracle and regret. hv_trust.csv: one row per (policy, sample, HV): its
 // trust and the fleet's belief about it. Header first, no comment lines.
-std::string TimeseriesCsv(const std::vector<PolicyRun>& runs);
+// Written to `path` from the runs' spools (PolicyRun::beyond.samples,
+// report/sample_spool.h), streamed: the rows are never all in memory.
+// Throws std::runtime_error naming the file it cannot write.
+void WriteTimeseriesCsv(const std::vector<PolicyRun>& runs, const std::string& path);
 std::vector<std::string> TimeseriesCsvColumns();
-std::string HvTrustCsv(const std::vector<PolicyRun>& runs);
+void WriteHvTrustCsv(const std::vector<PolicyRun>& runs, const std::string& path);
 std::vector<std::string> HvTrustCsvColumns();
+// One row of each (its line, newline included), as a spool writes it.
+std::string TimeseriesCsvRow(const std::string& policy, const TimeSample& s);
+std::string HvTrustCsvRow(const std::string& policy, const HvSample& s);
 // junctions.csv text: one row per (policy, controlled junction): crossings,
 // throughput, waits, queues, encounters and rates with the theory.
 std::string JunctionsCsv(const std::vector<PolicyRun>& runs);

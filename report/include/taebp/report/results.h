@@ -6,11 +6,14 @@
 #include "taebp/report/ssm.h"
 
 #include <limits>
+#include <memory>
 #include <algorithm>
 #include <string>
 #include <vector>
 
 namespace taebp {
+
+class SampleSpool;  // report/sample_spool.h
 
 inline constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();  // an empty cell
 
@@ -193,8 +196,9 @@ struct TrustEquilibriumRecord {
 };
 struct BeyondRun {
   bool on = false;  // the config is beyond the paper (ExperimentConfig::BeyondPaper)
-  std::vector<TimeSample> series;
-  std::vector<HvSample> hv_series;
+  // timeseries.csv's and hv_trust.csv's rows of this run, on disk
+  // (report/sample_spool.h); null when the run sampled nothing.
+  std::shared_ptr<const SampleSpool> samples;
   // The HVs' trust moves during the run (model.trust_dynamics or
   // model.experience): the table's mean trust start / end row.
   bool trust_moves = false;

@@ -31,9 +31,13 @@ struct ExperimentResult {
   // The result files (name -> content), as WriteExperiment writes them.
   std::vector<std::pair<std::string, std::string>> Files() const;
   // The files copied into the run folder beside them (name -> the file):
-  // SUMO's outputs per policy (POLICY/NAME) and, where taebp generated or
-  // patched the network SUMO ran, that network (network.net.xml).
+  // the time series (sample_files), SUMO's outputs per policy (POLICY/NAME)
+  // and, where taebp generated or patched the network SUMO ran, that network
+  // (network.net.xml).
   std::vector<std::pair<std::string, std::string>> CopiedFiles() const;
+  // Runs beyond the paper: timeseries.csv and hv_trust.csv, assembled in the
+  // scratch folder from the runs' spools (never all in memory).
+  std::vector<std::pair<std::string, std::string>> sample_files;
   // Keeps the scenario's scratch folder (SUMO's outputs) until written.
   std::shared_ptr<void> scratch;
   std::string network_ran;  // the generated or patched network; empty: the user's
