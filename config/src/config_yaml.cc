@@ -520,9 +520,6 @@ void RequireUtf8(const std::string& text, const std::string& origin, bool lines)
                     "): save the file as UTF-8 (YAML is UTF-8)");
 }
 
-// One YAML document, or a ConfigError naming `origin`: a second document
-// (after a --- line) would be ignored by YAML::Load, and a run would use the
-// first without a word.
 // The nodes of `node` with its aliases expanded (*a counts a's nodes again),
 // counted up to `limit` (then `limit`): a few aliases nested ("alias bomb")
 // name 10^8 nodes in a few lines, which reading or printing would walk.
@@ -580,6 +577,36 @@ std::size_t DocumentCount(const std::string& text, const std::string& origin) {
   return docs;
 }
 
+// A key given twice in any map of a text (yaml-cpp keeps both): a ConfigError
+// at its line, before anything reads the map (a --set, or the sweep template
+// dropping `sweep:`, would otherwise decide which of the two counts).
+void RejectDuplicateKeys(const YAML::Node& root, const std::string& origin) {
+  std::vector<std::pair<YAML::Node, std::string>> stack = {{root, ""}};
+  while (!stack.empty()) {
+    const auto [node, path] = stack.back();
+    stack.pop_back();
+    if (node.IsSequence()) {
+      std::size_t i = 0;
+      for (const YAML::Node& c : node) stack.emplace_back(c, path + "[" + std::to_string(i++) + "]");
+    } else if (node.IsMap()) {
+      std::map<std::string, int> seen;  // key -> line of its first occurrence
+      for (const auto& kv : node) {
+        if (!kv.first.IsScalar()) continue;  // the reader names a key that is no name
+        const std::string key = (path.empty() ? "" : path + ".") + kv.first.Scalar();
+        const auto [it, fresh] = seen.emplace(kv.first.Scalar(), kv.first.Mark().line + 1);
+        if (!fresh)
+          throw ConfigError(origin + ":" + std::to_string(kv.first.Mark().line + 1) + ": key '" +
+                            key + "' is given twice (first on line " +
+                            std::to_string(it->second) + ")");
+        stack.emplace_back(kv.second, key);
+      }
+    }
+  }
+}
+
+// One YAML document, or a ConfigError naming `origin`: a second document
+// (after a --- line) would be ignored by YAML::Load, and a run would use the
+// first without a word.
 YAML::Node OneDocument(const std::string& text, const std::string& origin) {
   const std::size_t docs = DocumentCount(text, origin);
   if (docs > 1)
@@ -592,6 +619,7 @@ YAML::Node OneDocument(const std::string& text, const std::string& origin) {
     throw ConfigError(origin + ": more than " + std::to_string(kMaxConfigNodes) +
                       " YAML values once its aliases (*name) are expanded: a config that "
                       "large is an alias repeated inside an alias; write the values out");
+  RejectDuplicateKeys(root, origin);
   return root;
 }
 

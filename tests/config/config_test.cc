@@ -361,6 +361,28 @@ TEST(ConfigErrors, DuplicateKeysAreErrorsNotSilentlyFirstWins) {
   EXPECT_THAT(trust.message, HasSubstr("twice"));
 }
 
+TEST(ConfigErrors, ASweepSectionGivenTwiceIsTheFilesErrorInEveryPath) {
+  // tools/fuzz config: with `sweep:` twice the run's path blamed the sweep
+  // template's own "--set sweep=~" for it, and the template (which drops the
+  // section) took the config.
+  const std::string text = "sweep: {replicates: 2}\nmodel: {}\nsweep: {replicates: 3}\n";
+  const std::string want = "x.yaml:3: key 'sweep' is given twice (first on line 1)";
+  auto message = [](auto load) {
+    try {
+      load();
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message([&] { ParseExperimentConfig(text, "x.yaml"); }), want);
+  EXPECT_EQ(message([&] { ParseExperimentConfig(text, "x.yaml", {"sweep=~"}); }), want);
+  EXPECT_EQ(message([&] { ExperimentTemplate(text, "x.yaml").Load({}); }), want);
+  // In a --set value too, named by it.
+  EXPECT_THAT(message([&] { ParseExperimentConfig("{}", "x.yaml", {"model={prior_go: 0.1, prior_go: 0.2}"}); }),
+              HasSubstr("key 'prior_go' is given twice"));
+}
+
 // ------------------------------------------------------------------ wrong types
 
 TEST(ConfigErrors, WrongTypesNameKeyValueAndLine) {

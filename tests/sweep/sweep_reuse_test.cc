@@ -199,6 +199,20 @@ TEST_F(SweepCli, ReuseChangesNoNumber) {
   for (std::string line; std::getline(rows, line);)
     no_trust_at_point_1 += line.rfind("1,", 0) == 0 && line.find(",no_trust,") != std::string::npos;
   EXPECT_GT(no_trust_at_point_1, 0) << "no reused run's encounters at point 1";
+  // The same after shards and merge, each reusing task in another shard than
+  // the task it reuses (tasks 2 and 3 reuse tasks 0 and 1; task k runs in
+  // shard k % 3).
+  const fs::path merged = dir_ / "merged";
+  std::string shards;
+  for (int i = 0; i < 3; ++i) {
+    const fs::path shard = dir_ / ("s" + std::to_string(i));
+    ASSERT_EQ(Sweep(cfg, shard, "--shard " + std::to_string(i) + "/3"), 0) << last_log_;
+    shards += " " + Quote(shard.string());
+  }
+  ASSERT_EQ(Taebp("merge " + Quote(merged.string()) + shards), 0) << last_log_;
+  EXPECT_EQ(ReadFile(merged / "encounters.csv"), eb);
+  EXPECT_EQ(ReadFile(merged / "aggregate.csv"), ReadFile(without / "aggregate.csv"));
+  EXPECT_EQ(strip(ReadFile(merged / "results.csv")), strip(b));
 }
 
 }  // namespace
