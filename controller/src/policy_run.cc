@@ -4,6 +4,7 @@
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/number_text.h"
 #include "taebp/rundir/interrupt.h"
+#include "taebp/rundir/synced_file.h"
 #include "taebp/report/exit_codes.h"
 #include "taebp/report/ssm.h"
 #include "taebp/scenario/ssm_args.h"
@@ -114,16 +115,13 @@ void StripGeneratedComment(const fs::path& file) {
   const auto end = begin == std::string::npos ? begin : head.find("-->", begin);
   if (end == std::string::npos) return;
   head.replace(begin, end + 3 - begin, kOwnOutput);
-  const fs::path tmp = file.string() + ".strip";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << head;
-    std::vector<char> buf(1 << 20);
-    while (in.read(buf.data(), static_cast<std::streamsize>(buf.size())) || in.gcount() > 0)
-      out.write(buf.data(), in.gcount());
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, file);
+  SyncedWriter writer(file.string());
+  std::ostream& out = writer.Stream();
+  out << head;
+  std::vector<char> buf(1 << 20);
+  while (in.read(buf.data(), static_cast<std::streamsize>(buf.size())) || in.gcount() > 0)
+    out.write(buf.data(), in.gcount());
+  writer.Commit();
 }
 
 // The file SUMO's SSM device writes, copied to ssm.xml once the policy's

@@ -49,6 +49,79 @@ void SyncFolder(const std::string& dir) {
   }
 }
 
+namespace {
+
+void FsyncFile(const std::string& path, const std::string& named) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  int rc = fd < 0 ? -1 : 0;
+  if (fd >= 0)
+    while ((rc = ::fsync(fd)) != 0 && errno == EINTR) {
+    }
+  if (rc != 0) {
+    const std::string why = std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    throw std::runtime_error("cannot write " + named + ": fsync: " + why);
+  }
+  ::close(fd);
+}
+
+std::string ParentOf(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  return parent.empty() ? std::string(".") : parent.string();
+}
+
+}  // namespace
+
+SyncedWriter::SyncedWriter(std::string path)
+    : path_(std::move(path)), tmp_(path_ + ".tmp." + std::to_string(::getpid())) {
+  std::error_code ec;
+  fs::remove(tmp_, ec);  // a stale temporary (or a link planted there) goes first
+  errno = 0;
+  out_.open(tmp_, std::ios::binary | std::ios::trunc);
+  if (!out_)
+    throw std::runtime_error("cannot write " + path_ + ": open: " +
+                             (errno ? std::strerror(errno) : "cannot create " + tmp_));
+}
+
+SyncedWriter::~SyncedWriter() {
+  if (committed_) return;
+  out_.close();
+  std::error_code ec;
+  fs::remove(tmp_, ec);
+}
+
+void SyncedWriter::Commit() {
+  errno = 0;
+  out_.flush();
+  const int err = errno;  // set by the failed write (ENOSPC on a full disk)
+  const bool ok = static_cast<bool>(out_);
+  out_.close();
+  if (!ok || out_.fail())
+    throw std::runtime_error("cannot write " + path_ + ": write: " +
+                             (err != 0 ? std::strerror(err) : "the stream failed (disk full?)"));
+  FsyncFile(tmp_, path_);
+  fs::rename(tmp_, path_);
+  committed_ = true;
+  SyncFolder(ParentOf(path_));
+}
+
+void PutInPlace(const std::string& from, const std::string& to) {
+  FsyncFile(from, to);
+  fs::rename(from, to);
+  SyncFolder(ParentOf(to));
+}
+
+bool PutFolderInPlace(const std::string& from, const std::string& to) {
+  std::error_code ec;
+  fs::rename(from, to, ec);
+  if (ec) {
+    fs::remove_all(from, ec);
+    return false;
+  }
+  SyncFolder(ParentOf(to));
+  return true;
+}
+
 void WriteFilesAtomically(const std::string& dir,
                           const std::vector<std::pair<std::string, std::string>>& files) {
   fs::create_directories(dir);

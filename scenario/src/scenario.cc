@@ -1,5 +1,7 @@
 #include "taebp/persuasion/number_text.h"
 #include "taebp/scenario/scenario.h"
+
+#include "taebp/rundir/synced_file.h"
 #include "taebp/scenario/ssm_args.h"
 
 #include "taebp/scenario/demand.h"
@@ -63,9 +65,7 @@ fs::path Cached(const std::string& name, const std::string& file,
   fs::remove_all(tmp);
   fs::create_directories(tmp);
   make(tmp, (tmp / "generate.log").string());
-  std::error_code ec;
-  fs::rename(tmp, dir, ec);
-  if (ec) fs::remove_all(tmp);
+  PutFolderInPlace(tmp.string(), dir.string());  // false: another process's copy is used
   return dir / file;
 }
 

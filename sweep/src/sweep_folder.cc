@@ -112,10 +112,9 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
     ssm = ssm || has(EncounterCsvColumnGroup("ssm"));
   }
   const std::vector<std::string> pooled = EncounterCsvColumns(beyond, network, ssm);
-  const fs::path tmp = out / ("encounters.csv.tmp." + std::to_string(::getpid()));
-  std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-  errno = 0;
-  if (!f) throw std::runtime_error("cannot write " + tmp.string());
+  // Streamed (a long study's rows need not fit in memory), in place once on disk.
+  SyncedWriter writer((out / "encounters.csv").string());
+  std::ostream& f = writer.Stream();
   f << "point,replicate,seed";
   for (const std::string& c : plan.columns) f << ',' << CsvCell(c);
   f << ',' << join(pooled) << '\n';
@@ -182,28 +181,7 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
       write_policy(t, source, policy);
     }
   }
-  f.flush();
-  if (!f) {
-    const int err = errno;  // set by the failed write (ENOSPC on a full disk)
-    f.close();
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw std::runtime_error("cannot write " + tmp.string() + ": " +
-                             (err != 0 ? std::strerror(err) : "the stream failed (disk full?)"));
-  }
-  f.close();
-  // On disk before it replaces the last one (as rundir's WriteSynced does).
-  const int fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0 || ::fsync(fd) != 0) {
-    const std::string why = std::strerror(errno);
-    if (fd >= 0) ::close(fd);
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw std::runtime_error("cannot write " + tmp.string() + ": fsync: " + why);
-  }
-  ::close(fd);
-  fs::rename(tmp, out / "encounters.csv");
-  SyncFolder(out.string());
+  writer.Commit();
 }
 
 }  // namespace

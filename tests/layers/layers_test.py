@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
-"""The house's layers, checked on the includes: no arrow runs back up; and
-no file in sweep/ or controller/ (nor report/src/report.cc) over 500 lines.
+"""The house's layers, checked on the includes: no arrow runs back up; no
+file in sweep/ or controller/ (nor report/src/report.cc) over 500 lines; and
+one writer: no file outside rundir/src/ renames a file into place (every file
+taebp puts in place goes through rundir/'s synced writer, fsync included:
+rundir/synced_file.h's SyncedWriter, PutInPlace, PutFolderInPlace).
 
 Each library folder may include its own headers and those of the layers listed
 for it below, nothing else; libsumo and libtraci only in the SUMO adapter.
@@ -20,7 +23,7 @@ ALLOWED = {
     "report": {"report", "config", "persuasion"},  # config: the policy table only
     "encounter": {"encounter", "persuasion", "config", "report"},
     "junction": {"junction", "encounter", "persuasion"},
-    "scenario": {"scenario", "config", "persuasion"},
+    "scenario": {"scenario", "rundir", "config", "persuasion"},  # rundir: the synced writer
     "controller": {"controller", "junction", "encounter", "scenario", "report", "rundir",
                    "config", "persuasion"},
     "runner": {"runner", "controller", "encounter", "scenario", "report", "rundir", "config",
@@ -31,7 +34,8 @@ ALLOWED = {
 # A layer that may include only some headers of another (report/ reads the
 # policy table of config/, not the config).
 ONLY = {("report", "config"): {"taebp/config/policies.h"},
-        ("rundir", "config"): {"taebp/config/policies.h"}}
+        ("rundir", "config"): {"taebp/config/policies.h"},
+        ("scenario", "rundir"): {"taebp/rundir/synced_file.h"}}
 SUMO_ADAPTER = {"controller/src/sumo_adapter.cc", "controller/src/sumo_adapter_libtraci.cc"}
 # Files that do one job (issue 27): no source file in these folders, and not
 # these files, over MAX_LINES lines.
@@ -39,6 +43,11 @@ MAX_LINES = 500
 SIZE_FOLDERS = ("sweep", "controller")
 SIZE_FILES = ("report/src/report.cc",)
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]')
+# The one writer: a rename puts a file in place; only rundir/src/ may.
+WRITER_FOLDER = "rundir/src/"
+RENAME = re.compile(r'(\bfs::rename|std::filesystem::rename|::rename(at2?)?|\brename(at2?)?)\s*\(')
+WRITER_SCAN = ("persuasion", "config", "rundir", "report", "encounter", "junction", "scenario",
+               "controller", "runner", "sweep", "tools/cli", "python/src", "bench")
 
 
 def main():
@@ -69,6 +78,27 @@ def main():
                         if parts[0] in ("libsumo", "libtraci") and rel not in SUMO_ADAPTER:
                             problems.append("%s:%d: %s outside the SUMO adapter (%s)" % (
                                 rel, n, target, ", ".join(sorted(SUMO_ADAPTER))))
+    renames = 0
+    for folder in WRITER_SCAN:
+        for base, _, files in os.walk(os.path.join(ROOT, folder)):
+            for name in files:
+                if not name.endswith((".h", ".cc", ".inc", ".cpp")):
+                    continue
+                rel = os.path.relpath(os.path.join(base, name), ROOT)
+                with open(os.path.join(ROOT, rel), encoding="utf-8") as f:
+                    for n, line in enumerate(f, 1):
+                        code = line.split("//", 1)[0]
+                        if not RENAME.search(code):
+                            continue
+                        if rel.startswith(WRITER_FOLDER):
+                            renames += 1
+                        else:
+                            problems.append(
+                                "%s:%d: renames a file into place outside %s: use rundir/"
+                                "synced_file.h (SyncedWriter, PutInPlace, PutFolderInPlace), "
+                                "which fsyncs first" % (rel, n, WRITER_FOLDER))
+    if renames == 0:
+        problems.append("no rename found in %s: the writer rule's pattern is stale" % WRITER_FOLDER)
     sized = 0
     for rel in SIZE_FILES + tuple(
             os.path.relpath(os.path.join(base, name), ROOT)

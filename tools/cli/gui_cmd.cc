@@ -1,5 +1,6 @@
 #include "gui_cmd.h"
 
+#include "taebp/rundir/synced_file.h"
 #include "taebp/config/config.h"
 #include "taebp/controller/policy_run.h"
 #include "taebp/controller/sumo_adapter.h"
@@ -466,7 +467,7 @@ int Snapshot::Run(int argc, char** argv) {
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
     if (!written()) throw GuiError("sumo-gui did not write a PNG picture to " + tmp.string());
     if (o.no_legend) {
-      fs::rename(tmp, out);
+      PutInPlace(tmp.string(), out.string());
     } else {
       std::string title = o.config_path + " · " + PolicyTitle(name) + " · seed " +
                           std::to_string(config.scenario.seed);
@@ -478,7 +479,7 @@ int Snapshot::Run(int argc, char** argv) {
       }
       AddLegend(tmp, composed, title, o.at);
       fs::remove(tmp, ec);
-      fs::rename(composed, out);
+      PutInPlace(composed.string(), out.string());
     }
   } catch (...) {
     fs::remove(tmp, ec);

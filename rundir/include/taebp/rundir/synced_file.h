@@ -1,8 +1,11 @@
-// The one synced file writer: every result file taebp writes goes through
-// WriteSynced (a run folder's staging set, a sweep's tables, its header,
-// merge's journal), so that a file counts only once it is on disk.
+// The one synced file writer: every file taebp puts in place goes through
+// here (a run folder's staging set, a sweep's tables, its header, merge's
+// journal, the pooled encounters.csv, SUMO's outputs rewritten, a snapshot's
+// picture, the network cache), so that a file counts only once it is on
+// disk. tests/layers checks that nothing else renames a file into place.
 #pragma once
 
+#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,6 +20,34 @@ void WriteSynced(const std::string& path, const std::string& content);
 
 // fsync of a folder's entries (after renames into it); best effort.
 void SyncFolder(const std::string& dir);
+
+// A file written in pieces (a table too large to hold, a streamed rewrite)
+// and put in place only once complete and on disk: written to PATH.tmp.PID
+// (IsWriterTemporary), then flushed, fsynced, renamed over PATH and the folder
+// synced by Commit. Destroyed before Commit: the temporary is removed and
+// PATH is as it was. Errors: std::runtime_error "cannot write PATH: ...".
+class SyncedWriter {
+ public:
+  explicit SyncedWriter(std::string path);
+  ~SyncedWriter();
+  SyncedWriter(const SyncedWriter&) = delete;
+  SyncedWriter& operator=(const SyncedWriter&) = delete;
+  std::ostream& Stream() { return out_; }
+  void Commit();
+
+ private:
+  std::string path_, tmp_;
+  std::ofstream out_;
+  bool committed_ = false;
+};
+
+// Puts a finished file that another program wrote (sumo-gui's picture) in
+// place at `to`: fsync, rename, folder synced.
+void PutInPlace(const std::string& from, const std::string& to);
+
+// Puts a finished folder in place at `to` unless a folder is there already
+// (another process finished first: `from` is removed and false returned).
+bool PutFolderInPlace(const std::string& from, const std::string& to);
 
 // Writes `files` (name -> content) into `dir` atomically: each is written
 // with WriteSynced to NAME.tmp.PID in `dir` and renamed into place only after
