@@ -89,6 +89,7 @@ RunState::RunState(const ExperimentConfig& config, std::optional<persuasion::Pol
     j.run.type = info.info.type;
     j.run.original_type = info.info.original_type;
     j.run.rule = junction::ToString(info.spec.rule);
+    j.run.game_pairs = junction::GamePairs(info.spec, sc.major_road.has_value());
     for (int a : info.approaches) j.run.approaches.push_back(approaches[a].stats);
     junctions.push_back(std::move(j));
   }

@@ -7,6 +7,23 @@ namespace taebp::junction {
 
 const char* ToString(Rule rule) { return rule == Rule::kAllWay ? "all_way_stop" : "two_way_stop"; }
 
+int GamePairs(const JunctionSpec& spec, bool major_road) {
+  int pairs = 0;
+  const int n = static_cast<int>(spec.movements.size());
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      const Movement& a = spec.movements[i];
+      const Movement& b = spec.movements[j];
+      if (!spec.Conflict(i, j)) continue;
+      if (a.controlled && b.controlled)
+        pairs += a.approach != b.approach;
+      else if (major_road && a.controlled != b.controlled)
+        ++pairs;
+    }
+  }
+  return pairs;
+}
+
 void JunctionSpec::Validate() const {
   const std::size_t n = movements.size();
   if (conflict.size() != n)

@@ -605,6 +605,10 @@ const std::vector<MetricSection>& RunSections() {
       {"type", true, MetricScope::kAll, nullptr, "the junction type SUMO ran"},
       {"original_type", true, MetricScope::kAll, nullptr, "the type in the user's network"},
       {"rule", true, MetricScope::kAll, nullptr, "all_way_stop or two_way_stop"},
+      {"game_pairs", true, MetricScope::kAll, nullptr,
+       "movement pairs on which an AV and an HV can ever meet as a game under the run's "
+       "settings (two conflicting stop lines; with scenario.major_road also a stop line "
+       "against the major road); 0: no game can form here, whatever the traffic"},
       {"approaches", true, MetricScope::kAll, nullptr,
        "summary.json only: per approach lane, queue_max and queue_mean"},
   };

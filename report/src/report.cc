@@ -94,6 +94,7 @@ json JunctionJson(const PolicyRun& r, const JunctionRun& jr) {
   j["type"] = jr.type;
   j["original_type"] = jr.original_type;
   j["rule"] = jr.rule;
+  j["game_pairs"] = jr.game_pairs;
   PutMetrics(JunctionFacts(r, jr), kJunctionLevel, &j);
   json approaches = json::array();
   for (const ApproachStats& a : jr.approaches)
@@ -142,7 +143,7 @@ void BeyondSectionsJson(const PolicyRun& r, json* out) {
 
 std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
   std::ostringstream out;
-  out << "policy,junction,type,original_type,rule";
+  out << "policy,junction,type,original_type,rule,game_pairs";
   for (const std::string& c : MetricColumns(kJunctionLevel, false)) out << ',' << c;
   out << '\n';
   for (const PolicyRun& r : runs) {
@@ -150,7 +151,7 @@ std::string JunctionsCsv(const std::vector<PolicyRun>& runs) {
       // The same values as summary.json's junctions[] (one writer for both).
       const json j = JunctionJson(r, jr);
       out << CsvCell(r.policy) << ',' << CsvCell(jr.id) << ',' << CsvCell(jr.type) << ','
-          << CsvCell(jr.original_type) << ',' << CsvCell(jr.rule);
+          << CsvCell(jr.original_type) << ',' << CsvCell(jr.rule) << ',' << jr.game_pairs;
       for (const std::string& c : MetricColumns(kJunctionLevel, false))
         out << ',' << JsonCell(j.contains(c) ? j[c] : json());
       out << '\n';

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -152,6 +153,35 @@ ExperimentResult RunExperiment(const std::string& config_path,
       for (std::size_t k = result.runs.size(); k < config.policies.size(); ++k)
         result.stopped.not_run.push_back(config.policies[k]);
       break;
+    }
+  }
+  // Junctions where no game can ever form under these settings (junctions.csv
+  // game_pairs 0; the same under every policy): said, with the usual cause.
+  if (!result.runs.empty() && result.runs.front().scenario_kind == "network" &&
+      std::any_of(config.policies.begin(), config.policies.end(),
+                  [](const std::string& p) { return PlaysGame(p); })) {
+    const std::vector<JunctionRun>& js = result.runs.front().junctions;
+    std::vector<std::string> none;
+    bool two_way = false;
+    for (const JunctionRun& j : js)
+      if (j.game_pairs == 0) {
+        none.push_back(j.id);
+        two_way = two_way || j.rule == "two_way_stop";
+      }
+    if (!none.empty()) {
+      std::string list;
+      for (std::size_t k = 0; k < none.size() && k < 8; ++k)
+        list += (k ? ", " : "") + none[k];
+      if (none.size() > 8) list += ", ...";
+      std::string w = std::to_string(none.size()) + " of " + std::to_string(js.size()) +
+                      " controlled junctions can host no game under these settings (" + list +
+                      "; junctions.csv game_pairs 0): no two conflicting movements there both "
+                      "have a stop line";
+      if (two_way && !config.scenario.major_road)
+        w += "; at a two-way stop with one stop-controlled approach, scenario.major_road: {} "
+             "lets an AV at its line play against a major-road HV";
+      result.warnings.push_back(w);
+      if (observer.warning) observer.warning(w);
     }
   }
   // Runs beyond the paper: their time series, assembled on disk from the

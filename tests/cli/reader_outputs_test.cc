@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -141,6 +142,53 @@ TEST(ReaderOutputs, AnOwnNetworkWithoutKindNetworkSaysToSetIt) {
   EXPECT_EQ(r.exit_code, kExitConfig) << r.Describe();
   EXPECT_THAT(r.err, HasSubstr("not a figure-8 network")) << r.Describe();
   EXPECT_THAT(r.err, HasSubstr("set scenario.kind: network")) << r.Describe();
+}
+
+// Issue 43: a junction where no game can ever form is named, in
+// junctions.csv (game_pairs 0) and in the run's warnings. A spider network of
+// two-way stops: the five junctions of its inner ring have one stop-controlled
+// approach each, so without the major-road game no two stop lines conflict.
+TEST(ReaderOutputs, JunctionsThatCanHostNoGameAreNamed) {
+  TempDir dir;
+  const std::string net = (dir.path() / "spider.net.xml").string();
+  const std::string trips = (dir.path() / "trips.rou.xml").string();
+  const std::string make =
+      "netgenerate --spider --spider.arm-number 5 --spider.circle-number 3 "
+      "--spider.space-radius 100 --default-junction-type priority_stop --no-turnarounds -o " +
+      net + " > /dev/null 2>&1 && python3 /usr/share/sumo/tools/randomTrips.py -n " + net +
+      " -o " + trips + " -e 200 -p 1.5 --seed 3 > /dev/null 2>&1";
+  if (std::system(make.c_str()) != 0) FAIL() << "netgenerate or randomTrips.py (sumo-tools) failed";
+  const std::string cfg = dir.Write(
+      "spider.yaml", "scenario: {kind: network, network: " + net + ", routes: [" + trips +
+                         "], av_share: 0.5, duration: 120, warmup: 0, seed: 1}\n"
+                         "policies: [ta_ebp]\n");
+  const fs::path out = dir.path() / "out";
+  CliResult r = taebp::test::RunProgram(kCli, {"run", cfg, "--out", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  std::vector<std::string> none;
+  int junctions = 0;
+  const std::vector<std::string> lines = Lines(ReadText(out / "junctions.csv"));
+  const std::vector<std::string> header = SplitCsvLine(lines.at(0));
+  const auto col = std::find(header.begin(), header.end(), "game_pairs") - header.begin();
+  ASSERT_LT(static_cast<std::size_t>(col), header.size());
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const std::vector<std::string> cells = SplitCsvLine(lines[i]);
+    ++junctions;
+    if (cells.at(static_cast<std::size_t>(col)) == "0") none.push_back(cells.at(1));
+  }
+  EXPECT_EQ(junctions, 15);
+  EXPECT_EQ(none, (std::vector<std::string>{"D1", "D2", "D3", "D4", "D5"}));
+  EXPECT_THAT(r.err, HasSubstr("5 of 15 controlled junctions can host no game under these "
+                               "settings (D1, D2, D3, D4, D5;"))
+      << r.Describe();
+  EXPECT_THAT(r.err, HasSubstr("scenario.major_road: {}")) << r.Describe();
+  const auto summary = nlohmann::json::parse(ReadText(out / "summary.json"));
+  EXPECT_EQ(summary["policies"]["ta_ebp"]["junctions"][0]["game_pairs"].is_number(), true);
+  // With the major-road game on, every junction can host one: no warning.
+  r = taebp::test::RunProgram(kCli, {"run", cfg, "--set", "scenario.major_road={}", "--out",
+                                     (dir.path() / "major").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.Describe();
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("can host no game"))) << r.Describe();
 }
 
 }  // namespace

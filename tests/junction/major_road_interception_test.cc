@@ -104,6 +104,24 @@ std::vector<Cmd> Simple(const std::vector<Command>& cs) {
   return out;
 }
 
+// Which junctions can host a game at all (junctions.csv game_pairs), counted
+// by hand from B1's foe matrix: N's right conflicts with S's left and E's
+// straight (2), N's straight with W's three, S's left and E's straight and
+// left (6), N's left with W's straight and left, S's three and E's straight
+// and left (7); of those, 5 are with S (right-left, straight-left, left-left,
+// left-straight, left-right).
+TEST(GamePairs, CountedByHandOnB1) {
+  JunctionSpec one = TwoWay();
+  for (Movement& m : one.movements) m.controlled = m.approach == 0;  // N alone has a stop line
+  EXPECT_EQ(GamePairs(one, false), 0);  // the spider network's junctions: no game by default
+  EXPECT_EQ(GamePairs(one, true), 15);  // the AV at N's line against the other three
+  EXPECT_EQ(GamePairs(TwoWay(), false), 5);  // N against S, both at their lines
+  EXPECT_GT(GamePairs(TwoWay(), true), 5);
+  // All-way: every conflicting pair from two approaches; never 0 with two stop lines.
+  EXPECT_GT(GamePairs(TwoWay(Rule::kAllWay), false), 15);
+  EXPECT_EQ(GamePairs(TwoWay(Rule::kAllWay), false), GamePairs(TwoWay(Rule::kAllWay), true));
+}
+
 TEST(MajorRoadInterception, FormsOnlyAtATwoWayStopWithTheOptionOnWhenTheModelSaysSo) {
   Env env;
   Model model;

@@ -150,7 +150,8 @@ TEST(MetricTable, JunctionsCsvIsTheSummarysJunctionsRowForRow) {
   const std::vector<PolicyRun> runs = {NetworkRun(), Figure8Run()};
   const auto s = Summary(runs);
   const std::vector<std::string> lines = Lines(JunctionsCsv(runs));
-  std::vector<std::string> header = {"policy", "junction", "type", "original_type", "rule"};
+  std::vector<std::string> header = {"policy", "junction", "type", "original_type", "rule",
+                                     "game_pairs"};
   for (const std::string& c : MetricColumns(kJunctionLevel, false)) header.push_back(c);
   ASSERT_THAT(SplitCsvLine(lines[0]), ElementsAreArray(header));
   ASSERT_EQ(lines.size(), 4u);

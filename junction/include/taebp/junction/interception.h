@@ -123,6 +123,17 @@ struct JunctionSpec {
   void Validate() const;
 };
 
+// The pairs of movements on which an AV and an HV can ever meet as a game at
+// this junction (the run's junctions.csv `game_pairs`): two stop-controlled
+// movements from different approaches that conflict (the paper's game: both
+// at their lines), and with `major_road` also a stop-controlled movement
+// against a conflicting uncontrolled one (the AV at the minor line, the HV on
+// the major road). 0: no game can form here, whatever the traffic (a two-way
+// stop with a single stop-controlled approach and the major-road game off).
+// Whether a meeting on such a pair is a game is still decided per meeting
+// (both proceeding must collide).
+int GamePairs(const JunctionSpec& spec, bool major_road);
+
 struct Timing {
   double confirm_delay = 1.0;  // s: an HV driving if clear facing a still AV waits this long
   // The major-road encounter (two-way stops): off unless set.

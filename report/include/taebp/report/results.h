@@ -119,6 +119,10 @@ struct JunctionRun {
   std::string type;           // as SUMO ran it (allway_stop, priority_stop)
   std::string original_type;  // in the user's network
   std::string rule;           // all_way_stop, two_way_stop
+  // Movement pairs on which an AV and an HV can ever meet as a game under the
+  // run's settings (junction::GamePairs; the same under every policy): 0, no
+  // game can form here whatever the traffic.
+  int game_pairs = 0;
   long crossings_av = 0, crossings_hv = 0;  // vehicles through the junction
   long held = 0;                            // vehicles held at a stop line and released
   double wait_sum = 0, wait_max = 0;        // their waits at the line (s)
