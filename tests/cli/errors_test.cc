@@ -3,6 +3,7 @@
 // messages that name the path or key, --out problems found before the first
 // simulation step, and results already written never lost or half-written
 // (a corrupt network, a read-only or full output folder).
+// taebp-tests: sanitize (also run under the sanitizers; tests/CMakeLists.txt)
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

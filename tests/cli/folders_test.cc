@@ -13,6 +13,7 @@
 // - a killed table write's temporary is removed by the next sweep there (13);
 // - a run into a sweep's task folder, an out-of-range or huge value, a
 //   too-long folder name: clear, short errors (14).
+// taebp-tests: sanitize (also run under the sanitizers; tests/CMakeLists.txt)
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

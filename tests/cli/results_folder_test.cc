@@ -7,6 +7,7 @@
 //   folder's files, the folder holds the old set or the new one, never a mix,
 //   and the next run there removes what the killed one left;
 // - Ctrl-C or SIGTERM: exit 128 + signal, nothing written, scratch removed.
+// taebp-tests: sanitize (also run under the sanitizers; tests/CMakeLists.txt)
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

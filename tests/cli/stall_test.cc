@@ -4,6 +4,7 @@
 // tripinfo) and exits 4 ("stalled", README), never 2 (config error). A
 // gridlock under stall_action: record runs every policy to its end, each
 // stalled junction flagged in the table and summary.json.
+// taebp-tests: sanitize (also run under the sanitizers; tests/CMakeLists.txt)
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

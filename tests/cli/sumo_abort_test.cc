@@ -3,6 +3,7 @@
 // so beforehand (a warning), and when SUMO aborts: its own message passed
 // on, what in the scenario causes it and what to do, exit 3 (SUMO failed),
 // the scratch folder removed, no results written.
+// taebp-tests: sanitize (also run under the sanitizers; tests/CMakeLists.txt)
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

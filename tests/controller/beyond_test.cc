@@ -107,6 +107,7 @@ TEST(Beyond, EachCapabilityReducesToThePaperWithStaticKnownTrustAndNoNoise) {
 
 // ------------------------------------------------------------------ noise
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(Beyond, NoiseAwareDesignKeepsCollisionsWithinDeltaLambdaThePapersDoesNot) {
   std::map<std::string, PolicyRun> runs;
   for (const char* design : {"aware", "paper"}) {
@@ -153,6 +154,7 @@ TEST(Beyond, NoiseAwareDesignKeepsCollisionsWithinDeltaLambdaThePapersDoesNot) {
 
 // ------------------------------------------------------------------ dynamic trust
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(Beyond, DynamicTrustFollowsItsMeanFieldToTheFixedPoint) {
   const ExperimentResult r = RunExperiment(
       kSource + "/configs/dynamic_trust.yaml",

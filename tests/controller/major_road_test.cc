@@ -223,6 +223,7 @@ void ExpectInside(const std::vector<EncounterRecord>& encounters, const test::En
 // collision rates agree with PredictMajorRoadOutcome (the paper's game at
 // r_eff) within 99.9 % Wilson intervals. A collision taken from the rule
 // instead of SUMO, or a premise always predicted to hold, turns this red.
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(MajorRoad, SumoCollidesExactlyWherePredictedAndRatesAgreeWithTheTheory) {
   const per::LinearLikelihood model(2.0);
   long both = 0, both_collide = 0;
@@ -272,6 +273,7 @@ TEST(MajorRoad, SumoCollidesExactlyWherePredictedAndRatesAgreeWithTheTheory) {
 // SUMO, or a prediction that always says "collides", turns this red.
 // On the one-way major road, and on a two-way one (HVs from both sides: the
 // near and the far lane).
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(MajorRoad, WithAllPairsSumoCollidesExactlyWherePredicted) {
   for (const bool both_ways : {false, true}) {
     SCOPED_TRACE(both_ways ? "two-way major road" : "one-way major road");

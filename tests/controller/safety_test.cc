@@ -33,6 +33,7 @@ const std::string kSource = TAEBP_SOURCE_DIR;
 // the junction is traffic unless a nudged AV holds it; the moves of the game
 // wait a step for the vehicles let past that AV (Unblockable), which then
 // move (docs/encounter-rules.md §1).
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(Safety, GridTwoWayNoGameMoveHitsAThirdVehicleWhereSumoNativeHasNoCollision) {
   struct Pooled {
     long encounters = 0, collisions = 0, dc = 0;

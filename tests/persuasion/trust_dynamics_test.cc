@@ -543,6 +543,7 @@ Sample Summarise(const std::vector<double>& xs) {
 // toward the zeros of G; replicas of n encounters scatter about the attractor
 // with sd ~ sqrt(theta (1 - theta) / ((2|G'| - 1) n)) and a bias O(1/n) (start
 // and curvature of Q), far below the 4-sigma band of the replica average here.
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(LongRunTrustSimulation, TaebpAndNoTrustConvergeToTheDerivedFixedPoint) {
   const TrustUpdateRule equal = Weights(1.0, 1.0);
   const int replicas = 60, steps = 20000;
@@ -567,6 +568,7 @@ TEST(LongRunTrustSimulation, TaebpAndNoTrustConvergeToTheDerivedFixedPoint) {
   }
 }
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(LongRunTrustSimulation, FixedDesignFallsBelowThetaStarAndAStableJumpAttracts) {
   const int replicas = 60, steps = 20000;
   {
@@ -605,6 +607,7 @@ TEST(LongRunTrustSimulation, FullRevealGrowsToOneDeterministically) {
   EXPECT_EQ(mean, 1006.0 / 1010.0);
 }
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(LongRunTrustSimulation, ForgettingStationaryPointWhereQIsConstant) {
   // No Trust below theta = 1: Q = 0.5 whatever the trust, so E[alpha_n] and
   // E[beta_n] follow linear recursions with fixed points alpha0 + w_s Q / rho and

@@ -1,5 +1,6 @@
 // The sweep engine's pure parts: grid expansion (zipped axes, replicates),
 // spec errors naming the key, the config hash, journal parsing and tables.
+// taebp-tests: sanitize (also run under the sanitizers; tests/CMakeLists.txt)
 #include "taebp/sweep/plan.h"
 
 #include "taebp/report/metrics.h"

@@ -4,6 +4,7 @@
 // whole grid). Asserted on the cause (a point's config does not carry the
 // grid) and on the growth (8 times the points cost well under 64 times the
 // CPU time), not on a wall time.
+// taebp-tests: sanitize (also run under the sanitizers; tests/CMakeLists.txt)
 #include "taebp/config/config.h"
 #include "taebp/sweep/plan.h"
 
