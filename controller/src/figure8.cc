@@ -1,6 +1,5 @@
 #include "figure8.h"
 
-#include "route_progress.h"
 
 #include <algorithm>
 #include <array>
@@ -39,7 +38,6 @@ void KeepCirculating(RunState& s, int h) {
   const std::string edge = s.sumo.RoadID(v.id);
   const auto it = std::find(s.scenario.lap.begin(), s.scenario.lap.end(), edge);
   if (it == s.scenario.lap.end()) return;
-  CountProgress(s, h, s.sumo.RouteIndex(v.id));
   s.sumo.SetRouteID(v.id, LapRoute(edge));
   v.route.clear();
   for (const std::string& e : LapFrom(s, static_cast<std::size_t>(it - s.scenario.lap.begin())))

@@ -24,6 +24,8 @@ namespace taebp::control::figure8 {
 
 bool IsFigure8(const RunState& s);
 void PlaceVehicles(RunState& s);
+// Called after CountProgress for the vehicle's position this step (its route
+// fully counted), so the new lap starts with nothing of the old one owed.
 void KeepCirculating(RunState& s, int h);
 void AddCentre(const RunState& s, std::vector<int>* near);
 // Keep clear on a closed loop: the exit's lanes hold `inflight` vehicles
