@@ -120,6 +120,7 @@ struct NetworkController::Impl {
     v.alive = true;
     const bool av = control::IsAv(s.sc, id, [&] { return s.sumo.TypeID(id); });
     v.kind = av ? VehicleKind::kAV : VehicleKind::kHV;
+    if (av) s.avs.insert(id);
     if (!av) {
       v.trust = control::HvTrust(s.cfg, id);
       if (s.policy) s.population->Add(id, v.trust);
@@ -271,6 +272,9 @@ void NetworkController::EndBranch(const std::string& status, const std::string& 
   impl_->pairing.EndBranch(status, error);
 }
 
+bool NetworkController::DepartedAsAv(const std::string& id) const {
+  return impl_->s.avs.count(id) > 0;
+}
 long NetworkController::VehiclesNow() const {
   return static_cast<long>(impl_->s.vehicles.in_network().size());
 }

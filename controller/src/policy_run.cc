@@ -25,6 +25,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <sstream>
 
@@ -253,8 +254,10 @@ std::optional<persuasion::Policy> PolicyOf(const std::string& name) {
 // end with arrival="-1.00" and its duration, timeLoss and waitingTime up to
 // the end (vaporized="end" for some, empty for others: arrival is the
 // marker); a vehicle never inserted has no record.
-// AVs and HVs apart as the controller tells them (control::IsAv).
-void ReadTripinfo(const std::string& path, const ScenarioConfig& sc, NetworkRun* net) {
+// AVs and HVs apart as the controller told them at their departure.
+void ReadTripinfo(const std::string& path, const ScenarioConfig& sc,
+                  const std::function<bool(const std::string&)>& departed_as_av,
+                  NetworkRun* net) {
   pugi::xml_document doc;
   if (!doc.load_file(path.c_str())) return;
   for (pugi::xml_node t : doc.child("tripinfos").children("tripinfo")) {
@@ -267,9 +270,7 @@ void ReadTripinfo(const std::string& path, const ScenarioConfig& sc, NetworkRun*
     net->time_loss_sum += loss;
     net->time_loss_max = std::max(net->time_loss_max, loss);
     net->waiting_time_sum += waiting;
-    const pugi::xml_node trip = t;
-    if (control::IsAv(sc, t.attribute("id").as_string(),
-                      [&trip] { return std::string(trip.attribute("vType").as_string()); })) {
+    if (departed_as_av(t.attribute("id").as_string())) {
       ++net->trips_av;
       net->time_loss_sum_av += loss;
       net->waiting_time_sum_av += waiting;
@@ -446,7 +447,9 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     }
   }
   if (scenario.scratch && scenario.kind == ScenarioKind::kNetwork) {
-    ReadTripinfo(TripinfoPath(scenario, policy), config.scenario, &run.network);
+    ReadTripinfo(TripinfoPath(scenario, policy), config.scenario,
+                 [&controller](const std::string& id) { return controller.DepartedAsAv(id); },
+                 &run.network);
     // SUMO's tripinfo and summary, their dated header replaced as for the
     // outputs (StripGeneratedComment).
     auto slurp = [](const fs::path& path) {

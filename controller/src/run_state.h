@@ -18,6 +18,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 namespace taebp::control {
@@ -97,6 +98,7 @@ struct RunState {
   std::vector<int> unblocked;              // let past a nudged AV, still in the junction
   std::vector<int> yielding;               // major-road HVs braking for an AV (DC)
   std::unique_ptr<HvPopulation> population;  // policy runs only
+  std::unordered_set<std::string> avs;       // every vehicle that departed as an AV
   // The major-road encounter's game (scenario.major_road): the paper's game at
   // r_eff = 2 (r - c) / (2 + c) (persuasion/major_road.h), the same HVs.
   std::unique_ptr<HvPopulation> major_population;

@@ -91,6 +91,9 @@ class NetworkController {
   // so far (finished, after the warm-up).
   long VehiclesNow() const;
   long EncountersSoFar() const;
+  // Whether vehicle `id` entered the network as an AV (decided once, at its
+  // departure: control::IsAv); SUMO's tripinfo is split by this.
+  bool DepartedAsAv(const std::string& id) const;
   // scenario.paired: whether this process is a branch of a paired game
   // (paired.h), and its end where the run cannot go on (it ended, an error):
   // the branch's row as far as it got, then the process ends.
