@@ -116,7 +116,7 @@ void StripGeneratedComment(const fs::path& file) {
   const auto end = begin == std::string::npos ? begin : head.find("-->", begin);
   if (end == std::string::npos) return;
   head.replace(begin, end + 3 - begin, kOwnOutput);
-  SyncedWriter writer(file.string());
+  SyncedWriter writer(file.string(), /*sync=*/false);  // scratch: copied into place synced
   std::ostream& out = writer.Stream();
   out << head;
   std::vector<char> buf(1 << 20);

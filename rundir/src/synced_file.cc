@@ -72,8 +72,8 @@ std::string ParentOf(const std::string& path) {
 
 }  // namespace
 
-SyncedWriter::SyncedWriter(std::string path)
-    : path_(std::move(path)), tmp_(path_ + ".tmp." + std::to_string(::getpid())) {
+SyncedWriter::SyncedWriter(std::string path, bool sync)
+    : path_(std::move(path)), tmp_(path_ + ".tmp." + std::to_string(::getpid())), sync_(sync) {
   std::error_code ec;
   fs::remove(tmp_, ec);  // a stale temporary (or a link planted there) goes first
   errno = 0;
@@ -99,10 +99,10 @@ void SyncedWriter::Commit() {
   if (!ok || out_.fail())
     throw std::runtime_error("cannot write " + path_ + ": write: " +
                              (err != 0 ? std::strerror(err) : "the stream failed (disk full?)"));
-  FsyncFile(tmp_, path_);
+  if (sync_) FsyncFile(tmp_, path_);
   fs::rename(tmp_, path_);
   committed_ = true;
-  SyncFolder(ParentOf(path_));
+  if (sync_) SyncFolder(ParentOf(path_));
 }
 
 void PutInPlace(const std::string& from, const std::string& to) {

@@ -53,6 +53,14 @@ TEST_F(SyncedFile, AStreamedFileIsInPlaceOnlyOnceCommitted) {
   EXPECT_EQ(Read(file).substr(0, 4), "new,");
   EXPECT_EQ(Read(file).size(), 4u + (1u << 20) + 1u);
   EXPECT_EQ(Entries(), 1);  // no temporary left
+  // A scratch file (not synced: it is copied into a results folder synced).
+  {
+    SyncedWriter w(file.string(), /*sync=*/false);
+    w.Stream() << "scratch\n";
+    w.Commit();
+  }
+  EXPECT_EQ(Read(file), "scratch\n");
+  EXPECT_EQ(Entries(), 1);
 }
 
 TEST_F(SyncedFile, AWriterLeftUncommittedLeavesTheFileAsItWas) {

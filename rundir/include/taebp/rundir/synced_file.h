@@ -26,9 +26,13 @@ void SyncFolder(const std::string& dir);
 // (IsWriterTemporary), then flushed, fsynced, renamed over PATH and the folder
 // synced by Commit. Destroyed before Commit: the temporary is removed and
 // PATH is as it was. Errors: std::runtime_error "cannot write PATH: ...".
+// `sync` false: a scratch file (SUMO's output rewritten in the scratch
+// folder), put in place by the rename alone; what lands in a results folder
+// is copied there with fsync (output_dir.h), so the scratch copy is not
+// synced twice.
 class SyncedWriter {
  public:
-  explicit SyncedWriter(std::string path);
+  explicit SyncedWriter(std::string path, bool sync = true);
   ~SyncedWriter();
   SyncedWriter(const SyncedWriter&) = delete;
   SyncedWriter& operator=(const SyncedWriter&) = delete;
@@ -38,6 +42,7 @@ class SyncedWriter {
  private:
   std::string path_, tmp_;
   std::ofstream out_;
+  bool sync_ = true;
   bool committed_ = false;
 };
 
