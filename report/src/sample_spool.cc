@@ -70,21 +70,28 @@ void SampleSpool::Append(Rows* rows, const std::string& line) {
 void SampleSpool::Add(const TimeSample& s) { Append(&time_, TimeseriesCsvRow(policy_, s)); }
 void SampleSpool::Add(const HvSample& s) { Append(&hv_, HvTrustCsvRow(policy_, s)); }
 
-void SampleSpool::Copy(const Rows& rows, std::FILE* out, const std::string& out_name) {
+// The rows as written, chunk by chunk (pread: the spool's own writing
+// position stays where it is).
+template <typename Chunk>
+void SampleSpool::ForEachChunk(const Rows& rows, Chunk chunk) {
   if (std::fflush(rows.file) != 0)
     throw std::runtime_error("cannot write " + Named(rows.path) + ": " + Errno());
-  const int fd = ::fileno(rows.file);
   std::vector<char> buffer(1 << 16);
   for (off_t at = 0;;) {
-    const ssize_t n = ::pread(fd, buffer.data(), buffer.size(), at);
+    const ssize_t n = ::pread(::fileno(rows.file), buffer.data(), buffer.size(), at);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) throw std::runtime_error("cannot read " + Named(rows.path) + ": " + Errno());
     if (n == 0) break;
-    if (std::fwrite(buffer.data(), 1, static_cast<std::size_t>(n), out) !=
-        static_cast<std::size_t>(n))
-      throw std::runtime_error("cannot write " + out_name + ": " + Errno());
+    chunk(buffer.data(), static_cast<std::size_t>(n));
     at += n;
   }
+}
+
+void SampleSpool::Copy(const Rows& rows, std::FILE* out, const std::string& out_name) {
+  ForEachChunk(rows, [&](const char* data, std::size_t n) {
+    if (std::fwrite(data, 1, n, out) != n)
+      throw std::runtime_error("cannot write " + out_name + ": " + Errno());
+  });
 }
 
 void SampleSpool::CopyTimeRows(std::FILE* out, const std::string& out_name) const {
@@ -95,18 +102,8 @@ void SampleSpool::CopyHvRows(std::FILE* out, const std::string& out_name) const 
 }
 
 std::string SampleSpool::Text(const Rows& rows) {
-  if (std::fflush(rows.file) != 0)
-    throw std::runtime_error("cannot write " + Named(rows.path) + ": " + Errno());
   std::string text;
-  char buffer[1 << 14];
-  for (off_t at = 0;;) {
-    const ssize_t n = ::pread(::fileno(rows.file), buffer, sizeof buffer, at);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw std::runtime_error("cannot read " + Named(rows.path) + ": " + Errno());
-    if (n == 0) break;
-    text.append(buffer, static_cast<std::size_t>(n));
-    at += n;
-  }
+  ForEachChunk(rows, [&](const char* data, std::size_t n) { text.append(data, n); });
   return text;
 }
 

@@ -48,6 +48,8 @@ class SampleSpool {
   static void Open(Rows* rows, const std::string& dir, const std::string& name);
   static void Close(Rows* rows);
   static void Append(Rows* rows, const std::string& line);
+  template <typename Chunk>
+  static void ForEachChunk(const Rows& rows, Chunk chunk);
   static void Copy(const Rows& rows, std::FILE* out, const std::string& out_name);
   static std::string Text(const Rows& rows);
 
