@@ -412,6 +412,9 @@ bool ExperimentConfig::IsValid(std::string* why) const {
            PolicyOf(PolicyKind::kTaEbpLearned).name + " has nothing to learn");
   if (m.experience) {
     c.Model("model.experience.", ToModel(*m.experience));
+    if (!(m.experience->margin >= 0.0 && m.experience->margin < 1.0))
+      c.Fail("model.experience.margin = " + NumberText(m.experience->margin, 10) +
+             " is outside [0, 1) (robust: the belief's margin above p*)");
     if (m.trust_dynamics || m.noise || m.learning || s.major_road)
       c.Fail("model.experience is modelled alone: not with model.trust_dynamics, model.noise, "
              "model.learning or scenario.major_road (their theories assume an HV whose reading "

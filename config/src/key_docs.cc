@@ -135,7 +135,9 @@ const std::vector<KeyDoc>& ConfigKeyDocs() {
       {"model.experience", "beyond the paper: HVs who learn, per signal level, how often the AV then went (docs/influence.md)", "not with trust_dynamics, noise, learning, major_road, nor the policies designing for another trust than the HV's own"},
       {"model.experience.strength", "k: the intuitive posterior's weight, in readings: p_E = (k q + g) / (k + n)", "> 0, finite"},
       {"model.experience.bin_width", "one signal level: readings in [j w, (j+1) w) (m)", "> 0, finite"},
-      {"model.experience.design", "TA-EBP: guarded = designed for each HV's experience (b = 0 when a false alarm would break s*); paper = the paper's scheme whatever was learned", ""},
+      {"model.experience.forgetting", "the learner's weight on its past: every encounter multiplies what it remembered by rho (1 = exact counts)", "in (0, 1]"},
+      {"model.experience.design", "TA-EBP: guarded = designed for each HV's experience (b = 0 when a false alarm would break s*); paper = the paper's scheme whatever was learned; robust = s_max with the largest b keeping the belief a margin above p*, without the learner's rule", ""},
+      {"model.experience.margin", "robust: how far above p* the design keeps the belief after a nudge (belief units)", "in [0, 1)"},
       // ---- policies, sweep, outputs
       {"policies", "the policies to run, each on the same vehicles and seed", "each once, a name of the policy table (docs/policies.md)"},
       {"sweep", "taebp sweep only: a grid over config keys times seed replicates", ""},

@@ -89,6 +89,7 @@ per::ExperienceRule ToModel(const ExperienceConfig& e) {
   per::ExperienceRule r;
   r.strength = e.strength;
   r.bin_width = e.bin_width;
+  r.forgetting = e.forgetting;
   return r;
 }
 

@@ -60,6 +60,8 @@ HvPopulation::HvPopulation(const ExperimentConfig& config, Policy policy)
     experience_ = ToModel(*m.experience);
     experience_->Validate();
     guarded_ = policy == Policy::kTaEbp && m.experience->design == ExperienceDesign::kGuarded;
+    if (policy == Policy::kTaEbp && m.experience->design == ExperienceDesign::kRobust)
+      robust_margin_ = m.experience->margin;
   }
   next_sample_ = config.scenario.warmup;
   if (m.noise) {
@@ -116,6 +118,7 @@ double HvPopulation::DesignTrustFor(double theta) const {
 }
 
 per::CommittedScheme HvPopulation::SchemeAt(double theta_hat) const {
+  if (robust_margin_) return per::DesignRobust(params_, theta_hat, *model_, *robust_margin_).scheme;
   if (noise_ && noise_aware_ && TaebpFamily(policy_))
     return per::DesignUnderNoise(params_, theta_hat, *model_, *noise_, noise_delta_).scheme;
   return per::CommitScheme(policy_, params_, theta_hat, *model_);
@@ -137,14 +140,15 @@ per::ExperiencePath& HvPopulation::PathFor(double theta_hat, double theta) {
   auto& slot = paths_[{theta_hat, theta}];
   if (!slot)
     slot = std::make_unique<per::ExperiencePath>(SchemeAt(theta_hat), params_, theta, *model_,
-                                                 experience_->strength, guarded_);
+                                                 experience_->strength, guarded_,
+                                                 experience_->forgetting);
   return *slot;
 }
 
 void HvPopulation::Add(const std::string& hv, double trust) {
   Hv h;
   h.trust0 = trust;
-  if (experience_) h.experience.emplace(experience_->bin_width);
+  if (experience_) h.experience.emplace(experience_->bin_width, experience_->forgetting);
   if (dynamic_) {
     const double strength = config_.model.trust_dynamics->strength;
     h.state = per::BetaTrust::FromMean(Inside01(trust), strength);
@@ -423,14 +427,20 @@ BeyondRun HvPopulation::Results(double end) {
   if (experience_) {
     // The long run of the learned beliefs (LongRunUnderExperience): guarded
     // ta_ebp recovers the paper's rates (the guard binds on a vanishing share).
+    // A learner that forgets never settles: its stationary normal
+    // approximation (ExperiencePath, rho < 1).
     out.experience = true;
     double dc = 0, coll = 0;
+    const bool forgets = experience_->forgetting < 1.0;
     for (const auto& [theta, w] : TrustNodes(m.trust, 64)) {
       const double hat = DesignTrustFor(theta);
       const per::CommittedScheme sc = SchemeAt(hat);
       const per::PredictedOutcome o =
-          guarded_ ? per::PredictOutcome(sc, params_, theta, *model_)
-                   : per::LongRunUnderExperience(sc, params_, theta, *model_).outcome;
+          forgets ? per::ExperiencePath(sc, params_, theta, *model_, experience_->strength,
+                                        false, experience_->forgetting)
+                        .At(1000000)
+          : guarded_ ? per::PredictOutcome(sc, params_, theta, *model_)
+                     : per::LongRunUnderExperience(sc, params_, theta, *model_).outcome;
       dc += w * o.dc_rate;
       coll += w * o.collision_rate;
     }

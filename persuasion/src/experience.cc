@@ -21,6 +21,9 @@ bool ExperienceRule::IsValid(std::string* why) const {
     return fail("strength k = " + NumberText(strength) + " must be > 0 and finite");
   if (!(bin_width > 0.0 && std::isfinite(bin_width)))
     return fail("bin_width = " + NumberText(bin_width) + " must be > 0 and finite");
+  if (!(forgetting > 0.0 && forgetting <= 1.0))
+    return fail("forgetting rho = " + NumberText(forgetting) +
+                " is outside (0, 1] (the weight on the past; 1 = forgets nothing)");
   return true;
 }
 
@@ -29,9 +32,12 @@ void ExperienceRule::Validate() const {
   if (!IsValid(&why)) throw InvalidArgument(why);
 }
 
-SignalExperience::SignalExperience(double bin_width) : width_(bin_width) {
-  if (!(bin_width > 0.0 && std::isfinite(bin_width)))
-    throw InvalidArgument("bin_width = " + NumberText(bin_width) + " must be > 0 and finite");
+SignalExperience::SignalExperience(double bin_width, double forgetting)
+    : width_(bin_width), forgetting_(forgetting) {
+  ExperienceRule rule;
+  rule.bin_width = bin_width;
+  rule.forgetting = forgetting;
+  rule.Validate();
 }
 
 long SignalExperience::Level(double reading) const {
@@ -46,9 +52,16 @@ SignalCounts SignalExperience::At(double reading) const {
 }
 
 void SignalExperience::Record(double reading, bool av_went) {
-  SignalCounts& c = levels_[Level(reading)];
-  ++c.readings;
-  c.went += av_went ? 1 : 0;
+  const long level = Level(reading);
+  if (forgetting_ < 1.0) {
+    for (auto& [l, c] : levels_) {
+      c.readings *= forgetting_;
+      c.went *= forgetting_;
+    }
+  }
+  SignalCounts& c = levels_[level];
+  c.readings += 1.0;
+  c.went += av_went ? 1.0 : 0.0;
   ++readings_;
 }
 
@@ -57,12 +70,11 @@ double ExperiencedPosterior(double intuitive_go, const SignalCounts& c, double s
     throw InvalidArgument("intuitive posterior q = " + NumberText(intuitive_go) + " is outside [0, 1]");
   if (!(strength > 0.0))
     throw InvalidArgument("strength k = " + NumberText(strength) + " must be > 0");
-  if (c.readings < 0 || c.went < 0 || c.went > c.readings)
-    throw InvalidArgument("experience counts (n = " + std::to_string(c.readings) +
-                          ", g = " + std::to_string(c.went) + ") need 0 <= g <= n");
+  if (!(c.readings >= 0 && c.went >= 0 && c.went <= c.readings * (1.0 + 1e-12)))
+    throw InvalidArgument("experience counts (n = " + NumberText(c.readings) +
+                          ", g = " + NumberText(c.went) + ") need 0 <= g <= n");
   if (std::isinf(strength)) return intuitive_go;
-  return (strength * intuitive_go + static_cast<double>(c.went)) /
-         (strength + static_cast<double>(c.readings));
+  return std::min(1.0, (strength * intuitive_go + c.went) / (strength + c.readings));
 }
 
 double ExperiencedBelief(const CommittedScheme& scheme, const AvHvParams& params, double theta,
@@ -179,19 +191,71 @@ ExperiencedDesign DesignForExperience(const CommittedScheme& paper, const AvHvPa
   return out;
 }
 
+RobustDesign DesignRobust(const AvHvParams& params, double theta_hat, const LikelihoodModel& model,
+                          double margin) {
+  params.Validate();
+  internal::CheckTrust(theta_hat, "assumed trust theta_hat");
+  if (!(margin >= 0.0 && margin < 1.0))
+    throw InvalidArgument("robust margin m = " + NumberText(margin) + " is outside [0, 1)");
+  RobustDesign out;
+  const double lambda = params.prior_go;
+  out.belief_target = AvHvPStar(params.collision_penalty) + margin;
+  const double s_max = model.SMax();
+  out.intuitive_max = HvPosteriorGo(params, 1.0, model, s_max);
+  if (theta_hat <= 0.0) return out;  // the nudge moves no belief: yield
+  out.pi_target = (out.belief_target - (1.0 - theta_hat) * lambda) / theta_hat;
+  if (out.pi_target > 1.0 || out.intuitive_max < out.pi_target) return out;
+  out.persuades = true;
+  double b = 1.0;
+  if (out.pi_target > lambda)
+    b = lambda * (1.0 - out.pi_target) / (out.pi_target * (1.0 - lambda));
+  out.scheme.av_may_go = true;
+  out.scheme.nudge = s_max;
+  out.scheme.a = 1.0;
+  out.scheme.b = std::clamp(b, 0.0, 1.0);
+  return out;
+}
+
+double RobustRiskUnderForgetting(const RobustDesign& design, const AvHvParams& params,
+                                 double theta, double strength, double forgetting) {
+  internal::CheckTrust(theta);
+  ExperienceRule rule;
+  rule.strength = strength;
+  rule.forgetting = forgetting;
+  rule.Validate();
+  if (!design.persuades || theta <= 0.0) return 0.0;
+  const double lambda = params.prior_go;
+  const CommittedScheme& sc = design.scheme;
+  const double p_nudge = lambda + (1.0 - lambda) * sc.b;
+  const double pi = lambda / p_nudge;
+  // The full-trust posterior at which this HV's belief meets p*.
+  const double pi_c =
+      (AvHvPStar(params.collision_penalty) - (1.0 - theta) * lambda) / theta;
+  if (forgetting >= 1.0) return pi > pi_c ? 0.0 : (pi < pi_c ? 1.0 : 0.5);
+  const double n = p_nudge / (1.0 - forgetting);
+  const double var = p_nudge * pi * (1.0 - pi) / (1.0 - forgetting * forgetting);
+  const double t = strength * (design.intuitive_max - pi_c) + n * (pi - pi_c);
+  if (var <= 0.0) return t >= 0.0 ? 0.0 : 1.0;
+  return 0.5 * std::erfc(t / std::sqrt(2.0 * var));
+}
+
 ExperiencePath::ExperiencePath(const CommittedScheme& scheme, const AvHvParams& params,
                                double theta, const LikelihoodModel& model, double strength,
-                               bool guarded)
+                               bool guarded, double forgetting)
     : scheme_(scheme),
       params_(params),
       theta_(theta),
       strength_(strength),
+      forgetting_(forgetting),
       guarded_(guarded),
       model_(&model) {
   params.Validate();
   internal::CheckTrust(theta);
   CheckAOneOrNoSignal(scheme, "ExperiencePath");
-  if (!(strength > 0.0)) throw InvalidArgument("strength k = " + NumberText(strength) + " must be > 0");
+  ExperienceRule rule;
+  rule.strength = strength;
+  rule.forgetting = forgetting;
+  rule.Validate();
   s_max_ = model.SMax();
   if (Nudges(scheme)) q_nudge_ = HvPosteriorGo(scheme, params, 1.0, model, scheme.nudge);
   dc_still_ = HvDrivesIfClear(params, HvPosteriorGo(scheme, params, theta, model, 0.0));
@@ -201,8 +265,42 @@ ExperiencePath::ExperiencePath(const CommittedScheme& scheme, const AvHvParams& 
 
 PredictedOutcome ExperiencePath::At(long t) {
   if (t < 0) throw InvalidArgument("encounter index t = " + std::to_string(t) + " must be >= 0");
+  if (forgetting_ < 1.0) return Forgetting(t);
   while (static_cast<long>(path_.size()) <= t) Step();
   return path_[static_cast<std::size_t>(t)];
+}
+
+PredictedOutcome ExperiencePath::Forgetting(long t) const {
+  const double lambda = params_.prior_go;
+  const bool nudges = Nudges(scheme_);
+  const double go = scheme_.av_may_go ? 1.0 : 0.0;
+  const double a = nudges ? scheme_.a : 0.0, b = nudges ? scheme_.b : 0.0;
+  const double p_nudge = lambda * a + (1.0 - lambda) * b;
+  const double dc_still = dc_still_ ? 1.0 : 0.0;
+  double dc_nudge = 0.0;
+  if (p_nudge > 0.0) {
+    if (theta_ <= 0.0) {
+      dc_nudge = HvDrivesIfClear(params_, lambda) ? 1.0 : 0.0;
+    } else {
+      const double pi = lambda * a * go / p_nudge;
+      const double pi_c = (AvHvPStar(params_.collision_penalty) - (1.0 - theta_) * lambda) / theta_;
+      const double rt = std::pow(forgetting_, static_cast<double>(t));
+      const double mean_n = p_nudge * (1.0 - rt) / (1.0 - forgetting_);
+      const double var =
+          p_nudge * pi * (1.0 - pi) * (1.0 - rt * rt) / (1.0 - forgetting_ * forgetting_);
+      const double margin = strength_ * (q_nudge_ - pi_c) + mean_n * (pi - pi_c);
+      if (var <= 0.0)
+        dc_nudge = margin >= -kTieTolerance ? 1.0 : 0.0;
+      else
+        dc_nudge = 0.5 * std::erfc(-margin / std::sqrt(2.0 * var));
+    }
+  }
+  PredictedOutcome o;
+  o.dc_rate = p_nudge * dc_nudge + (1.0 - p_nudge) * dc_still;
+  o.nudge_rate = p_nudge;
+  o.collision_rate = lambda * go * (a * (1.0 - dc_nudge) + (1.0 - a) * (1.0 - dc_still));
+  o.av_first_rate = lambda * go * (a * dc_nudge + (1.0 - a) * dc_still);
+  return o;
 }
 
 void ExperiencePath::Step() {
@@ -241,7 +339,7 @@ void ExperiencePath::Step() {
       const double p = dist_[n][i];
       if (p == 0.0) continue;
       const long g = lo_[n] + static_cast<long>(i);
-      const SignalCounts c{static_cast<long>(n), g};
+      const SignalCounts c{static_cast<double>(n), static_cast<double>(g)};
       CommittedScheme sc = scheme_;
       const bool dc_now = nudges && DcAt(params_, theta_, q_nudge_, c, strength_);
       bool yield = false;

@@ -971,6 +971,14 @@ TEST(ConfigBeyond, BadValuesNameTheKeyAndTheValue) {
        {"model.learning.prior.alpha", "0"}},
       {"model: {prior_go: 0.5}\npolicies: [ta_ebp_learned]", {"model.prior_go", "0.5", "p*"}},
       {"outputs: {interval: 0.5}", {"outputs.interval", "0.5"}},
+      // Issue 42: the learner's forgetting, the robust design's margin.
+      {"model: {experience: {forgetting: 0}}", {"model.experience.forgetting", "0", "(0, 1]"}},
+      {"model: {experience: {forgetting: 1.05}}", {"model.experience.forgetting", "1.05"}},
+      {"model: {experience: {forgetting: .nan}}", {"model.experience.forgetting", "nan"}},
+      {"model: {experience: {design: robust, margin: -0.1}}",
+       {"model.experience.margin", "-0.1", "[0, 1)"}},
+      {"model: {experience: {design: sturdy}}",
+       {"model.experience.design", "sturdy", "guarded, paper, robust"}},
       {"policies: [ta_ebp_learnt]", {"ta_ebp_learnt", "ta_ebp_learned", "population_mean"}},
   };
   for (const Case& k : cases) {

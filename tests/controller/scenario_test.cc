@@ -7,6 +7,8 @@
 #include "taebp/report/report.h"
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/av_hv.h"
+#include "taebp/persuasion/likelihood.h"
+#include "taebp/persuasion/persuasion.h"
 #include "taebp/persuasion/outcomes.h"
 
 #include <gmock/gmock.h>
@@ -462,16 +464,28 @@ TEST(SumoDecides, CollisionsComeFromSumoNotFromTheRule) {
 // the creep aims 1e-6 m past the command (kNudgeOvershoot) and SUMO lands
 // there to ~1e-15 m, so every reading carries that overshoot; and the run
 // itself checked every nudge against its tolerance (none unrealised).
+// The tie rule (issue 42): at s* the paper's HV sits exactly on p*; the
+// overshoot, not a rounding, puts every reading on the AV's side, strictly
+// above p* by more than the tie tolerance (a reading 1e-6 m short is DR).
 TEST(SumoDecides, TheHvReadsSumosDisplacementNotTheCommand) {
   const ExperimentConfig cfg = Config({"scenario.duration=900", "policies=[ta_ebp]"});
   const PolicyRun r = RunOne(cfg, "ta_ebp");
+  const double p_star = persuasion::AvHvPStar(cfg.model.collision_penalty);
   long nudges = 0;
   for (const EncounterRecord& e : r.encounters) {
     if (e.commanded <= 0) continue;
     ++nudges;
     EXPECT_NEAR(e.observed - e.commanded, kNudgeOvershoot, 1e-9)
         << "the reading is not SUMO's odometer difference";
+    EXPECT_GT(e.posterior - p_star, 10 * persuasion::kTieTolerance)
+        << "the tie at s* decided by rounding, not by the overshoot";
+    EXPECT_TRUE(e.hv_dc);
   }
+  const persuasion::LinearLikelihood model(cfg.model.likelihood.s_max);
+  const persuasion::AvHvParams params{cfg.model.prior_go, cfg.model.collision_penalty};
+  const double s_star = r.scheme.nudge;
+  EXPECT_FALSE(persuasion::HvDrivesIfClear(
+      params, persuasion::HvPosteriorGo(params, 0.6, model, s_star - kNudgeOvershoot)));
   EXPECT_GT(nudges, 20);
   EXPECT_EQ(r.nudges_unrealised, 0);
 }

@@ -5,6 +5,7 @@
 
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/outcomes.h"
+#include "taebp/persuasion/random.h"
 #include "test_util.h"
 
 #include <gmock/gmock.h>
@@ -12,6 +13,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <vector>
 
 namespace taebp::persuasion {
@@ -243,6 +245,108 @@ TEST(ExperiencePath, GuardedTaebpNeverCollidesAndRecoversThePaperRate) {
     }
     EXPECT_GT(path.At(1000).dc_rate, target - 0.02) << k;
   }
+}
+
+// ---------------------------------------------------------------- issue 42
+// A learner that forgets: every encounter multiplies every level's weights by
+// rho before the new reading is added (closed form by hand).
+TEST(SignalExperience, ForgettingWeighsThePastByRhoPerEncounter) {
+  SignalExperience e(0.1, 0.5);
+  e.Record(1.61, true);   // level 16: n = 1, g = 1
+  e.Record(1.63, false);  // level 16: n = 0.5 + 1, g = 0.5
+  e.Record(0.0, false);   // level 0: n = 1; level 16: n = 0.75, g = 0.25
+  EXPECT_DOUBLE_EQ(e.At(1.6).readings, 0.75);
+  EXPECT_DOUBLE_EQ(e.At(1.6).went, 0.25);
+  EXPECT_DOUBLE_EQ(e.At(0.05).readings, 1.0);
+  EXPECT_EQ(e.Readings(), 3);
+  // rho = 1 keeps the exact counts of issue 29.
+  SignalExperience exact(0.1, 1.0);
+  for (int i = 0; i < 5; ++i) exact.Record(1.61, i % 2 == 0);
+  EXPECT_DOUBLE_EQ(exact.At(1.6).readings, 5.0);
+  EXPECT_DOUBLE_EQ(exact.At(1.6).went, 3.0);
+  for (double bad : {0.0, -0.5, 1.0 + 1e-12, std::nan("")})
+    EXPECT_THAT(testing::InvalidArgumentMessage([&] { SignalExperience(0.1, bad); }),
+                HasSubstr("forgetting rho = "));
+}
+
+// The robust design against the closed forms of experience.h at the paper's
+// figure-8 (lambda = 0.2, r = 3, p* = 0.4, theta = 0.6): pi_m = (p* + m -
+// 0.08) / 0.6, b = lambda (1 - pi_m) / (pi_m (1 - lambda)).
+TEST(DesignRobust, LargestBWithTheMarginAndTheLongRunDc) {
+  const LinearLikelihood model(2.0);
+  const RobustDesign d = DesignRobust(kPaper, kTheta, model, 0.1);
+  ASSERT_TRUE(d.persuades);
+  EXPECT_NEAR(d.pi_target, 0.7, 1e-12);
+  EXPECT_NEAR(d.scheme.b, 0.2 * 0.3 / (0.7 * 0.8), 1e-12);
+  EXPECT_EQ(d.scheme.nudge, 2.0);
+  EXPECT_EQ(d.scheme.a, 1.0);
+  // The exact learner settles on pi_b = 0.7: belief 0.08 + 0.6 * 0.7 = 0.5,
+  // the margin 0.1 above p*; DC lambda / pi_b, no collision.
+  const ExperienceLongRun lr = LongRunUnderExperience(d.scheme, kPaper, kTheta, model);
+  EXPECT_NEAR(lr.belief_after_nudge, 0.5, 1e-12);
+  EXPECT_FALSE(lr.knife_edge);
+  EXPECT_NEAR(lr.outcome.dc_rate, 0.2 / 0.7, 1e-12);
+  EXPECT_EQ(lr.outcome.collision_rate, 0.0);
+  // Margin 0: eq:b's b, the paper's DC (a second method: DesignTaebp).
+  const RobustDesign edge = DesignRobust(kPaper, kTheta, model, 0.0);
+  EXPECT_NEAR(edge.scheme.b, DesignTaebp(kPaper, kTheta, model).b, 1e-12);
+  // A margin no scheme can keep (pi_m > 1): it yields.
+  EXPECT_FALSE(DesignRobust(kPaper, kTheta, model, 0.6).persuades);
+  EXPECT_FALSE(DesignRobust(kPaper, kTheta, model, 0.6).scheme.av_may_go);
+  EXPECT_THAT(testing::InvalidArgumentMessage([&] { DesignRobust(kPaper, kTheta, model, -0.01); }),
+              HasSubstr("robust margin m = -0.01"));
+}
+
+// A Monte Carlo of the forgetting learner (a cross-check, never the product):
+// the share of nudges read as DR in the long run and at encounter t against
+// the normal approximation of RobustRiskUnderForgetting / ExperiencePath.
+double SimulatedDrAfterNudge(const CommittedScheme& sc, double k, double rho, long t_from,
+                             long t_to, unsigned seed) {
+  const LinearLikelihood model(2.0);
+  std::mt19937_64 rng(seed);
+  const double q = HvPosteriorGo(kPaper, 1.0, model, sc.nudge);
+  long nudges = 0, dr = 0;
+  for (int hv = 0; hv < 400; ++hv) {
+    SignalExperience e(0.1, rho);
+    for (long t = 0; t < t_to; ++t) {
+      const bool go = Uniform01(rng) < kPaper.prior_go;
+      const bool nudge = go ? true : Uniform01(rng) < sc.b;
+      if (!nudge) {
+        e.Record(0.0, false);
+        continue;
+      }
+      const double belief = (1.0 - kTheta) * kPaper.prior_go +
+                            kTheta * ExperiencedPosterior(q, e.At(sc.nudge), k);
+      if (t >= t_from) {
+        ++nudges;
+        dr += HvDrivesIfClear(kPaper, belief) ? 0 : 1;
+      }
+      e.Record(sc.nudge, go);
+    }
+  }
+  return static_cast<double>(dr) / static_cast<double>(nudges);
+}
+
+TEST(DesignRobust, RiskUnderForgettingAgainstASimulatedLearner) {
+  const LinearLikelihood model(2.0);
+  const RobustDesign d = DesignRobust(kPaper, kTheta, model, 0.1);
+  // The shipped learner (k = 20) forgetting 0.95: the intuitive reading of
+  // s_max (q = 1) keeps it persuaded; no simulated DR either.
+  EXPECT_LT(RobustRiskUnderForgetting(d, kPaper, kTheta, 20.0, 0.95), 1e-6);
+  EXPECT_EQ(SimulatedDrAfterNudge(d.scheme, 20.0, 0.95, 200, 400, 1), 0.0);
+  // A learner that trusts its frequency (k = 1) and forgets fast (0.9):
+  // the margin is not enough; the approximation within 0.03 of the simulation.
+  const double approx = RobustRiskUnderForgetting(d, kPaper, kTheta, 1.0, 0.9);
+  const double sim = SimulatedDrAfterNudge(d.scheme, 1.0, 0.9, 200, 400, 2);
+  EXPECT_GT(sim, 0.05);
+  EXPECT_NEAR(approx, sim, 0.03);
+  // The exact learner: no risk in the long run.
+  EXPECT_EQ(RobustRiskUnderForgetting(d, kPaper, kTheta, 1.0, 1.0), 0.0);
+  // The path's per-encounter collision rate at t = 300 is lambda times it.
+  ExperiencePath path(d.scheme, kPaper, kTheta, model, 1.0, false, 0.9);
+  EXPECT_NEAR(path.At(300).collision_rate, 0.2 * approx, 1e-9);
+  EXPECT_NEAR(path.At(5).collision_rate / 0.2,
+              SimulatedDrAfterNudge(d.scheme, 1.0, 0.9, 5, 6, 3), 0.08);
 }
 
 }  // namespace

@@ -462,18 +462,25 @@ struct LearningConfig {
 // it as in eq:pp). Each HV learns from its own encounters only. design: what
 // ta_ebp commits to: guarded = TA-EBP for each HV's experienced belief (b = 0
 // when a false alarm would leave s* unpersuasive; DesignForExperience), paper
-// = the paper's scheme whatever the HV learned (to measure the knife edge).
+// = the paper's scheme whatever the HV learned (to measure the knife edge),
+// robust = s_max with the largest b that keeps a margin above p* without
+// knowing the learner's rule (DesignRobust; issue 42). forgetting: the
+// learner's weight on its past per encounter (1 = exact counts).
 // Unset: the paper's HV, who never learns.
 struct ExperienceConfig {
   double strength = 20.0;   // k > 0: readings' worth of trust in the intuitive model
   double bin_width = 0.1;   // m > 0: one signal level
+  double forgetting = 1.0;  // rho in (0, 1]: the learner's weight on its past
   ExperienceDesign design = ExperienceDesign::kGuarded;
+  double margin = 0.1;      // robust: the belief's margin above p*, in [0, 1)
 
   template <typename Archive>
   void Serialize(Archive* a) {
     a->Visit("strength", &strength);
     a->Visit("bin_width", &bin_width);
+    a->Visit("forgetting", &forgetting);
     a->Visit("design", &design);
+    a->Visit("margin", &margin);
   }
 };
 

@@ -44,7 +44,7 @@ enum class NoiseKind { kNone, kGaussian, kUniform };
 // model.noise.design
 enum class NoiseDesign { kAware, kPaper };
 // model.experience.design: what ta_ebp commits to for an HV that learns.
-enum class ExperienceDesign { kGuarded, kPaper };
+enum class ExperienceDesign { kGuarded, kPaper, kRobust };
 
 #define TAEBP_ENUM_NAMES(E, ...)                                   \
   template <>                                                      \
@@ -75,7 +75,8 @@ TAEBP_ENUM_NAMES(NoiseKind, {NoiseKind::kNone, "none"}, {NoiseKind::kGaussian, "
                  {NoiseKind::kUniform, "uniform"});
 TAEBP_ENUM_NAMES(NoiseDesign, {NoiseDesign::kAware, "aware"}, {NoiseDesign::kPaper, "paper"});
 TAEBP_ENUM_NAMES(ExperienceDesign, {ExperienceDesign::kGuarded, "guarded"},
-                 {ExperienceDesign::kPaper, "paper"});
+                 {ExperienceDesign::kPaper, "paper"},
+                 {ExperienceDesign::kRobust, "robust"});
 #undef TAEBP_ENUM_NAMES
 
 // The name of a value, as the config writes it.

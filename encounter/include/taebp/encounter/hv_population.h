@@ -138,6 +138,8 @@ class HvPopulation {
   bool dynamic_ = false, learned_ = false;
   std::optional<persuasion::ExperienceRule> experience_;  // model.experience set
   bool guarded_ = false;  // ta_ebp designs for each HV's experience
+  // ta_ebp commits to DesignRobust (model.experience.design: robust): margin.
+  std::optional<double> robust_margin_;
   std::map<std::pair<double, double>, std::unique_ptr<persuasion::ExperiencePath>> paths_;
   std::optional<persuasion::PerceptionNoise> noise_;  // model.noise set
   bool noise_aware_ = false;

@@ -39,33 +39,44 @@
 
 namespace taebp::persuasion {
 
-// model.experience.
+// model.experience: the learner's rule (the AV is not told it; see
+// RobustScheme below for a design that does not need it).
+//   forgetting rho in (0, 1]: the weight each encounter of the HV leaves on
+//   everything it remembered before (every level's n and g are multiplied by
+//   rho, then the new reading is added); 1 = the exact counts of issue 29.
+//   With rho < 1 the counts are weights, not integers: n stays below
+//   1 / (1 - rho), so the learned frequency never settles (its variance in the
+//   long run is pi (1 - pi) (1 - rho) / (P(level) (1 + rho)); docs/influence.md).
 struct ExperienceRule {
   double strength = 20.0;   // k > 0: readings' worth of trust in the intuitive model
   double bin_width = 0.1;   // m > 0: readings in [j w, (j+1) w) are one signal level
+  double forgetting = 1.0;  // rho in (0, 1]: weight on the past per encounter
   bool IsValid(std::string* why) const;
   void Validate() const;  // throws InvalidArgument naming the field and value
 };
 
-// What one HV remembers of one signal level.
+// What one HV remembers of one signal level (weights: integers when it
+// forgets nothing).
 struct SignalCounts {
-  long readings = 0;  // n: times it read a displacement in this level
-  long went = 0;      // g: of those, times the AV then went
+  double readings = 0;  // n: (weighted) times it read a displacement in this level
+  double went = 0;      // g: of those, (weighted) times the AV then went
 };
 
 // One HV's memory: counts per signal level.
 class SignalExperience {
  public:
-  explicit SignalExperience(double bin_width);
+  // forgetting: rho in (0, 1] (ExperienceRule::forgetting).
+  explicit SignalExperience(double bin_width, double forgetting = 1.0);
   long Level(double reading) const;  // floor(reading / bin_width), reading >= 0
   SignalCounts At(double reading) const;
-  // The HV read `reading` (SUMO's displacement) and then saw the AV go or not.
+  // The HV read `reading` (SUMO's displacement) and then saw the AV go or not:
+  // every level's counts are multiplied by rho, then this reading is added.
   void Record(double reading, bool av_went);
   const std::map<long, SignalCounts>& Levels() const { return levels_; }
-  long Readings() const { return readings_; }
+  long Readings() const { return readings_; }  // encounters recorded (unweighted)
 
  private:
-  double width_;
+  double width_, forgetting_;
   std::map<long, SignalCounts> levels_;
   long readings_ = 0;
 };
@@ -130,6 +141,47 @@ ExperiencedDesign DesignForExperience(const CommittedScheme& paper, const AvHvPa
                                       double strength,
                                       const std::function<SignalCounts(double)>& counts_at);
 
+// ---------------------------------------------------------------- robust
+// A committed design that does not need the learner's rule
+// (model.experience.design: robust; issue 42, docs/influence.md). The AV
+// commits, before its intent, from public quantities only (lambda, r, its
+// assumed trust theta_hat, the likelihood model): no HV's counts, no k, no rho.
+//   nudge s_max (the most persuasive displacement of the intuitive model),
+//   a = 1, and the largest b whose own Bayes posterior pi_b = lambda /
+//   (lambda + (1 - lambda) b) leaves the HV's belief a margin m above p*:
+//       (1 - theta_hat) lambda + theta_hat pi_b >= p* + m,
+// provided the intuitive reading of s_max clears the same bar (then a fresh
+// HV is persuaded too); else it yields (never nudges, never goes).
+// Why it holds against learners it is not told: every learner of the family
+// (any k, any forgetting rho, exact or noisy readings of s_max) reads a nudge
+// with a belief between the intuitive q(s_max) and a weighted go-frequency
+// whose mean is pi_b; both clear p* + m, so the HV drives recklessly after a
+// nudge only when the frequency's sampling noise falls more than the margin,
+// which RobustRiskUnderForgetting bounds. The tie rule is explicit: m > 0
+// keeps every belief the design relies on m away from p*, so no rounding or
+// nudge overshoot decides it. DC in the long run: lambda / pi_b (against any
+// learner whose beliefs stay persuaded), at most the paper's lambda + (1 -
+// lambda) b_paper at m = 0.
+struct RobustDesign {
+  bool persuades = false;     // false: the scheme always yields
+  double belief_target = 0;   // p* + m
+  double pi_target = 0;       // the Bayes posterior pi_b it needs
+  double intuitive_max = 0;   // q(s_max)
+  CommittedScheme scheme;
+};
+RobustDesign DesignRobust(const AvHvParams& params, double theta_hat, const LikelihoodModel& model,
+                          double margin);
+
+// Per-nudge probability (normal approximation, long run) that a learner with
+// prior strength k and forgetting rho reads the robust nudge as DR: with
+// p_N = P(nudge) and pi = pi_b, the stationary weighted counts have
+// E n = p_N / (1 - rho) and Var(g - pi n) = p_N pi (1 - pi) / (1 - rho^2);
+// the HV drives recklessly iff k (q - pi_c) + (g - pi_c n) < 0, pi_c the
+// full-trust posterior at which its belief meets p*. 0 for rho = 1 (the exact
+// learner: the frequency settles on pi_b > pi_c). docs/influence.md.
+double RobustRiskUnderForgetting(const RobustDesign& design, const AvHvParams& params,
+                                 double theta, double strength, double forgetting);
+
 // ---------------------------------------------------------------- mean field
 // The expected learning path of one HV of trust theta whose AVs commit to
 // `scheme` (guarded: DesignForExperience around it): At(t) is the expected
@@ -139,10 +191,16 @@ ExperiencedDesign DesignForExperience(const CommittedScheme& paper, const AvHvPa
 // dropped). The response to standing still is fixed (the scheme has a = 1 or
 // does not signal: nothing goes after a still AV, so its level only confirms
 // what the intuitive model says). Readings are taken at the commanded nudge.
+// A learner that forgets (rho < 1) holds weights, not counts: its path is the
+// normal approximation of RobustRiskUnderForgetting at encounter t (E n_t =
+// p_N (1 - rho^t) / (1 - rho), Var(g - pi n)_t = p_N pi (1 - pi) (1 - rho^2t)
+// / (1 - rho^2)), for the committed scheme as it is: a guard, designed for
+// exact counts, is not modelled there (docs/influence.md says so).
 class ExperiencePath {
  public:
   ExperiencePath(const CommittedScheme& scheme, const AvHvParams& params, double theta,
-                 const LikelihoodModel& model, double strength, bool guarded);
+                 const LikelihoodModel& model, double strength, bool guarded,
+                 double forgetting = 1.0);
   PredictedOutcome At(long t);
   long Computed() const { return static_cast<long>(path_.size()); }
 
@@ -150,7 +208,8 @@ class ExperiencePath {
   void Step();
   CommittedScheme scheme_;
   AvHvParams params_;
-  double theta_, strength_;
+  PredictedOutcome Forgetting(long t) const;
+  double theta_, strength_, forgetting_;
   bool guarded_;
   double q_nudge_ = 0, q_max_ = 0, s_max_ = 0;
   bool dc_still_ = false;
