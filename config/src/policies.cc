@@ -34,6 +34,11 @@ const std::vector<std::string> kKnowledge = {"model.trust_knowledge", "model.ass
 // ta_ebp_learned's schedule and prior: read by it only (its presence still
 // turns on the beyond-the-paper columns of every policy: BeyondPaper).
 const std::vector<std::string> kLearning = {"model.learning"};
+// What ta_ebp commits to against a learner (model.experience.design and the
+// robust design's margin): read by ta_ebp only; every other policy's scheme
+// and its HVs' learning are the same under each (encounter/hv_population.cc).
+const std::vector<std::string> kExperienceDesign = {"model.experience.design",
+                                                    "model.experience.margin"};
 
 std::vector<std::string> Join(std::initializer_list<const std::vector<std::string>*> lists) {
   std::vector<std::string> out;
@@ -48,26 +53,27 @@ const std::vector<PolicyInfo>& Table() {
        "SUMO's own junction logic, no controller: the baseline for flow, delay and SUMO's "
        "collisions"},
       {PolicyKind::kNoEbp, "no_ebp", "No EBP", "#7f7f7f", true, Policy::kNoEbp, true, false, true,
-       Join({&kKnowledge, &kLearning}),
+       Join({&kKnowledge, &kLearning, &kExperienceDesign}),
        "the AV never nudges; it goes when the HV, deciding from the prior, drives if clear"},
       {PolicyKind::kNoTrust, "no_trust", "No Trust", "#d62728", true, Policy::kNoTrust, true, false, true,
-       Join({&kKnowledge, &kLearning}),
+       Join({&kKnowledge, &kLearning, &kExperienceDesign}),
        "classic Bayesian persuasion: the AV designs its nudge for a fully trusting HV "
        "(theta_hat = 1)"},
       {PolicyKind::kTaEbp, "ta_ebp", "TA-EBP", "#1f77b4", true, Policy::kTaEbp, true, false, true, kLearning,
        "trust-aware persuasion: the AV designs for the HV's trust (model.trust_knowledge)"},
       {PolicyKind::kFullReveal, "full_reveal", "Full reveal", "#2ca02c", true, Policy::kFullReveal, true,
-       false, false, Join({&kKnowledge, &kLearning}),
+       false, false, Join({&kKnowledge, &kLearning, &kExperienceDesign}),
        "the AV nudges s_max exactly when it means to go"},
       {PolicyKind::kPopulationMean, "population_mean", "Population mean", "#ff7f0e", true,
-       Policy::kPopulationMean, true, true, false, Join({&kKnowledge, &kLearning}),
+       Policy::kPopulationMean, true, true, false,
+       Join({&kKnowledge, &kLearning, &kExperienceDesign}),
        "TA-EBP with one design for every HV, for the mean of model.trust"},
       {PolicyKind::kTaEbpLearned, "ta_ebp_learned", "TA-EBP learned", "#9467bd", true,
-       Policy::kTaEbpLearned, true, true, false, kKnowledge,
+       Policy::kTaEbpLearned, true, true, false, Join({&kKnowledge, &kExperienceDesign}),
        "TA-EBP for a safe lower bound of each HV's trust, learned from its responses "
        "(model.learning)"},
       {PolicyKind::kAlwaysNudge, "always_nudge", "Always nudge", "#17becf", true, Policy::kAlwaysNudge,
-       true, true, false, kLearning,
+       true, true, false, Join({&kLearning, &kExperienceDesign}),
        "nudges TA-EBP's s* in every encounter whatever its intent and goes on its Go intent "
        "(the deterministic strategy of the paper's Section I; docs/influence.md)"},
   };

@@ -118,6 +118,15 @@ TEST(Policies, WhatEachPolicyReads) {
   EXPECT_FALSE(PolicyReads(PolicyOf(PolicyKind::kNoTrust), "model.assumed_trust"));
   EXPECT_TRUE(PolicyReads(PolicyOf(PolicyKind::kTaEbpLearned), "model.learning.prior"));
   EXPECT_FALSE(PolicyReads(PolicyOf(PolicyKind::kTaEbpLearned), "model.trust_knowledge"));
+  // What ta_ebp commits to against a learner: ta_ebp's alone; the learner's
+  // own rule (forgetting, k) is every game policy's.
+  for (const PolicyInfo& p : Policies()) {
+    if (!p.plays_game) continue;
+    const bool ta = p.kind == PolicyKind::kTaEbp;
+    EXPECT_EQ(PolicyReads(p, "model.experience.design"), ta) << p.name;
+    EXPECT_EQ(PolicyReads(p, "model.experience.margin"), ta) << p.name;
+    EXPECT_TRUE(PolicyReads(p, "model.experience.forgetting")) << p.name;
+  }
 }
 
 TEST(Policies, CliPageListIsGeneratedFromTheTable) {
