@@ -387,6 +387,21 @@ def noise(plt, sweep, theory, out):
     return _save(plt, [fig], out)
 
 
+def learners(plt, sweep, theory, out):
+    """Influence against learners the AV is not told (docs/influence.md,
+    issue 42): DC and collision rate against the HVs' forgetting, one column
+    per design ta_ebp commits to (full revelation and always-nudge, which read
+    no design key, drawn in each), the mean field as the bar at each point."""
+    by = "model.experience.design" if "model.experience.design" in sweep.keys else None
+    view = SweepView(sweep, "model.experience.forgetting", ["dc_rate", "collision_rate"], by=by,
+                     x_title="the HVs' weight on their past ρ (1 = exact counts)",
+                     facet_title=(lambda f: "ta_ebp's design: %s" % f) if by else None)
+    fig = view.figure("influence_learners.png", view.panels(), 3)
+    ctx = sweep.context()
+    fig.title = "Learners the AV is not told%s" % ((": " + ctx) if ctx else "")
+    return _save(plt, [fig], out)
+
+
 # name: (the swept keys it covers, applies(sweep, keys), draw(plt, sweep, theory, out) -> [paths])
 PRESETS = {
     "mismatch": ({"model.trust", "model.assumed_trust"},
@@ -405,6 +420,10 @@ PRESETS = {
     "noise": ({"model.noise.scale", "model.noise.design"},
               lambda s, k: "model.noise.scale" in k and
               k <= {"model.noise.scale", "model.noise.design"}, noise),
+    "learners": ({"model.experience.forgetting", "model.experience.design"},
+                 lambda s, k: "model.experience.forgetting" in k and
+                 k <= {"model.experience.forgetting", "model.experience.design"} and
+                 _numeric(s, "model.experience.forgetting"), learners),
 }
 
 
