@@ -2,6 +2,7 @@
 // --set overrides) and saving of every config struct, through the structs'
 // Serialize() schema.
 #include "taebp/config/config.h"
+#include "taebp/config/reference.h"
 #include "taebp/persuasion/number_text.h"
 #include "yaml_text.h"
 
@@ -136,12 +137,29 @@ class YamlReader {
         std::string known;
         for (const auto& v : visited_) known += (known.empty() ? "" : ", ") + v;
         Fail(Join(prefix_, name), kv.first,
-             "unknown key '" + Join(prefix_, name) + "' (known keys here: " + known + ")");
+             "unknown key '" + Join(prefix_, name) + "' (known keys here: " + known + ")" +
+                 DeeperKeys(name));
       }
     }
   }
 
  private:
+  // "; did you mean model.experience.design?": the keys of the schema under
+  // this section, deeper down, whose last part is `name` (a key written one
+  // level too high, e.g. model.design for model.experience.design).
+  std::string DeeperKeys(const std::string& name) const {
+    const std::string under = prefix_.empty() ? "" : prefix_ + ".";
+    const std::string leaf = "." + name;
+    std::string out;
+    for (const KeyDoc& d : ConfigKeyDocs()) {
+      const std::string k = d.key;
+      if (k.size() > under.size() + leaf.size() && k.compare(0, under.size(), under) == 0 &&
+          k.compare(k.size() - leaf.size(), leaf.size(), leaf) == 0)
+        out += (out.empty() ? "; did you mean " : " or ") + k;
+    }
+    return out.empty() ? out : out + "?";
+  }
+
   [[noreturn]] void Fail(const std::string& key, const YAML::Node& node,
                          const std::string& what) const {
     throw ConfigError(origins_->Locate(key, node) + ": " + what);

@@ -76,6 +76,11 @@ const std::vector<PolicyInfo>& Table() {
        true, true, false, Join({&kLearning, &kExperienceDesign}),
        "nudges TA-EBP's s* in every encounter whatever its intent and goes on its Go intent "
        "(the deterministic strategy of the paper's Section I; docs/influence.md)"},
+      {PolicyKind::kRandomNudge, "random_nudge", "Random nudge", "#8c564b", true, Policy::kRandomNudge,
+       true, true, false, Join({&kKnowledge, &kLearning, &kExperienceDesign}),
+       "nudges in every encounter a magnitude drawn uniformly on (0, s_max] from its own random "
+       "stream, independent of its intent, and goes on its Go intent (noise on the action, after "
+       "Sagheb et al. 2023; docs/influence.md)"},
   };
   return table;
 }

@@ -15,8 +15,13 @@ AvDraw EncounterGame::Draw(int av, int hv) {
   if (pairing_) pairing_->GameForms(av, hv, major_.count({av, hv}) > 0, *this);
   ++s_.vehicles[av].open_encounters;
   ++s_.vehicles[hv].open_encounters;
-  const AvDraw d = DrawAv(PopulationOf(av, hv).Commit(s_.vehicles[av].id, s_.vehicles[hv].id),
-                          params_.prior_go, rng_);
+  HvPopulation& population = PopulationOf(av, hv);
+  const persuasion::CommittedScheme& scheme =
+      population.Commit(s_.vehicles[av].id, s_.vehicles[hv].id);
+  AvDraw d = DrawAv(scheme, params_.prior_go, rng_);
+  // random_nudge: the magnitude from the population's own stream (the
+  // encounter stream's two draws stay every policy's).
+  if (d.nudge) d.nudge_distance = population.Magnitude(scheme);
   if (pairing_) pairing_->Drawn(av, hv, d);
   return d;
 }

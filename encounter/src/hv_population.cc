@@ -33,6 +33,7 @@ std::uint64_t StreamSeed(std::uint64_t seed, std::uint64_t salt) {
 }
 constexpr std::uint64_t kSaltNoise = 0x6e6f697365;  // "noise"
 constexpr std::uint64_t kSaltProbe = 0x70726f6265;  // "probe"
+constexpr std::uint64_t kSaltMagnitude = 0x6d61676e;  // "magn"
 
 
 bool TaebpFamily(Policy p) {
@@ -50,7 +51,8 @@ HvPopulation::HvPopulation(const ExperimentConfig& config, Policy policy)
       policy_(policy),
       model_(MakeLikelihood(config.model.likelihood)),
       noise_rng_(StreamSeed(config.scenario.seed, kSaltNoise)),
-      probe_rng_(StreamSeed(config.scenario.seed, kSaltProbe)) {
+      probe_rng_(StreamSeed(config.scenario.seed, kSaltProbe)),
+      magnitude_rng_(StreamSeed(config.scenario.seed, kSaltMagnitude)) {
   const ModelConfig& m = config.model;
   params_ = ToModel(m);
   beyond_ = config.BeyondPaper();
@@ -141,7 +143,8 @@ per::ExperiencePath& HvPopulation::PathFor(double theta_hat, double theta) {
   if (!slot)
     slot = std::make_unique<per::ExperiencePath>(SchemeAt(theta_hat), params_, theta, *model_,
                                                  experience_->strength, guarded_,
-                                                 experience_->forgetting);
+                                                 experience_->forgetting,
+                                                 experience_->bin_width);
   return *slot;
 }
 
@@ -227,10 +230,17 @@ const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const st
     p.theory = Predict(p.scheme, p.trust);
     if (beyond_) p.oracle = Predict(OracleScheme(p.trust), p.trust);
   }
-  if (policy_ == Policy::kNoEbp || policy_ == Policy::kFullReveal) p.design_trust = kNoValue;
+  if (policy_ == Policy::kNoEbp || policy_ == Policy::kFullReveal ||
+      policy_ == Policy::kRandomNudge)
+    p.design_trust = kNoValue;
   Pending& slot = pending_[{av, hv}];
   slot = std::move(p);
   return slot.scheme;
+}
+
+double HvPopulation::Magnitude(const per::CommittedScheme& scheme) {
+  return scheme.random_magnitude ? per::NudgeMagnitude(scheme, per::Uniform01(magnitude_rng_))
+                                 : scheme.nudge;
 }
 
 HvReading HvPopulation::Read(const std::string& av, const std::string& hv, double observed) {

@@ -241,7 +241,7 @@ double RobustRiskUnderForgetting(const RobustDesign& design, const AvHvParams& p
 
 ExperiencePath::ExperiencePath(const CommittedScheme& scheme, const AvHvParams& params,
                                double theta, const LikelihoodModel& model, double strength,
-                               bool guarded, double forgetting)
+                               bool guarded, double forgetting, double bin_width)
     : scheme_(scheme),
       params_(params),
       theta_(theta),
@@ -261,10 +261,123 @@ ExperiencePath::ExperiencePath(const CommittedScheme& scheme, const AvHvParams& 
   dc_still_ = HvDrivesIfClear(params, HvPosteriorGo(scheme, params, theta, model, 0.0));
   dist_ = {{1.0}};
   lo_ = {0};
+  if (scheme.random_magnitude) {
+    if (!(bin_width > 0.0))
+      throw InvalidArgument("ExperiencePath: a random magnitude needs the learner's bin_width > 0, got " +
+                            NumberText(bin_width));
+    if (guarded) throw InvalidArgument("ExperiencePath: a random magnitude has no guarded design");
+    const double top = scheme.nudge;
+    const auto q = [&](double s) { return HvPosteriorGo(scheme, params, 1.0, model, s); };
+    for (double lo = 0.0; lo < top; lo += bin_width) {
+      Level l;
+      l.lo = lo;
+      l.hi = std::min(top, lo + bin_width);
+      if (l.hi - l.lo <= 1e-12 * top) break;
+      l.weight = (l.hi - l.lo) / top;
+      l.q_lo = q(l.lo);
+      l.q_hi = q(l.hi);
+      double prev = l.q_lo;
+      for (int i = 1; i <= 64; ++i) {
+        const double now = q(l.lo + (l.hi - l.lo) * i / 64.0);
+        if (now < prev - 1e-12)
+          throw InvalidArgument("ExperiencePath: the intuitive posterior of " + model.Name() +
+                                " decreases in s near s = " + NumberText(l.lo + (l.hi - l.lo) * i / 64.0) +
+                                " (a random magnitude needs it non-decreasing)");
+        prev = now;
+      }
+      levels_.push_back(l);
+    }
+  }
+}
+
+namespace {
+
+// log of the Binomial(n, p) probability of k (p may be 0 or 1).
+double LogBinomial(long k, long n, double p) {
+  if (p <= 0.0) return k == 0 ? 0.0 : -std::numeric_limits<double>::infinity();
+  if (p >= 1.0) return k == n ? 0.0 : -std::numeric_limits<double>::infinity();
+  return std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0) +
+         k * std::log(p) + (n - k) * std::log1p(-p);
+}
+
+}  // namespace
+
+// One level's expected DC share at encounter t (see the class comment).
+double ExperiencePath::RandomLevelDc(const Level& level, long t) const {
+  const double lambda = params_.prior_go;
+  const auto q = [&](double s) { return HvPosteriorGo(scheme_, params_, 1.0, *model_, s); };
+  // The share of the level's magnitudes read as DC with counts c (DcAt is
+  // non-decreasing in q, q in s).
+  const auto share = [&](const SignalCounts& c) {
+    if (DcAt(params_, theta_, level.q_lo, c, strength_)) return 1.0;
+    if (!DcAt(params_, theta_, level.q_hi, c, strength_)) return 0.0;
+    return internal::ShareWhere([&](double s) { return DcAt(params_, theta_, q(s), c, strength_); },
+                                level.lo, level.hi, 1);
+  };
+  if (forgetting_ < 1.0) {
+    if (t == 0) return share(SignalCounts{0.0, 0.0});
+    if (theta_ <= 0.0) return HvDrivesIfClear(params_, lambda) ? 1.0 : 0.0;
+    const double pi_c = (AvHvPStar(params_.collision_penalty) - (1.0 - theta_) * lambda) / theta_;
+    const double rt = std::pow(forgetting_, static_cast<double>(t));
+    const double mean_n = level.weight * (1.0 - rt) / (1.0 - forgetting_);
+    const double var = level.weight * lambda * (1.0 - lambda) * (1.0 - rt * rt) /
+                       (1.0 - forgetting_ * forgetting_);
+    constexpr int kPoints = 64;
+    double sum = 0.0;
+    for (int j = 0; j < kPoints; ++j) {
+      const double s = level.lo + (level.hi - level.lo) * (j + 0.5) / kPoints;
+      const double margin = strength_ * (q(s) - pi_c) + mean_n * (lambda - pi_c);
+      sum += var <= 0.0 ? (margin >= -kTieTolerance ? 1.0 : 0.0)
+                        : 0.5 * std::erfc(-margin / std::sqrt(2.0 * var));
+    }
+    return sum / kPoints;
+  }
+  // Binomial(t, w) and Binomial(n, lambda) within 10 standard deviations of
+  // their means (the mass outside is below 1e-20).
+  const auto window = [](long n, double p) {
+    const double mean = n * p, sd = std::sqrt(n * p * (1.0 - p));
+    return std::pair<long, long>{std::max(0L, static_cast<long>(std::floor(mean - 10.0 * sd)) - 1),
+                                 std::min(n, static_cast<long>(std::ceil(mean + 10.0 * sd)) + 1)};
+  };
+  double dc = 0.0;
+  const auto [n_lo, n_hi] = window(t, level.weight);
+  for (long n = n_lo; n <= n_hi; ++n) {
+    const double pn = std::exp(LogBinomial(n, t, level.weight));
+    const auto [g_lo, g_hi] = window(n, lambda);
+    double below = 0.0;  // P(g' < g | n)
+    for (long g = g_lo; g <= g_hi; ++g) {
+      const double pg = std::exp(LogBinomial(g, n, lambda));
+      const double sh = share(SignalCounts{static_cast<double>(n), static_cast<double>(g)});
+      if (sh >= 1.0) {
+        dc += pn * std::max(0.0, 1.0 - below);  // DC is non-decreasing in g
+        break;
+      }
+      dc += pn * pg * sh;
+      below += pg;
+    }
+  }
+  return dc;
+}
+
+PredictedOutcome ExperiencePath::RandomAt(long t) const {
+  double dc = 0.0;
+  for (const Level& l : levels_) dc += l.weight * RandomLevelDc(l, t);
+  const double lambda = params_.prior_go, go = scheme_.av_may_go ? 1.0 : 0.0;
+  PredictedOutcome o;
+  o.dc_rate = dc;
+  o.nudge_rate = 1.0;
+  o.collision_rate = lambda * go * (1.0 - dc);
+  o.av_first_rate = lambda * go * dc;
+  return o;
 }
 
 PredictedOutcome ExperiencePath::At(long t) {
   if (t < 0) throw InvalidArgument("encounter index t = " + std::to_string(t) + " must be >= 0");
+  if (scheme_.random_magnitude) {
+    auto it = random_.find(t);
+    if (it == random_.end()) it = random_.emplace(t, RandomAt(t)).first;
+    return it->second;
+  }
   if (forgetting_ < 1.0) return Forgetting(t);
   while (static_cast<long>(path_.size()) <= t) Step();
   return path_[static_cast<std::size_t>(t)];

@@ -151,7 +151,16 @@ PredictedOutcome PredictOutcomeUnderNoise(const CommittedScheme& scheme, const A
     }
   }
   const double lambda = params.prior_go;
-  const double dc_nudge = PersuasionProbability(noise, params, theta_true, model, scheme.nudge);
+  double dc_nudge = 0.0;
+  if (scheme.random_magnitude) {
+    // The mean over the magnitude, uniform on (0, nudge] (midpoint rule).
+    constexpr int kPoints = 512;
+    for (int j = 0; j < kPoints; ++j)
+      dc_nudge += PersuasionProbability(noise, params, theta_true, model,
+                                        scheme.nudge * (j + 0.5) / kPoints) / kPoints;
+  } else {
+    dc_nudge = PersuasionProbability(noise, params, theta_true, model, scheme.nudge);
+  }
   const double dc_still = PersuasionProbability(noise, params, theta_true, model, 0.0);
   const double dc_go = scheme.a * dc_nudge + (1.0 - scheme.a) * dc_still;
   const double dc_stop = scheme.b * dc_nudge + (1.0 - scheme.b) * dc_still;

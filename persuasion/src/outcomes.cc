@@ -23,6 +23,39 @@ CommittedScheme FromDesign(const TaebpDesign& design) {
 
 }  // namespace
 
+namespace internal {
+
+double ShareWhere(const std::function<bool(double)>& f, double lo, double hi, int cells) {
+  if (!(hi >= lo)) throw InvalidArgument("ShareWhere: hi = " + NumberText(hi) + " is below lo = " + NumberText(lo));
+  if (hi == lo) return f(lo) ? 1.0 : 0.0;
+  const double width = (hi - lo) / cells;
+  double held = 0.0;
+  bool left = f(lo);
+  for (int i = 0; i < cells; ++i) {
+    const double x0 = lo + i * width, x1 = (i + 1 == cells) ? hi : lo + (i + 1) * width;
+    const bool right = f(x1);
+    if (left == right) {
+      if (left) held += x1 - x0;
+    } else {
+      double a = x0, b = x1;  // f(a) == left, f(b) == right
+      while (b - a > 1e-12 * (hi - lo)) {
+        const double m = 0.5 * (a + b);
+        (f(m) == left ? a : b) = m;
+      }
+      const double cut = 0.5 * (a + b);
+      held += left ? cut - x0 : x1 - cut;
+    }
+    left = right;
+  }
+  return held / (hi - lo);
+}
+
+}  // namespace internal
+
+double NudgeMagnitude(const CommittedScheme& scheme, double u) {
+  return scheme.random_magnitude ? (1.0 - u) * scheme.nudge : scheme.nudge;
+}
+
 CommittedScheme CommitScheme(Policy policy, const AvHvParams& params, double theta_hat,
                              const LikelihoodModel& model) {
   params.Validate();
@@ -45,6 +78,17 @@ CommittedScheme CommitScheme(Policy policy, const AvHvParams& params, double the
       // The same s* in every encounter: the nudge carries no information.
       CommittedScheme scheme = FromDesign(DesignTaebp(params, theta_hat, model));
       if (scheme.av_may_go) scheme.b = 1.0;
+      return scheme;
+    }
+    case Policy::kRandomNudge: {
+      // Every encounter a nudge of a magnitude uniform on (0, s_max], whatever
+      // the intent: no information; goes on its Go intent.
+      CommittedScheme scheme;
+      scheme.av_may_go = true;
+      scheme.nudge = model.SMax();
+      scheme.a = 1.0;
+      scheme.b = 1.0;
+      scheme.random_magnitude = true;
       return scheme;
     }
     case Policy::kFullReveal: {
@@ -91,7 +135,10 @@ PredictedOutcome PredictOutcome(const CommittedScheme& scheme, const AvHvParams&
     return HvDrivesIfClear(params, HvPosteriorGo(scheme, params, theta_true, hv_model, s)) ? 1.0
                                                                                           : 0.0;
   };
-  const double dc_nudge = dc_after(scheme.nudge);
+  const double dc_nudge =
+      scheme.random_magnitude
+          ? internal::ShareWhere([&](double s) { return dc_after(s) > 0.5; }, 0.0, scheme.nudge)
+          : dc_after(scheme.nudge);
   const double dc_still = dc_after(0.0);
 
   // P(DC | Go) and P(DC | Stop).

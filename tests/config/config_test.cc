@@ -980,6 +980,12 @@ TEST(ConfigBeyond, BadValuesNameTheKeyAndTheValue) {
       {"model: {experience: {design: sturdy}}",
        {"model.experience.design", "sturdy", "guarded, paper, robust"}},
       {"policies: [ta_ebp_learnt]", {"ta_ebp_learnt", "ta_ebp_learned", "population_mean"}},
+      // The robust design without model.experience: the key, one level too
+      // high, and where it lives.
+      {"model: {design: robust}",
+       {"unknown key 'model.design'", "did you mean ", "model.experience.design?"}},
+      {"model: {margin: 0.1}", {"unknown key 'model.margin'", "did you mean model.experience.margin?"}},
+      {"policies: [random_nudges]", {"random_nudges", "random_nudge"}},
   };
   for (const Case& k : cases) {
     SCOPED_TRACE(k.yaml);

@@ -58,8 +58,8 @@ TEST(Policies, NamesKindsAndGamesAreOneToOne) {
       EXPECT_TRUE(p.needs_avs) << p.name << ": a game needs AVs";
     }
   }
-  EXPECT_EQ(names.size(), 8u);
-  EXPECT_EQ(GamePolicies().size(), 7u);  // every value of persuasion::Policy
+  EXPECT_EQ(names.size(), 9u);
+  EXPECT_EQ(GamePolicies().size(), 8u);  // every value of persuasion::Policy
   EXPECT_EQ(FindPolicy("TA_EBP"), nullptr);
   EXPECT_FALSE(SumoNative().plays_game);
   EXPECT_FALSE(PlaysGame(SumoNative().name));

@@ -99,7 +99,8 @@ TEST(DrawAv, AlwaysConsumesTwoUniformsSoSchemesShareStreams) {
       {true, 1.641025641025641, 1.0, 0.21875},
       {true, 1.4545454545454546, 1.0, 0.25},
       {false, 0.0, 0.0, 0.0},
-      {true, 2.0, 1.0, 0.0}};
+      {true, 2.0, 1.0, 0.0},
+      {true, 2.0, 1.0, 1.0, /*random_magnitude=*/true}};  // random_nudge: its magnitude elsewhere
   // Each draw advances the engine by exactly two outputs.
   for (const per::CommittedScheme& s : schemes) {
     std::mt19937_64 rng(99), reference(99);

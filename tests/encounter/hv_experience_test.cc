@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <string>
 
@@ -118,6 +120,49 @@ TEST(HvExperience, GuardedTaebpNeverLetsANudgeReadAsDr) {
       EXPECT_GT(dr_after_nudge, nudges / 10) << "the knife edge";
     }
   }
+}
+
+// random_nudge's magnitudes come from the population's own stream, seeded by
+// scenario.seed: one draw per nudge of a random scheme, none for any other
+// scheme (so no other policy's draws move), uniform on (0, s_max]; the theory
+// of an HV's encounter t is the random path's.
+TEST(HvExperience, RandomNudgeDrawsItsMagnitudesFromItsOwnStream) {
+  const ExperimentConfig c =
+      Config("model: {experience: {strength: 20}}\npolicies: [random_nudge]\nscenario: {seed: 5}");
+  HvPopulation a(c, Policy::kRandomNudge), b(c, Policy::kRandomNudge);
+  a.Add("hv", 0.6);
+  const per::CommittedScheme sc = a.Commit("av", "hv");
+  ASSERT_TRUE(sc.random_magnitude);
+  const per::CommittedScheme fixed = per::CommitScheme(Policy::kAlwaysNudge, per::AvHvParams{0.2, 3.0},
+                                                       0.6, per::LinearLikelihood(2.0));
+  // Magnitudes of a fixed scheme draw nothing: b's stream stays where a's is.
+  for (int i = 0; i < 50; ++i) EXPECT_EQ(b.Magnitude(fixed), fixed.nudge);
+  double sum = 0, lo = 2, hi = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const double x = a.Magnitude(sc);
+    ASSERT_EQ(x, b.Magnitude(sc)) << i;
+    ASSERT_GT(x, 0.0);
+    ASSERT_LE(x, 2.0);
+    sum += x;
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  EXPECT_NEAR(sum / n, 1.0, 4.0 * 2.0 / std::sqrt(12.0 * n));
+  EXPECT_LT(lo, 0.01);
+  EXPECT_GT(hi, 1.99);
+  // Another seed, another stream.
+  HvPopulation other(Config("model: {experience: {strength: 20}}\npolicies: [random_nudge]\nscenario: {seed: 6}"),
+                     Policy::kRandomNudge);
+  HvPopulation same(c, Policy::kRandomNudge);
+  EXPECT_NE(other.Magnitude(sc), same.Magnitude(sc));
+  // The record's theory at the HV's first encounter: the random path's t = 0.
+  const HvReading r = a.Read("av", "hv", 1.9);
+  EXPECT_TRUE(r.drives_if_clear);  // 1.9 >= s* = 1.64
+  EncounterRecord rec;
+  a.Finish("av", "hv", Draw(true, 1.9), r, false, true, &rec);
+  EXPECT_NEAR(rec.theory_dc, 1.0 - 1.641025641025641 / 2.0, 1e-9);
+  EXPECT_NEAR(rec.theory_collision, 0.2 * 1.641025641025641 / 2.0, 1e-9);
 }
 
 }  // namespace

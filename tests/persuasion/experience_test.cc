@@ -349,5 +349,105 @@ TEST(DesignRobust, RiskUnderForgettingAgainstASimulatedLearner) {
               SimulatedDrAfterNudge(d.scheme, 1.0, 0.9, 5, 6, 3), 0.08);
 }
 
+// ------------------------------------------------------------ random_nudge
+// The randomised baseline (issue 42): a nudge uniform on (0, s_max] in every
+// encounter, independent of the intent.
+TEST(RandomNudge, DcIsTheShareOfMagnitudesAtOrAboveSStar) {
+  const LinearLikelihood model(2.0);
+  const CommittedScheme sc = CommitScheme(Policy::kRandomNudge, kPaper, kTheta, model);
+  EXPECT_TRUE(sc.random_magnitude);
+  EXPECT_TRUE(sc.av_may_go);
+  EXPECT_EQ(sc.nudge, 2.0);
+  EXPECT_EQ(sc.a, 1.0);
+  EXPECT_EQ(sc.b, 1.0);
+  // The magnitude: (1 - u) s_max; a fixed scheme ignores u.
+  EXPECT_EQ(NudgeMagnitude(sc, 0.0), 2.0);
+  EXPECT_EQ(NudgeMagnitude(sc, 0.75), 0.5);
+  EXPECT_EQ(NudgeMagnitude(AlwaysNudge(1.5), 0.75), 1.5);
+  // Theorem 2's s* for the HV's trust is the least persuasive magnitude, so
+  // DC = 1 - s*/s_max and the AV, going on every Go, collides at lambda s*/s_max.
+  for (double theta : {0.45, 0.6, 0.9, 1.0}) {
+    const TaebpDesign d = DesignTaebp(kPaper, theta, model);
+    ASSERT_TRUE(d.persuadable) << theta;
+    const PredictedOutcome o = PredictOutcome(sc, kPaper, theta, model);
+    EXPECT_NEAR(o.dc_rate, 1.0 - d.s_star / 2.0, 1e-9) << theta;
+    EXPECT_NEAR(o.collision_rate, 0.2 * d.s_star / 2.0, 1e-9) << theta;
+    EXPECT_NEAR(o.av_first_rate, 0.2 * (1.0 - d.s_star / 2.0), 1e-9) << theta;
+    EXPECT_EQ(o.nudge_rate, 1.0);
+  }
+  // Below theta* no magnitude persuades: DR always, collisions at lambda.
+  const PredictedOutcome low = PredictOutcome(sc, kPaper, 0.05, model);  // theta* = 0.0625
+  EXPECT_EQ(low.dc_rate, 0.0);
+  EXPECT_NEAR(low.collision_rate, 0.2, 1e-12);
+  // A logistic model against a Monte Carlo over the magnitude (4 sd of 2e5 draws).
+  const LogisticLikelihood logistic(2.0, 4.0, 1.0);
+  const CommittedScheme lsc = CommitScheme(Policy::kRandomNudge, kPaper, kTheta, logistic);
+  std::mt19937_64 rng(7);
+  long dc = 0;
+  const long n = 200000;
+  for (long i = 0; i < n; ++i)
+    dc += HvDrivesIfClear(kPaper, HvPosteriorGo(lsc, kPaper, kTheta, logistic,
+                                                NudgeMagnitude(lsc, Uniform01(rng))));
+  const double p = PredictOutcome(lsc, kPaper, kTheta, logistic).dc_rate;
+  EXPECT_GT(p, 0.05);
+  EXPECT_LT(p, 0.95);
+  EXPECT_NEAR(static_cast<double>(dc) / n, p, 4.0 * std::sqrt(p * (1 - p) / n));
+}
+
+// A simulated population of learners (bins of 0.1 m, strength k, forgetting
+// rho) under random_nudge: the DC share of each HV's encounter t.
+std::vector<double> SimulatedRandomNudgeDc(double k, double rho, const std::vector<long>& at,
+                                           int hvs, unsigned seed) {
+  const LinearLikelihood model(2.0);
+  const CommittedScheme sc = CommitScheme(Policy::kRandomNudge, kPaper, kTheta, model);
+  std::mt19937_64 rng(seed);
+  std::vector<double> dc(at.size(), 0.0);
+  const long last = at.back();
+  for (int hv = 0; hv < hvs; ++hv) {
+    SignalExperience e(0.1, rho);
+    std::size_t next = 0;
+    for (long t = 0; t <= last; ++t) {
+      const bool go = Uniform01(rng) < kPaper.prior_go;
+      const double s = NudgeMagnitude(sc, Uniform01(rng));
+      if (t == at[next]) {
+        dc[next] += HvDrivesIfClear(kPaper, ExperiencedBelief(sc, kPaper, kTheta, model, s, e.At(s), k));
+        ++next;
+      }
+      e.Record(s, go);
+    }
+  }
+  for (double& x : dc) x /= hvs;
+  return dc;
+}
+
+TEST(ExperiencePath, RandomNudgeSpreadsTheDecayOverLevelsAgainstASimulatedLearner) {
+  const LinearLikelihood model(2.0);
+  const CommittedScheme sc = CommitScheme(Policy::kRandomNudge, kPaper, kTheta, model);
+  EXPECT_THAT(testing::InvalidArgumentMessage([&] { ExperiencePath(sc, kPaper, kTheta, model, 20.0, false); }),
+              HasSubstr("bin_width"));
+  ExperiencePath exact(sc, kPaper, kTheta, model, 20.0, false, 1.0, 0.1);
+  // t = 0: the HV without experience.
+  EXPECT_NEAR(exact.At(0).dc_rate, PredictOutcome(sc, kPaper, kTheta, model).dc_rate, 1e-9);
+  const std::vector<long> at = {1, 5, 20, 60, 150};
+  const int hvs = 20000;
+  const std::vector<double> sim = SimulatedRandomNudgeDc(20.0, 1.0, at, hvs, 11);
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    const PredictedOutcome o = exact.At(at[i]);
+    const double p = o.dc_rate;
+    EXPECT_NEAR(sim[i], p, 4.0 * std::sqrt(std::max(p * (1 - p), 1e-4) / hvs) + 1e-3) << "t = " << at[i];
+    EXPECT_NEAR(o.collision_rate, 0.2 * (1.0 - p), 1e-12);
+  }
+  // Spread over 20 levels the decay is slower than always-nudge's at one
+  // level, and it still goes: every level learns lambda < p*.
+  ExperiencePath always(AlwaysNudge(1.0), kPaper, kTheta, model, 20.0, false);
+  EXPECT_GT(exact.At(20).dc_rate, always.At(20).dc_rate + 0.05);
+  EXPECT_LT(exact.At(1000).dc_rate, 0.01);
+  // A learner that forgets (rho = 0.95): the normal approximation per level.
+  ExperiencePath forgetting(sc, kPaper, kTheta, model, 20.0, false, 0.95, 0.1);
+  const std::vector<double> fsim = SimulatedRandomNudgeDc(20.0, 0.95, at, hvs, 12);
+  for (std::size_t i = 0; i < at.size(); ++i)
+    EXPECT_NEAR(fsim[i], forgetting.At(at[i]).dc_rate, 0.03) << "t = " << at[i];
+}
+
 }  // namespace
 }  // namespace taebp::persuasion

@@ -14,7 +14,8 @@
 namespace taebp {
 
 enum class PolicyKind {
-  kSumoNative, kNoEbp, kNoTrust, kTaEbp, kFullReveal, kPopulationMean, kTaEbpLearned, kAlwaysNudge
+  kSumoNative, kNoEbp, kNoTrust, kTaEbp, kFullReveal, kPopulationMean, kTaEbpLearned, kAlwaysNudge,
+  kRandomNudge
 };
 
 struct PolicyInfo {

@@ -11,10 +11,13 @@
 // scheme per HV, the same reading (ReadNudge), the same theory, and it draws
 // no random number; the encounter stream (DrawAv) stays the controller's.
 //
-// Randomness: two streams of its own, seeded from scenario.seed and a salt
+// Randomness: three streams of its own, seeded from scenario.seed and a salt
 // per purpose: the noise of the HVs' readings (one uniform per reading, when
-// model.noise is set) and the probes of ta_ebp_learned (one uniform per
-// encounter of that policy). Same config and seed, same draws.
+// model.noise is set), the probes of ta_ebp_learned (one uniform per
+// encounter of that policy) and random_nudge's magnitudes (one uniform per
+// nudge of that policy: Magnitude). No other policy draws from the last two,
+// so their common random numbers are those of a run without them. Same
+// config and seed, same draws.
 #pragma once
 
 #include "taebp/config/config.h"
@@ -64,6 +67,10 @@ class HvPopulation {
   // The AV `av` meets `hv`: the scheme it commits to for this encounter
   // (draw the intent and signal from it).
   const persuasion::CommittedScheme& Commit(const std::string& av, const std::string& hv);
+  // The magnitude of the nudge the AV drew under `scheme` (Commit's): for a
+  // random magnitude (random_nudge) one draw of the magnitude stream, else
+  // scheme.nudge without a draw.
+  double Magnitude(const persuasion::CommittedScheme& scheme);
   // Where the AV stands when it goes, relative to its stop line, under the
   // scheme it would commit to for `hv` now: the Go signal's nudge (s*) when
   // the scheme nudges on Go, else 0. No side effects (Commit's probe draw is
@@ -148,7 +155,7 @@ class HvPopulation {
   std::optional<persuasion::DesignRule> design_rule_;  // the mean-field's, when one applies
   std::unique_ptr<persuasion::FleetTrustBeliefs> fleet_;
   persuasion::ExplorationSchedule schedule_;
-  std::mt19937_64 noise_rng_, probe_rng_;
+  std::mt19937_64 noise_rng_, probe_rng_, magnitude_rng_;
   persuasion::CommittedScheme population_scheme_;
   persuasion::PredictedOutcome theory_;
 

@@ -196,15 +196,30 @@ double RobustRiskUnderForgetting(const RobustDesign& design, const AvHvParams& p
 // p_N (1 - rho^t) / (1 - rho), Var(g - pi n)_t = p_N pi (1 - pi) (1 - rho^2t)
 // / (1 - rho^2)), for the committed scheme as it is: a guard, designed for
 // exact counts, is not modelled there (docs/influence.md says so).
+// A random magnitude (random_nudge: a nudge uniform on (0, s_max] in every
+// encounter, independent of the intent) spreads the readings over the
+// learner's levels of `bin_width` metres (required then): level l is read with
+// probability w_l (its share of (0, s_max]), so after t encounters its count is
+// Binomial(t, w_l) and its Gos Binomial(n, lambda); At(t) is exact over both
+// and over the magnitude inside the level (the intuitive posterior q(s) must be
+// non-decreasing in s, checked). With rho < 1 each level takes the normal
+// approximation above with p_N = w_l and pi = lambda.
 class ExperiencePath {
  public:
   ExperiencePath(const CommittedScheme& scheme, const AvHvParams& params, double theta,
                  const LikelihoodModel& model, double strength, bool guarded,
-                 double forgetting = 1.0);
+                 double forgetting = 1.0, double bin_width = 0.0);
   PredictedOutcome At(long t);
   long Computed() const { return static_cast<long>(path_.size()); }
 
  private:
+  struct Level {
+    double lo = 0, hi = 0, weight = 0, q_lo = 0, q_hi = 0;
+  };
+  PredictedOutcome RandomAt(long t) const;
+  double RandomLevelDc(const Level& level, long t) const;
+  std::vector<Level> levels_;  // random magnitude only
+  std::map<long, PredictedOutcome> random_;  // its At(t), computed directly per t
   void Step();
   CommittedScheme scheme_;
   AvHvParams params_;

@@ -42,8 +42,13 @@ namespace taebp::persuasion {
 // deterministic strategy of the paper's Section I): nudges TA-EBP's s* for
 // theta_hat in every encounter whatever its intent (a = b = 1) and goes on its
 // Go intent, believing the nudge persuades, as No Trust's AV does.
+// random_nudge (issue 42, the randomised baseline in the spirit of Sagheb et
+// al. 2023: noise on the robot's action): nudges in every encounter (a = b =
+// 1) a magnitude drawn uniformly on (0, s_max], independent of its intent, and
+// goes on its Go intent.
 enum class Policy {
-  kNoEbp, kNoTrust, kTaEbp, kFullReveal, kPopulationMean, kTaEbpLearned, kAlwaysNudge
+  kNoEbp, kNoTrust, kTaEbp, kFullReveal, kPopulationMean, kTaEbpLearned, kAlwaysNudge,
+  kRandomNudge
 };
 // Their names, labels and the rest are the config's (config/policies.h: the
 // one table of policies); the math knows them by this enum only.
@@ -54,6 +59,9 @@ struct CommittedScheme {
   double nudge = 0.0;      // s emitted when signalling
   double a = 0.0;          // P(nudge | Go)
   double b = 0.0;          // P(nudge | Stop)
+  // random_nudge: the magnitude of each nudge is drawn uniformly on
+  // (0, nudge], independent of the intent (NudgeMagnitude); false: it is `nudge`.
+  bool random_magnitude = false;
   // True when the AV nudges with positive probability in some state: then the
   // AV's motion, standing still included, is a signal (see the top of the file).
   bool Signals() const { return a > 0.0 || b > 0.0; }
@@ -63,6 +71,11 @@ struct CommittedScheme {
 // at the prior (lambda >= p*), which is what a still AV leaves it with.
 CommittedScheme CommitScheme(Policy policy, const AvHvParams& params, double theta_hat,
                              const LikelihoodModel& model);
+
+// The magnitude of one nudge under `scheme`, given a uniform u in [0, 1) from
+// the drawing stream: (1 - u) * nudge (uniform on (0, nudge]) for a random
+// magnitude, `nudge` otherwise (u unused).
+double NudgeMagnitude(const CommittedScheme& scheme, double u);
 
 // The HV's belief p(Go) after seeing the AV move s metres (0: stood still)
 // under `scheme`: eq:pp (HvPosteriorGo in av_hv.h) when the scheme signals, the
@@ -78,6 +91,9 @@ struct PredictedOutcome {
   double av_first_rate = 0.0;   // P(AV crosses before the HV): AV goes and HV drives
                                 // if clear (collisions are not counted)
 };
+// A random magnitude is averaged over its uniform distribution: the HV's DC
+// share is the measure of the magnitudes it reads as DC (exact where the DC set
+// changes at most once per 1/1024 of the range, located by bisection).
 PredictedOutcome PredictOutcome(const CommittedScheme& scheme, const AvHvParams& params,
                                 double theta_true, const LikelihoodModel& hv_model);
 // Convenience: theta_hat defaults to theta_true (ta_ebp) and is forced to 1 for no_trust.
