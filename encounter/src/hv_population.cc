@@ -151,7 +151,12 @@ per::ExperiencePath& HvPopulation::PathFor(double theta_hat, double theta) {
 void HvPopulation::Add(const std::string& hv, double trust) {
   Hv h;
   h.trust0 = trust;
-  if (experience_) h.experience.emplace(experience_->bin_width, experience_->forgetting);
+  if (experience_) {
+    h.experience.emplace(experience_->bin_width, experience_->forgetting);
+    // What the AVs know of it: the public history, counted exactly (the
+    // guarded design assumes the rule of issue 29; the HV may forget).
+    if (guarded_ && experience_->forgetting < 1.0) h.history.emplace(experience_->bin_width, 1.0);
+  }
   if (dynamic_) {
     const double strength = config_.model.trust_dynamics->strength;
     h.state = per::BetaTrust::FromMean(Inside01(trust), strength);
@@ -215,7 +220,7 @@ const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const st
       // its learning path; ta_ebp guarded: the design for what it learned.
       p.theory = PathFor(h.design_trust, h.trust0).At(h.encounters);
       if (guarded_) {
-        const per::SignalExperience& e = *h.experience;
+        const per::SignalExperience& e = h.history ? *h.history : *h.experience;
         p.scheme = per::DesignForExperience(h.scheme, params_, h.design_trust, *model_,
                                             experience_->strength,
                                             [&](double s) { return e.At(s); })
@@ -324,8 +329,9 @@ void HvPopulation::Finish(const std::string& av, const std::string& hv, const Av
     ++h.encounters;
     // It saw what SUMO showed it: the displacement it read, then whether the
     // AV took the right of way.
-    if (h.experience)
-      h.experience->Record(std::clamp(reading.observed, 0.0, model_->SMax()), draw.goes_first);
+    const double level = std::clamp(reading.observed, 0.0, model_->SMax());
+    if (h.experience) h.experience->Record(level, draw.goes_first);
+    if (h.history) h.history->Record(level, draw.goes_first);
     if (h.state) {
       b.quality = rule_.quality.Of(outcome);
       h.state->Update(outcome, rule_);

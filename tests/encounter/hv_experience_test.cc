@@ -122,6 +122,46 @@ TEST(HvExperience, GuardedTaebpNeverLetsANudgeReadAsDr) {
   }
 }
 
+// The guarded design is not told that the HV forgets: it designs from the
+// public history of the AVs' signals and actions, counted exactly (issue 42),
+// while the HV reads with its own forgetting memory. Replayed with both
+// memories, every committed scheme is the exact-count design, and at rho = 0.8
+// it differs from what the HV's own memory would give (else the test proves
+// nothing).
+TEST(HvExperience, GuardedDesignsFromThePublicHistoryNotTheHvsForgettingMemory) {
+  const per::LinearLikelihood model(2.0);
+  const per::AvHvParams params{0.2, 3.0};
+  const per::CommittedScheme paper = per::CommitScheme(Policy::kTaEbp, params, 0.6, model);
+  HvPopulation pop(Config("model: {experience: {design: guarded, forgetting: 0.8}}"), Policy::kTaEbp);
+  pop.Add("hv", 0.6);
+  per::SignalExperience exact(0.1, 1.0), forgetting(0.1, 0.8);
+  std::mt19937_64 rng(3);
+  long differ = 0;
+  for (int i = 0; i < 400; ++i) {
+    const per::CommittedScheme sc = pop.Commit("av", "hv");
+    const auto design = [&](const per::SignalExperience& e) {
+      return per::DesignForExperience(paper, params, 0.6, model, 20.0,
+                                      [&](double s) { return e.At(s); }).scheme;
+    };
+    const per::CommittedScheme want = design(exact), hv_own = design(forgetting);
+    ASSERT_EQ(sc.nudge, want.nudge) << i;
+    ASSERT_EQ(sc.b, want.b) << i;
+    ASSERT_EQ(sc.av_may_go, want.av_may_go) << i;
+    differ += sc.b != hv_own.b || sc.nudge != hv_own.nudge || sc.av_may_go != hv_own.av_may_go;
+    const AvDraw d = DrawAv(sc, 0.2, rng);
+    const double seen = d.nudge_distance > 0 ? d.nudge_distance + 1e-6 : 0.0;
+    const HvReading r = pop.Read("av", "hv", seen);
+    // The HV reads with its forgetting memory.
+    EXPECT_NEAR(r.posterior, per::ExperiencedBelief(sc, params, 0.6, model, seen, forgetting.At(seen), 20.0),
+                1e-12);
+    EncounterRecord rec;
+    pop.Finish("av", "hv", d, r, d.goes_first && !r.drives_if_clear, true, &rec);
+    exact.Record(seen, d.goes_first);
+    forgetting.Record(seen, d.goes_first);
+  }
+  EXPECT_GT(differ, 0);
+}
+
 // random_nudge's magnitudes come from the population's own stream, seeded by
 // scenario.seed: one draw per nudge of a random scheme, none for any other
 // scheme (so no other policy's draws move), uniform on (0, s_max]; the theory

@@ -399,7 +399,56 @@ def learners(plt, sweep, theory, out):
     fig = view.figure("influence_learners.png", view.panels(), 3)
     ctx = sweep.context()
     fig.title = "Learners the AV is not told%s" % ((": " + ctx) if ctx else "")
-    return _save(plt, [fig], out)
+    return _save(plt, [fig, learners_frontier(sweep, ctx)], out)
+
+
+# The collision rate a design may cost and still be called safe (issue 42's
+# acceptance: at most 0.01 per encounter).
+SAFE_COLLISIONS = 0.01
+
+
+def learners_frontier(sweep, ctx):
+    """DC against collisions, one panel per learner (forgetting rho): each
+    policy a point (ta_ebp once per design, by marker; the policies that read
+    no design key once), DC's 95 % interval as its bar, the safe bound
+    dashed. The safe frontier is the highest point left of the bound."""
+    design = "model.experience.design"
+    designs = []
+    for r in sweep.rows:
+        if design in sweep.keys and r[design] not in designs:
+            designs.append(r[design])
+    rhos = sorted({number(r["model.experience.forgetting"]) for r in sweep.rows} - {None},
+                  reverse=True)
+    panels = []
+    for rho in rhos:
+        panel = Panel(title="ρ = %g%s" % (rho, " (exact counts)" if rho == 1 else ""),
+                      xlabel="collisions per encounter", ylabel="DC per encounter",
+                      group="dc", name="dc_rate")
+        panel.add(Mark("vline", [SAFE_COLLISIONS], colour="black", ls=":",
+                       legend="safe: at most %g collisions per encounter" % SAFE_COLLISIONS))
+        seen = set()
+        for r in sweep.rows:
+            if number(r["model.experience.forgetting"]) != rho:
+                continue
+            x, y = number(r.get("collision_rate")), number(r.get("dc_rate"))
+            if x is None or y is None:
+                continue
+            reads_design = r["policy"] == "ta_ebp"
+            if not reads_design and r["policy"] in seen:
+                continue  # the same runs under every design
+            seen.add(r["policy"])
+            variant = designs.index(r[design]) if reads_design and designs else 0
+            panel.add(Mark("points", [x], [y], lo=[number(r.get("dc_rate_lo"))],
+                           hi=[number(r.get("dc_rate_hi"))], policy=r["policy"], variant=variant))
+        panels.append(panel)
+    variants = [("ta_ebp's design: %s" % d, "", style.MARKERS[i % len(style.MARKERS)])
+                for i, d in enumerate(designs)]
+    return Figure("influence_learners_frontier.png", panels,
+                  title="DC against collisions per learner%s" % ((": " + ctx) if ctx else ""),
+                  caption="Each point one policy pooled over the seeds (bars: DC's 95 % interval "
+                          "clustered by HV and run); the safe frontier is the highest point left "
+                          "of the dotted bound.",
+                  ncols=min(4, len(panels)), variants=variants)
 
 
 # name: (the swept keys it covers, applies(sweep, keys), draw(plt, sweep, theory, out) -> [paths])

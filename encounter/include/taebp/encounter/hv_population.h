@@ -111,6 +111,10 @@ class HvPopulation {
     persuasion::PredictedOutcome theory, oracle;
     // model.experience: what this HV learned per signal level.
     std::optional<persuasion::SignalExperience> experience;
+    // The guarded design's view of it when the HV forgets: the public history
+    // of the AVs' signals and actions, counted exactly (the AV is not told
+    // the HV's forgetting; with rho = 1 it is `experience` itself).
+    std::optional<persuasion::SignalExperience> history;
   };
   struct Pending {
     persuasion::CommittedScheme scheme;
