@@ -453,7 +453,7 @@ BeyondRun HvPopulation::Results(double end) {
       const per::CommittedScheme sc = SchemeAt(hat);
       const per::PredictedOutcome o =
           forgets ? per::ExperiencePath(sc, params_, theta, *model_, experience_->strength,
-                                        false, experience_->forgetting)
+                                        false, experience_->forgetting, experience_->bin_width)
                         .At(1000000)
           : guarded_ ? per::PredictOutcome(sc, params_, theta, *model_)
                      : per::LongRunUnderExperience(sc, params_, theta, *model_).outcome;

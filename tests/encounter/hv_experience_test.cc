@@ -203,6 +203,24 @@ TEST(HvExperience, RandomNudgeDrawsItsMagnitudesFromItsOwnStream) {
   a.Finish("av", "hv", Draw(true, 1.9), r, false, true, &rec);
   EXPECT_NEAR(rec.theory_dc, 1.0 - 1.641025641025641 / 2.0, 1e-9);
   EXPECT_NEAR(rec.theory_collision, 0.2 * 1.641025641025641 / 2.0, 1e-9);
+  // The long run. Exact counts: every level learns lambda < p*, DC 0. A
+  // learner that forgets (rho = 0.95) keeps about w / (1 - rho) = 1 reading
+  // per level of 0.1 m, so its intuitive prior (k = 20) keeps nearly the
+  // first encounter's DC 0.179 for ever (the stationary path: 0.170 at t = 150
+  // against simulated learners, persuasion.ExperiencePath.RandomNudge...).
+  const auto long_run = [&](const char* rho) {
+    HvPopulation pop(Config(std::string("model: {experience: {forgetting: ") + rho +
+                            "}}\npolicies: [random_nudge]"),
+                     Policy::kRandomNudge);
+    pop.Add("hv", 0.6);
+    return pop.Results(3600.0);
+  };
+  const BeyondRun exact = long_run("1"), forgets = long_run("0.95");
+  EXPECT_NEAR(exact.long_run_dc, 0.0, 1e-12);
+  EXPECT_NEAR(exact.long_run_collision, 0.2, 1e-12);
+  EXPECT_GT(forgets.long_run_dc, 0.15);
+  EXPECT_LT(forgets.long_run_dc, 1.0 - 1.641025641025641 / 2.0);
+  EXPECT_NEAR(forgets.long_run_collision, 0.2 * (1.0 - forgets.long_run_dc), 1e-12);
 }
 
 }  // namespace
