@@ -412,6 +412,12 @@ bool ExperimentConfig::IsValid(std::string* why) const {
            PolicyOf(PolicyKind::kTaEbpLearned).name + " has nothing to learn");
   if (m.experience) {
     c.Model("model.experience.", ToModel(*m.experience));
+    for (std::size_t i = 0; i < m.experience->strengths.size(); ++i) {
+      const double k = m.experience->strengths[i];
+      if (!(std::isfinite(k) && k > 0))
+        c.Fail("model.experience.strengths[" + std::to_string(i) + "] = " + NumberText(k, 10) +
+               " must be > 0 and finite (an HV's prior strength k)");
+    }
     if (!(m.experience->margin >= 0.0 && m.experience->margin < 1.0))
       c.Fail("model.experience.margin = " + NumberText(m.experience->margin, 10) +
              " is outside [0, 1) (robust: the belief's margin above p*)");

@@ -134,6 +134,7 @@ const std::vector<KeyDoc>& ConfigKeyDocs() {
       {"model.learning.prior.weights", "discrete: their weights (default: equal)", ">= 0, as many as values, sum > 0"},
       {"model.experience", "beyond the paper: HVs who learn, per signal level, how often the AV then went (docs/influence.md)", "not with trust_dynamics, noise, learning, major_road, nor the policies designing for another trust than the HV's own"},
       {"model.experience.strength", "k: the intuitive posterior's weight, in readings: p_E = (k q + g) / (k + n)", "> 0, finite"},
+      {"model.experience.strengths", "HVs of different k: each HV draws one of these, equally likely, by a hash of its id; the designs keep assuming strength (the AV is not told an HV's k); empty: every HV has strength", "each > 0, finite"},
       {"model.experience.bin_width", "one signal level: readings in [j w, (j+1) w) (m)", "> 0, finite"},
       {"model.experience.forgetting", "the learner's weight on its past: every encounter multiplies what it remembered by rho (1 = exact counts)", "in (0, 1]"},
       {"model.experience.design", "TA-EBP: guarded = designed for each HV's experience (b = 0 when a false alarm would break s*); paper = the paper's scheme whatever was learned; robust = s_max with the largest b keeping the belief a margin above p*, without the learner's rule", ""},

@@ -70,6 +70,11 @@ class Describer {
   void Describe(const std::string& key, const std::vector<std::string>& v, bool opt) {
     Add(key, "list of strings", List(v), opt);
   }
+  void Describe(const std::string& key, const std::vector<double>& v, bool opt) {
+    std::vector<std::string> text;
+    for (const double x : v) text.push_back(NumberText(x));
+    Add(key, "list of numbers", List(text), opt);
+  }
   template <typename E, std::enable_if_t<HasEnumNames<E>::value, int> = 0>
   void Describe(const std::string& key, E v, bool opt) {
     Add(key, "one of", EnumName(v), opt, Split(EnumChoices<E>()));

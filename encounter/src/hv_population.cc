@@ -34,6 +34,15 @@ std::uint64_t StreamSeed(std::uint64_t seed, std::uint64_t salt) {
 constexpr std::uint64_t kSaltNoise = 0x6e6f697365;  // "noise"
 constexpr std::uint64_t kSaltProbe = 0x70726f6265;  // "probe"
 constexpr std::uint64_t kSaltMagnitude = 0x6d61676e;  // "magn"
+constexpr std::uint64_t kSaltStrength = 0x6b;  // "k"
+
+// A uniform in [0, 1) from a vehicle id (FNV-1a), the seed and a salt: the
+// same id, seed and salt give the same draw in every policy's run.
+double IdUniform(std::uint64_t seed, const std::string& id, std::uint64_t salt) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const unsigned char c : id) h = (h ^ c) * 0x100000001b3ULL;
+  return static_cast<double>(StreamSeed(seed ^ h, salt) >> 11) * 0x1.0p-53;
+}
 
 
 bool TaebpFamily(Policy p) {
@@ -138,13 +147,12 @@ per::PredictedOutcome HvPopulation::Predict(const per::CommittedScheme& scheme,
   return per::PredictOutcome(scheme, params_, theta, *model_);
 }
 
-per::ExperiencePath& HvPopulation::PathFor(double theta_hat, double theta) {
-  auto& slot = paths_[{theta_hat, theta}];
+per::ExperiencePath& HvPopulation::PathFor(double theta_hat, double theta, double strength) {
+  auto& slot = paths_[{theta_hat, theta, strength}];
   if (!slot)
     slot = std::make_unique<per::ExperiencePath>(SchemeAt(theta_hat), params_, theta, *model_,
-                                                 experience_->strength, guarded_,
-                                                 experience_->forgetting,
-                                                 experience_->bin_width);
+                                                 strength, guarded_, experience_->forgetting,
+                                                 experience_->bin_width, experience_->strength);
   return *slot;
 }
 
@@ -152,6 +160,7 @@ void HvPopulation::Add(const std::string& hv, double trust) {
   Hv h;
   h.trust0 = trust;
   if (experience_) {
+    h.strength = StrengthOf(hv);
     h.experience.emplace(experience_->bin_width, experience_->forgetting);
     // What the AVs know of it: the public history, counted exactly (the
     // guarded design assumes the rule of issue 29; the HV may forget).
@@ -218,7 +227,7 @@ const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const st
     if (experience_) {
       // The expected outcome of this HV's encounter number h.encounters over
       // its learning path; ta_ebp guarded: the design for what it learned.
-      p.theory = PathFor(h.design_trust, h.trust0).At(h.encounters);
+      p.theory = PathFor(h.design_trust, h.trust0, h.strength).At(h.encounters);
       if (guarded_) {
         const per::SignalExperience& e = h.history ? *h.history : *h.experience;
         p.scheme = per::DesignForExperience(h.scheme, params_, h.design_trust, *model_,
@@ -243,6 +252,19 @@ const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const st
   return slot.scheme;
 }
 
+double HvPopulation::StrengthOf(const std::string& hv) const {
+  const std::vector<double>& ks = config_.model.experience->strengths;
+  if (ks.empty()) return experience_->strength;
+  const double u = IdUniform(config_.scenario.seed, hv, kSaltStrength);
+  return ks[std::min(ks.size() - 1, static_cast<std::size_t>(u * static_cast<double>(ks.size())))];
+}
+
+double HvPopulation::Strength(const std::string& hv) const {
+  const auto it = hvs_.find(hv);
+  if (it == hvs_.end()) throw std::logic_error("HvPopulation: HV '" + hv + "' is not in the network");
+  return it->second.strength;
+}
+
 double HvPopulation::Magnitude(const per::CommittedScheme& scheme) {
   return scheme.random_magnitude ? per::NudgeMagnitude(scheme, per::Uniform01(magnitude_rng_))
                                  : scheme.nudge;
@@ -262,8 +284,7 @@ HvReading HvPopulation::Read(const std::string& av, const std::string& hv, doubl
     r.observed = observed;
     p.reading = std::clamp(observed, 0.0, model_->SMax());
     r.posterior = per::ExperiencedBelief(p.scheme, params_, p.trust, *model_, p.reading,
-                                         h->second.experience->At(p.reading),
-                                         experience_->strength);
+                                         h->second.experience->At(p.reading), h->second.strength);
     r.drives_if_clear = per::HvDrivesIfClear(params_, r.posterior);
     return r;
   }
@@ -448,17 +469,24 @@ BeyondRun HvPopulation::Results(double end) {
     out.experience = true;
     double dc = 0, coll = 0;
     const bool forgets = experience_->forgetting < 1.0;
+    // Over the HVs' strengths (equally likely) where the long run depends on k.
+    const std::vector<double> ks = m.experience->strengths.empty()
+                                       ? std::vector<double>{experience_->strength}
+                                       : m.experience->strengths;
     for (const auto& [theta, w] : TrustNodes(m.trust, 64)) {
       const double hat = DesignTrustFor(theta);
       const per::CommittedScheme sc = SchemeAt(hat);
-      const per::PredictedOutcome o =
-          forgets ? per::ExperiencePath(sc, params_, theta, *model_, experience_->strength,
-                                        false, experience_->forgetting, experience_->bin_width)
-                        .At(1000000)
-          : guarded_ ? per::PredictOutcome(sc, params_, theta, *model_)
-                     : per::LongRunUnderExperience(sc, params_, theta, *model_).outcome;
-      dc += w * o.dc_rate;
-      coll += w * o.collision_rate;
+      for (const double k : ks) {
+        const double wk = w / static_cast<double>(ks.size());
+        const per::PredictedOutcome o =
+            forgets ? per::ExperiencePath(sc, params_, theta, *model_, k, false,
+                                          experience_->forgetting, experience_->bin_width)
+                          .At(1000000)
+            : guarded_ ? per::PredictOutcome(sc, params_, theta, *model_)
+                       : per::LongRunUnderExperience(sc, params_, theta, *model_).outcome;
+        dc += wk * o.dc_rate;
+        coll += wk * o.collision_rate;
+      }
     }
     out.long_run_dc = dc;
     out.long_run_collision = coll;

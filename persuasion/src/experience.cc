@@ -241,12 +241,14 @@ double RobustRiskUnderForgetting(const RobustDesign& design, const AvHvParams& p
 
 ExperiencePath::ExperiencePath(const CommittedScheme& scheme, const AvHvParams& params,
                                double theta, const LikelihoodModel& model, double strength,
-                               bool guarded, double forgetting, double bin_width)
+                               bool guarded, double forgetting, double bin_width,
+                               double design_strength)
     : scheme_(scheme),
       params_(params),
       theta_(theta),
       strength_(strength),
       forgetting_(forgetting),
+      design_strength_(design_strength > 0.0 ? design_strength : strength),
       guarded_(guarded),
       model_(&model) {
   params.Validate();
@@ -455,15 +457,17 @@ void ExperiencePath::Step() {
       const SignalCounts c{static_cast<double>(n), static_cast<double>(g)};
       CommittedScheme sc = scheme_;
       const bool dc_now = nudges && DcAt(params_, theta_, q_nudge_, c, strength_);
+      // What the guard predicts, with the k it assumes.
+      const bool dc_designed = nudges && DcAt(params_, theta_, q_nudge_, c, design_strength_);
       bool yield = false;
       if (guarded_ && nudges && sc.av_may_go) {
         // DesignForExperience with these counts at s* and none elsewhere:
         // not persuaded now -> s_max or yield (s_max's level is not tracked;
         // the invariant keeps both unused from n = 0, tested; counted as a
         // yield if they ever happen); else b unless a false alarm breaks it.
-        if (!dc_now) {
+        if (!dc_designed) {
           yield = true;
-        } else if (!FalseAlarmAffordable(params_, theta_, q_nudge_, c, strength_)) {
+        } else if (!FalseAlarmAffordable(params_, theta_, q_nudge_, c, design_strength_)) {
           sc.b = 0.0;
         }
       }

@@ -986,6 +986,8 @@ TEST(ConfigBeyond, BadValuesNameTheKeyAndTheValue) {
        {"unknown key 'model.design'", "did you mean ", "model.experience.design?"}},
       {"model: {margin: 0.1}", {"unknown key 'model.margin'", "did you mean model.experience.margin?"}},
       {"policies: [random_nudges]", {"random_nudges", "random_nudge"}},
+      {"model: {experience: {strengths: [5, -1]}}", {"model.experience.strengths[1]", "-1", "> 0"}},
+      {"model: {experience: {strengths: [5, .inf]}}", {"model.experience.strengths[1]", "inf"}},
   };
   for (const Case& k : cases) {
     SCOPED_TRACE(k.yaml);

@@ -136,5 +136,30 @@ TEST(ExperienceInSumo, TheRobustDesignAgainstAForgettingLearnerIsSafeAndBeatsFul
   EXPECT_LT(r.runs[0].beyond.long_run_collision, 1e-6);
 }
 
+// HVs of different prior strengths (model.experience.strengths: k = 2 or
+// 200, by a hash of each HV's id): each HV's theory is the path for its own
+// k; the guarded design, which assumes k = 20, still never collides (at s*
+// its test is free of k: persuasion.ExperiencePath.GuardedForOneK...).
+TEST(ExperienceInSumo, HvsOfDifferentStrengthsFollowTheirOwnPaths) {
+  const ExperimentResult r = RunExperiment(
+      kInfluence, {"scenario.duration=3600", "scenario.seed=3", "model.experience.strengths=[2, 200]",
+                   "policies=[always_nudge, random_nudge, ta_ebp]"});
+  ASSERT_EQ(r.runs.size(), 3u);
+  for (const PolicyRun& run : r.runs) {
+    double dc = 0, coll = 0;
+    for (const EncounterRecord& e : run.encounters) {
+      dc += e.theory_dc;
+      coll += e.theory_collision;
+    }
+    const double n = static_cast<double>(run.encounters.size());
+    ASSERT_GT(n, 300) << run.policy;
+    EXPECT_TRUE(Inside999(run, "dc_rate", dc / n)) << run.policy << " theory " << dc / n;
+    EXPECT_TRUE(Inside999(run, "collision_rate", coll / n)) << run.policy << " theory " << coll / n;
+  }
+  long collisions = 0;
+  for (const EncounterRecord& e : r.runs[2].encounters) collisions += e.collision;
+  EXPECT_EQ(collisions, 0);
+}
+
 }  // namespace
 }  // namespace taebp

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 #include <string>
 
@@ -160,6 +161,54 @@ TEST(HvExperience, GuardedDesignsFromThePublicHistoryNotTheHvsForgettingMemory) 
     forgetting.Record(seen, d.goes_first);
   }
   EXPECT_GT(differ, 0);
+}
+
+// HVs of different prior strengths (model.experience.strengths): each HV's k
+// is one of the list, by a hash of its id and the seed (the same in every
+// policy's run), every value drawn; each HV reads with its own k.
+TEST(HvExperience, EachHvReadsWithItsOwnStrengthDrawnFromTheList) {
+  const std::string yaml = "model: {experience: {strengths: [2, 200]}}\npolicies: [always_nudge]";
+  HvPopulation pop(Config(yaml), Policy::kAlwaysNudge), again(Config(yaml), Policy::kAlwaysNudge);
+  std::map<double, int> drawn;
+  for (int i = 0; i < 200; ++i) {
+    const std::string id = "hv" + std::to_string(i);
+    pop.Add(id, 0.6);
+    again.Add(id, 0.6);
+    const double k = pop.Strength(id);
+    EXPECT_EQ(k, again.Strength(id)) << id;
+    ++drawn[k];
+  }
+  ASSERT_EQ(drawn.size(), 2u);
+  EXPECT_GT(drawn[2.0], 70);
+  EXPECT_GT(drawn[200.0], 70);
+  // Another seed, another draw for some HV.
+  HvPopulation other(Config(yaml + "\nscenario: {seed: 9}"), Policy::kAlwaysNudge);
+  int moved = 0;
+  for (int i = 0; i < 200; ++i) {
+    const std::string id = "hv" + std::to_string(i);
+    other.Add(id, 0.6);
+    moved += other.Strength(id) != pop.Strength(id);
+  }
+  EXPECT_GT(moved, 50);
+  // The same lesson (five Stops after a nudge read at s_max, q = 1) moves the
+  // k = 2 HV to DR and leaves the k = 200 HV persuaded; each posterior is
+  // eq:pp with its own k.
+  const per::LinearLikelihood model(2.0);
+  const double s = 2.0 - 1e-6;
+  const double q = per::HvPosteriorGo(per::AvHvParams{0.2, 3.0}, 1.0, model, s + 1e-6);
+  for (const double k : {2.0, 200.0}) {
+    std::string id;
+    for (int i = 0; i < 200 && id.empty(); ++i)
+      if (pop.Strength("hv" + std::to_string(i)) == k) id = "hv" + std::to_string(i);
+    for (int j = 0; j < 5; ++j) Play(pop, id, Draw(false, s), s + 1e-6);
+    const HvReading r = Play(pop, id, Draw(false, s), s + 1e-6);
+    EXPECT_NEAR(r.posterior, 0.4 * 0.2 + 0.6 * (k * q) / (k + 5), 1e-12) << k;
+    EXPECT_EQ(r.drives_if_clear, k == 200.0) << k;
+  }
+  // Without the list every HV has `strength`.
+  HvPopulation one(Config("model: {experience: {strength: 7}}\npolicies: [always_nudge]"), Policy::kAlwaysNudge);
+  one.Add("hv", 0.6);
+  EXPECT_EQ(one.Strength("hv"), 7.0);
 }
 
 // random_nudge's magnitudes come from the population's own stream, seeded by

@@ -449,5 +449,58 @@ TEST(ExperiencePath, RandomNudgeSpreadsTheDecayOverLevelsAgainstASimulatedLearne
     EXPECT_NEAR(fsim[i], forgetting.At(at[i]).dc_rate, 0.03) << "t = " << at[i];
 }
 
+// HVs of a k the guarded design does not assume (model.experience.strengths):
+// the path with the design's k apart from the HV's, against simulated HVs
+// whose AV runs DesignForExperience with its own k on the exact counts.
+TEST(ExperiencePath, GuardedForOneKAgainstHvsOfAnotherAgainstASimulation) {
+  const LinearLikelihood model(2.0);
+  const CommittedScheme paper = CommitScheme(Policy::kTaEbp, kPaper, kTheta, model);
+  const double q = HvPosteriorGo(kPaper, 1.0, model, paper.nudge);
+  const std::vector<long> at = {1, 5, 30, 100};
+  std::vector<double> dc_at_100;
+  for (const double k_hv : {2.0, 20.0, 200.0}) {
+    ExperiencePath path(paper, kPaper, kTheta, model, k_hv, /*guarded=*/true, 1.0, 0.0,
+                        /*design_strength=*/20.0);
+    std::mt19937_64 rng(static_cast<unsigned>(k_hv));
+    const int hvs = 20000;
+    std::vector<double> dc(at.size(), 0.0), coll(at.size(), 0.0);
+    for (int hv = 0; hv < hvs; ++hv) {
+      SignalExperience e(0.1);
+      std::size_t next = 0;
+      for (long t = 0; t <= at.back(); ++t) {
+        const ExperiencedDesign d = DesignForExperience(paper, kPaper, kTheta, model, 20.0,
+                                                        [&](double s) { return e.At(s); });
+        const bool go = Uniform01(rng) < kPaper.prior_go;
+        const double u = Uniform01(rng);
+        const bool nudge = d.scheme.av_may_go && d.scheme.nudge > 0 && u < (go ? d.scheme.a : d.scheme.b);
+        const double s = nudge ? d.scheme.nudge : 0.0;
+        const bool hv_dc = nudge && HvDrivesIfClear(kPaper, (1 - kTheta) * kPaper.prior_go +
+                                                               kTheta * ExperiencedPosterior(q, e.At(s), k_hv));
+        if (t == at[next]) {
+          dc[next] += hv_dc;
+          coll[next] += go && d.scheme.av_may_go && !hv_dc;
+          ++next;
+        }
+        e.Record(s, go && d.scheme.av_may_go);
+      }
+    }
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      const PredictedOutcome o = path.At(at[i]);
+      const auto tol = [&](double p) { return 4.0 * std::sqrt(std::max(p * (1 - p), 1e-4) / hvs) + 1e-3; };
+      EXPECT_NEAR(dc[i] / hvs, o.dc_rate, tol(o.dc_rate)) << "k = " << k_hv << ", t = " << at[i];
+      EXPECT_NEAR(coll[i] / hvs, o.collision_rate, tol(o.collision_rate)) << "k = " << k_hv << ", t = " << at[i];
+    }
+    // No collision whatever the HV's k: at s* the intuitive posterior sits on
+    // the HV's threshold (q = pi_c), so the guard's test (k q + g) / (k + n +
+    // 1) >= pi_c is g >= pi_c (n + 1), free of k (docs/influence.md).
+    for (const long t : at) EXPECT_EQ(path.At(t).collision_rate, 0.0) << "k = " << k_hv;
+    dc_at_100.push_back(path.At(100).dc_rate);
+  }
+  // The HV's own decision at s* is free of k for the same reason
+  // ((k q + g) / (k + n) >= pi_c iff g >= pi_c n): the whole path is.
+  EXPECT_NEAR(dc_at_100[0], dc_at_100[2], 1e-9);
+  EXPECT_GT(dc_at_100[0], 0.3);
+}
+
 }  // namespace
 }  // namespace taebp::persuasion

@@ -473,10 +473,15 @@ struct ExperienceConfig {
   double forgetting = 1.0;  // rho in (0, 1]: the learner's weight on its past
   ExperienceDesign design = ExperienceDesign::kGuarded;
   double margin = 0.1;      // robust: the belief's margin above p*, in [0, 1)
+  // HVs of different k: each HV draws one of these, equally likely, by a hash
+  // of its id (the designs keep assuming `strength`); empty: every HV has
+  // `strength`.
+  std::vector<double> strengths;
 
   template <typename Archive>
   void Serialize(Archive* a) {
     a->Visit("strength", &strength);
+    a->Visit("strengths", &strengths);
     a->Visit("bin_width", &bin_width);
     a->Visit("forgetting", &forgetting);
     a->Visit("design", &design);

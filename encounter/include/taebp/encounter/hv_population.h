@@ -34,6 +34,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -63,6 +64,9 @@ class HvPopulation {
   bool Has(const std::string& hv) const { return hvs_.count(hv) > 0; }
   // The trust the HV uses now (its Beta mean under dynamics).
   double Trust(const std::string& hv) const;
+  // model.experience: the HV's prior strength k (one of strengths, by a hash
+  // of its id and scenario.seed; `strength` when they are not given).
+  double Strength(const std::string& hv) const;
 
   // The AV `av` meets `hv`: the scheme it commits to for this encounter
   // (draw the intent and signal from it).
@@ -111,6 +115,7 @@ class HvPopulation {
     persuasion::PredictedOutcome theory, oracle;
     // model.experience: what this HV learned per signal level.
     std::optional<persuasion::SignalExperience> experience;
+    double strength = 0;  // its prior strength k (model.experience.strengths)
     // The guarded design's view of it when the HV forgets: the public history
     // of the AVs' signals and actions, counted exactly (the AV is not told
     // the HV's forgetting; with rho = 1 it is `experience` itself).
@@ -136,9 +141,11 @@ class HvPopulation {
   persuasion::CommittedScheme OracleScheme(double theta) const;
   persuasion::PredictedOutcome Predict(const persuasion::CommittedScheme& scheme,
                                        double theta) const;
-  // model.experience: the expected learning path of an HV of design trust
-  // theta_hat under this policy (one per theta_hat).
-  persuasion::ExperiencePath& PathFor(double theta_hat, double theta);
+  // model.experience: the expected learning path of an HV of trust theta and
+  // prior strength k whose AVs design for theta_hat (one per triple).
+  persuasion::ExperiencePath& PathFor(double theta_hat, double theta, double strength);
+  // model.experience: the prior strength k of HV `hv` (strengths' draw).
+  double StrengthOf(const std::string& hv) const;
   void Design(Hv& h, double theta, Pending* p) const;
 
   const ExperimentConfig config_;  // a copy: callers may pass a temporary
@@ -151,7 +158,7 @@ class HvPopulation {
   bool guarded_ = false;  // ta_ebp designs for each HV's experience
   // ta_ebp commits to DesignRobust (model.experience.design: robust): margin.
   std::optional<double> robust_margin_;
-  std::map<std::pair<double, double>, std::unique_ptr<persuasion::ExperiencePath>> paths_;
+  std::map<std::tuple<double, double, double>, std::unique_ptr<persuasion::ExperiencePath>> paths_;
   std::optional<persuasion::PerceptionNoise> noise_;  // model.noise set
   bool noise_aware_ = false;
   double noise_delta_ = 0.01;

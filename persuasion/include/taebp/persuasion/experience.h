@@ -206,9 +206,11 @@ double RobustRiskUnderForgetting(const RobustDesign& design, const AvHvParams& p
 // approximation above with p_N = w_l and pi = lambda.
 class ExperiencePath {
  public:
+  // design_strength: the k the guarded design assumes (0: the HV's own
+  // `strength`, the AV told the rule); the HV reads with `strength`.
   ExperiencePath(const CommittedScheme& scheme, const AvHvParams& params, double theta,
                  const LikelihoodModel& model, double strength, bool guarded,
-                 double forgetting = 1.0, double bin_width = 0.0);
+                 double forgetting = 1.0, double bin_width = 0.0, double design_strength = 0.0);
   PredictedOutcome At(long t);
   long Computed() const { return static_cast<long>(path_.size()); }
 
@@ -224,7 +226,7 @@ class ExperiencePath {
   CommittedScheme scheme_;
   AvHvParams params_;
   PredictedOutcome Forgetting(long t) const;
-  double theta_, strength_, forgetting_;
+  double theta_, strength_, forgetting_, design_strength_;
   bool guarded_;
   double q_nudge_ = 0, q_max_ = 0, s_max_ = 0;
   bool dc_still_ = false;
