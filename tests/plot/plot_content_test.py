@@ -207,6 +207,42 @@ for ax, metric, paper in ((dc_ax, "DC", 0.375), (coll_ax, "collision", 0.0)):
     styles = {(l.get_linestyle(), l.get_marker()) for l in ax.get_lines() if l.get_gid() == "simulated"}
     check(len(styles) == 2, "noise: the two designs told apart by line style (%s)" % styles)
 
+# ---- learners (issue 42): one column per design against forgetting, and the
+# frontier, DC against collisions, one panel per learner with the safe bound;
+# the policies that read no design key drawn once per learner
+d = os.path.join(work, "learners")
+os.makedirs(d)
+LEARN = ("point", "model.experience.forgetting", "model.experience.design", "policy", "encounters",
+         "collision_rate", "collision_rate_lo", "collision_rate_hi", "dc_rate", "dc_rate_lo",
+         "dc_rate_hi", "theory_collision_rate", "theory_dc_rate")
+rows, point = [], 0
+for rho in ("1", "0.95"):
+    for design, (coll, dc) in (("robust", (0.0, 0.28)), ("guarded", (0.0, 0.35)), ("paper", (0.1, 0.19))):
+        for policy, c, v in (("ta_ebp", coll, dc), ("full_reveal", 0.0, 0.2), ("random_nudge", 0.16, 0.17)):
+            rows.append(dict(zip(LEARN, (point, rho, design, policy, 3000, c, max(0, c - 0.01), c + 0.01,
+                                         v, v - 0.01, v + 0.01, c, v))))
+        point += 1
+write_aggregate(os.path.join(d, "aggregate.csv"), ["model.experience.forgetting", "model.experience.design"], rows)
+with open(os.path.join(d, "sweep.json"), "w") as f:
+    json.dump({"config": {"model": {"prior_go": 0.2, "collision_penalty": 3.0, "trust": 0.6}},
+               "replicates": 2}, f)
+figures.clear()
+assert plot.main([d, "--no-theory-binary"]) == 0
+frontier = figures[-1]
+check(len(figures) >= 2, "learners: the study figure and the frontier (%d figures)" % len(figures))
+panels = [ax for ax in frontier.axes if ax.get_title().startswith("ρ")]
+check(len(panels) == 2, "learners frontier: one panel per learner (%s)" % [a.get_title() for a in panels])
+for ax in panels:
+    check(ax.get_xlabel() == "collisions per encounter" and ax.get_ylabel() == "DC per encounter",
+          "learners frontier: axes named (%s / %s)" % (ax.get_xlabel(), ax.get_ylabel()))
+    pts = [l for l in ax.get_lines() if l.get_gid() == "simulated"]
+    check(len(pts) == 5, "learners frontier %s: ta_ebp per design + 2 policies drawn once (%d)"
+          % (ax.get_title(), len(pts)))
+    bound = [l for l in ax.get_lines() if list(l.get_xdata()) == [0.01, 0.01]]
+    check(len(bound) == 1, "learners frontier %s: the safe bound at 0.01" % ax.get_title())
+check(any("safe" in t for t in texts(frontier)), "learners frontier: the bound in the legend")
+check(any("Random nudge" in t for t in texts(frontier)), "learners frontier: random_nudge labelled")
+
 # ---- network throughput against demand: stalled runs marked, encounters per point,
 # served = offered, the title inside the figure
 d = os.path.join(work, "network_sweep")
