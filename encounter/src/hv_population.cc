@@ -227,7 +227,10 @@ const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const st
     if (experience_) {
       // The expected outcome of this HV's encounter number h.encounters over
       // its learning path; ta_ebp guarded: the design for what it learned.
-      p.theory = PathFor(h.design_trust, h.trust0, h.strength).At(h.encounters);
+      // Not modelled: the guard on exact counts against an HV that forgets
+      // (the theory cells stay empty; docs/influence.md).
+      p.theory = GuardedForgetting() ? Unmodelled()
+                                     : PathFor(h.design_trust, h.trust0, h.strength).At(h.encounters);
       if (guarded_) {
         const per::SignalExperience& e = h.history ? *h.history : *h.experience;
         p.scheme = per::DesignForExperience(h.scheme, params_, h.design_trust, *model_,
@@ -250,6 +253,16 @@ const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const st
   Pending& slot = pending_[{av, hv}];
   slot = std::move(p);
   return slot.scheme;
+}
+
+bool HvPopulation::GuardedForgetting() const {
+  return guarded_ && experience_ && experience_->forgetting < 1.0;
+}
+
+per::PredictedOutcome HvPopulation::Unmodelled() {
+  per::PredictedOutcome o;
+  o.dc_rate = o.collision_rate = o.nudge_rate = o.av_first_rate = kNoValue;
+  return o;
 }
 
 double HvPopulation::StrengthOf(const std::string& hv) const {
@@ -479,7 +492,8 @@ BeyondRun HvPopulation::Results(double end) {
       for (const double k : ks) {
         const double wk = w / static_cast<double>(ks.size());
         const per::PredictedOutcome o =
-            forgets ? per::ExperiencePath(sc, params_, theta, *model_, k, false,
+            GuardedForgetting() ? Unmodelled()
+            : forgets ? per::ExperiencePath(sc, params_, theta, *model_, k, false,
                                           experience_->forgetting, experience_->bin_width)
                           .At(1000000)
             : guarded_ ? per::PredictOutcome(sc, params_, theta, *model_)

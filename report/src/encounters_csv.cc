@@ -66,15 +66,15 @@ const std::vector<EncounterColumn>& BeyondColumns() {
       {"outcome", [](const PolicyRun&, const EncounterRecord& e) { return e.beyond.outcome; }},
       {"quality", [](const PolicyRun&, const EncounterRecord& e) { return Opt(e.beyond.quality); }},
       {"theory_dc", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.theory_dc); }},
+         return Opt(e.theory_dc); }},
       {"theory_collision", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.theory_collision); }},
+         return Opt(e.theory_collision); }},
       {"oracle_dc", [](const PolicyRun&, const EncounterRecord& e) {
          return NumberText(e.beyond.oracle_dc); }},
       {"oracle_collision", [](const PolicyRun&, const EncounterRecord& e) {
          return NumberText(e.beyond.oracle_collision); }},
       {"regret", [](const PolicyRun&, const EncounterRecord& e) {
-         return NumberText(e.beyond.regret); }},
+         return Opt(e.beyond.regret); }},
       {"learn_mode", [](const PolicyRun&, const EncounterRecord& e) { return e.beyond.mode; }},
       {"risk_level", [](const PolicyRun&, const EncounterRecord& e) {
          return Opt(e.beyond.risk_level); }},

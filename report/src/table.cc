@@ -9,6 +9,7 @@
 #include "taebp/config/policies.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iomanip>
 #include <ostream>
@@ -51,6 +52,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       return std::string(buf);
     }
     const RateInterval ci = RunRateInterval(r, metric);
+    if (std::isnan(theory)) return interval(ci) + " th n/a";  // not modelled
     // The theory outside the measured rate's 95% interval: worth a look.
     const bool outside = theory < ci.low || theory > ci.high;
     flagged = flagged || outside;
@@ -174,6 +176,7 @@ void PrintTable(std::ostream& out, const std::vector<PolicyRun>& runs,
       if (!PlaysGame(r.policy) || r.encounters.empty()) return std::string("-");
       double regret = 0;
       for (const EncounterRecord& e : r.encounters) regret += e.beyond.regret;
+      if (std::isnan(regret)) return std::string("n/a (no theory)");
       char buf[64];
       std::snprintf(buf, sizeof buf, "%.4f (total %.1f)", regret / r.encounters.size(), regret);
       return std::string(buf);

@@ -157,10 +157,16 @@ TEST(HvExperience, GuardedDesignsFromThePublicHistoryNotTheHvsForgettingMemory) 
                 1e-12);
     EncounterRecord rec;
     pop.Finish("av", "hv", d, r, d.goes_first && !r.drives_if_clear, true, &rec);
+    // Its theory is not modelled: empty, not the unguarded path's.
+    ASSERT_TRUE(std::isnan(rec.theory_dc)) << i;
+    ASSERT_TRUE(std::isnan(rec.theory_collision)) << i;
     exact.Record(seen, d.goes_first);
     forgetting.Record(seen, d.goes_first);
   }
   EXPECT_GT(differ, 0);
+  const BeyondRun run = pop.Results(3600.0);
+  EXPECT_TRUE(std::isnan(run.long_run_dc));
+  EXPECT_TRUE(std::isnan(run.long_run_collision));
 }
 
 // HVs of different prior strengths (model.experience.strengths): each HV's k

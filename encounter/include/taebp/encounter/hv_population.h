@@ -146,6 +146,10 @@ class HvPopulation {
   persuasion::ExperiencePath& PathFor(double theta_hat, double theta, double strength);
   // model.experience: the prior strength k of HV `hv` (strengths' draw).
   double StrengthOf(const std::string& hv) const;
+  // The guarded design against HVs that forget: no theory (its path would
+  // need the HV's weighted memory beside the exact counts the guard reads).
+  bool GuardedForgetting() const;
+  static persuasion::PredictedOutcome Unmodelled();  // every rate kNoValue
   void Design(Hv& h, double theta, Pending* p) const;
 
   const ExperimentConfig config_;  // a copy: callers may pass a temporary
