@@ -421,10 +421,10 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     if (!(m.experience->margin >= 0.0 && m.experience->margin < 1.0))
       c.Fail("model.experience.margin = " + NumberText(m.experience->margin, 10) +
              " is outside [0, 1) (robust: the belief's margin above p*)");
-    if (m.trust_dynamics || m.noise || m.learning || s.major_road)
-      c.Fail("model.experience is modelled alone: not with model.trust_dynamics, model.noise, "
-             "model.learning or scenario.major_road (their theories assume an HV whose reading "
-             "of a nudge never changes)");
+    if (m.trust_dynamics || m.learning || s.major_road)
+      c.Fail("model.experience is not modelled with model.trust_dynamics, model.learning or "
+             "scenario.major_road (their theories assume an HV whose reading of a nudge never "
+             "changes); with model.noise it runs without a theory");
     for (const std::string& p : policies) {
       const PolicyInfo* info = FindPolicy(p);
       if (info && info->plays_game &&

@@ -132,7 +132,7 @@ const std::vector<KeyDoc>& ConfigKeyDocs() {
       {"model.learning.prior.beta", "beta: β", "> 0"},
       {"model.learning.prior.values", "discrete: the trusts", "each in [0, 1], not empty"},
       {"model.learning.prior.weights", "discrete: their weights (default: equal)", ">= 0, as many as values, sum > 0"},
-      {"model.experience", "beyond the paper: HVs who learn, per signal level, how often the AV then went (docs/influence.md)", "not with trust_dynamics, noise, learning, major_road, nor the policies designing for another trust than the HV's own"},
+      {"model.experience", "beyond the paper: HVs who learn, per signal level, how often the AV then went (docs/influence.md)", "not with trust_dynamics, learning, major_road, nor the policies designing for another trust than the HV's own; with noise: HVs file each reading under the level they perceived, and the run has no theory"},
       {"model.experience.strength", "k: the intuitive posterior's weight, in readings: p_E = (k q + g) / (k + n)", "> 0, finite"},
       {"model.experience.strengths", "HVs of different k: each HV draws one of these, equally likely, by a hash of its id; the designs keep assuming strength (the AV is not told an HV's k); empty: every HV has strength", "each > 0, finite"},
       {"model.experience.bin_width", "one signal level: readings in [j w, (j+1) w) (m)", "> 0, finite"},

@@ -164,7 +164,8 @@ void HvPopulation::Add(const std::string& hv, double trust) {
     h.experience.emplace(experience_->bin_width, experience_->forgetting);
     // What the AVs know of it: the public history, counted exactly (the
     // guarded design assumes the rule of issue 29; the HV may forget).
-    if (guarded_ && experience_->forgetting < 1.0) h.history.emplace(experience_->bin_width, 1.0);
+    if (guarded_ && (experience_->forgetting < 1.0 || noise_))
+      h.history.emplace(experience_->bin_width, 1.0);
   }
   if (dynamic_) {
     const double strength = config_.model.trust_dynamics->strength;
@@ -229,7 +230,7 @@ const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const st
       // its learning path; ta_ebp guarded: the design for what it learned.
       // Not modelled: the guard on exact counts against an HV that forgets
       // (the theory cells stay empty; docs/influence.md).
-      p.theory = GuardedForgetting() ? Unmodelled()
+      p.theory = NoTheory() ? Unmodelled()
                                      : PathFor(h.design_trust, h.trust0, h.strength).At(h.encounters);
       if (guarded_) {
         const per::SignalExperience& e = h.history ? *h.history : *h.experience;
@@ -255,8 +256,8 @@ const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const st
   return slot.scheme;
 }
 
-bool HvPopulation::GuardedForgetting() const {
-  return guarded_ && experience_ && experience_->forgetting < 1.0;
+bool HvPopulation::NoTheory() const {
+  return experience_ && ((guarded_ && experience_->forgetting < 1.0) || noise_);
 }
 
 per::PredictedOutcome HvPopulation::Unmodelled() {
@@ -295,7 +296,9 @@ HvReading HvPopulation::Read(const std::string& av, const std::string& hv, doubl
       throw std::logic_error("HvPopulation: HV '" + hv + "' has no experience to read with");
     HvReading r;
     r.observed = observed;
-    p.reading = std::clamp(observed, 0.0, model_->SMax());
+    // model.noise: what it perceived (one draw of the noise stream).
+    p.reading = noise_ ? per::NoisyReading(*noise_, observed, model_->SMax(), per::Uniform01(noise_rng_))
+                       : std::clamp(observed, 0.0, model_->SMax());
     r.posterior = per::ExperiencedBelief(p.scheme, params_, p.trust, *model_, p.reading,
                                          h->second.experience->At(p.reading), h->second.strength);
     r.drives_if_clear = per::HvDrivesIfClear(params_, r.posterior);
@@ -363,9 +366,11 @@ void HvPopulation::Finish(const std::string& av, const std::string& hv, const Av
     ++h.encounters;
     // It saw what SUMO showed it: the displacement it read, then whether the
     // AV took the right of way.
-    const double level = std::clamp(reading.observed, 0.0, model_->SMax());
-    if (h.experience) h.experience->Record(level, draw.goes_first);
-    if (h.history) h.history->Record(level, draw.goes_first);
+    // The HV files it under the level it perceived (p.reading: SUMO's
+    // displacement, plus its noise under model.noise); the AVs' public
+    // history under the displacement SUMO realised.
+    if (h.experience) h.experience->Record(p.reading, draw.goes_first);
+    if (h.history) h.history->Record(std::clamp(reading.observed, 0.0, model_->SMax()), draw.goes_first);
     if (h.state) {
       b.quality = rule_.quality.Of(outcome);
       h.state->Update(outcome, rule_);
@@ -492,7 +497,7 @@ BeyondRun HvPopulation::Results(double end) {
       for (const double k : ks) {
         const double wk = w / static_cast<double>(ks.size());
         const per::PredictedOutcome o =
-            GuardedForgetting() ? Unmodelled()
+            NoTheory() ? Unmodelled()
             : forgets ? per::ExperiencePath(sc, params_, theta, *model_, k, false,
                                           experience_->forgetting, experience_->bin_width)
                           .At(1000000)

@@ -161,5 +161,47 @@ TEST(ExperienceInSumo, HvsOfDifferentStrengthsFollowTheirOwnPaths) {
   EXPECT_EQ(collisions, 0);
 }
 
+// HVs who read the displacement with noise (model.noise with
+// model.experience, issue 42's noisy learner): each HV files a reading under
+// the level it perceived (hv_reading), every decision replayed from those
+// readings; the runs have no theory (the level is random); the robust design,
+// whose nudge s_max reads above s* even with the noise, still never collides,
+// and the noise reaches the learner (most readings differ from SUMO's).
+TEST(ExperienceInSumo, NoisyLearnersFileWhatTheyPerceivedAndTheRobustDesignHolds) {
+  const ExperimentResult r = RunExperiment(
+      kInfluence, {"scenario.duration=3600", "scenario.seed=3",
+                   "model.noise={kind: gaussian, scale: 0.1, design: paper}",
+                   "model.experience.design=robust", "policies=[ta_ebp, always_nudge]"});
+  ASSERT_EQ(r.runs.size(), 2u);
+  const per::LinearLikelihood model(2.0);
+  const per::AvHvParams params{0.2, 3.0};
+  for (const PolicyRun& run : r.runs) {
+    std::map<std::string, per::SignalExperience> seen;
+    std::vector<EncounterRecord> recs = run.encounters;
+    std::stable_sort(recs.begin(), recs.end(), [](const EncounterRecord& a, const EncounterRecord& b) {
+      return a.decided_at < b.decided_at;
+    });
+    long noisy = 0, collisions = 0;
+    for (const EncounterRecord& e : recs) {
+      per::SignalExperience& x = seen.try_emplace(e.hv, 0.1).first->second;
+      const double reading = e.beyond.reading;
+      ASSERT_GE(reading, 0.0);
+      ASSERT_LE(reading, 2.0);
+      noisy += std::abs(reading - std::clamp(e.observed, 0.0, 2.0)) > 1e-9;
+      const double belief = per::ExperiencedBelief(run.scheme, params, 0.6, model, reading, x.At(reading), 20.0);
+      EXPECT_NEAR(e.posterior, belief, 1e-12) << run.policy << " " << e.hv << " at " << e.time;
+      EXPECT_EQ(e.hv_dc, per::HvDrivesIfClear(params, belief)) << run.policy << " " << e.hv;
+      EXPECT_TRUE(std::isnan(e.theory_dc)) << run.policy;
+      x.Record(reading, e.av_first);
+      collisions += e.collision;
+    }
+    ASSERT_GT(recs.size(), 300u) << run.policy;
+    // About half: a reading clamped at 0 or s_max equals what SUMO showed.
+    EXPECT_GT(noisy, static_cast<long>(recs.size()) / 4) << run.policy;
+    if (run.policy == "ta_ebp") EXPECT_EQ(collisions, 0);
+    else EXPECT_GT(collisions, static_cast<long>(recs.size()) / 10);  // always_nudge: learned
+  }
+}
+
 }  // namespace
 }  // namespace taebp

@@ -13,7 +13,7 @@ def test_policies_is_the_cli_table():
     rows = taebp.policy_table()
     assert rows == cli_json("policies", "--print", "json")
     names = [r["name"] for r in rows]
-    assert len(names) == len(set(names)) == 8
+    assert len(names) == len(set(names)) == 9
     assert [r["name"] for r in rows if not r["plays_game"]] == ["sumo_native"]
     assert [r["name"] for r in rows if r["by_default"]] == ["no_ebp", "no_trust", "ta_ebp"]
     native = rows[names.index("sumo_native")]

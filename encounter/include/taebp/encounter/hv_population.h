@@ -146,9 +146,11 @@ class HvPopulation {
   persuasion::ExperiencePath& PathFor(double theta_hat, double theta, double strength);
   // model.experience: the prior strength k of HV `hv` (strengths' draw).
   double StrengthOf(const std::string& hv) const;
-  // The guarded design against HVs that forget: no theory (its path would
-  // need the HV's weighted memory beside the exact counts the guard reads).
-  bool GuardedForgetting() const;
+  // model.experience without a theory: the guarded design against HVs that
+  // forget (its path would need the HV's weighted memory beside the exact
+  // counts the guard reads), and HVs who read with model.noise (the level a
+  // reading is filed under is random).
+  bool NoTheory() const;
   static persuasion::PredictedOutcome Unmodelled();  // every rate kNoValue
   void Design(Hv& h, double theta, Pending* p) const;
 
