@@ -11,6 +11,7 @@ folders that differ only in their seed)."""
 
 
 import bisect
+import math
 
 from . import style, tidy
 from .common import PlotError, die, number, warn
@@ -681,7 +682,21 @@ def dynamic(plt, runs, out):
 
 
 def _experienced(runs):
-    return any((runs.config(i).get("model", {}) or {}).get("experience") for i in range(len(runs.dirs)))
+    """Runs of HVs who learn, all of one learner (the experience settings but
+    the design, and the noise, the same in every run): influence.png pools
+    them by policy and design. Runs of different learners (a learners sweep)
+    are not pooled: the learners preset draws them point by point."""
+    learners = set()
+    for i in range(len(runs.dirs)):
+        model = runs.config(i).get("model", {}) or {}
+        exp = model.get("experience")
+        if exp:
+            rest = {k: v for k, v in exp.items() if k not in ("design", "margin")}
+            learners.add(repr((sorted(rest.items()), model.get("noise"))))
+    if len(learners) > 1:
+        warn("influence.png not drawn: the runs are of %d different learners (forgetting, "
+             "strengths or noise differ), and pooling them would mix them" % len(learners))
+    return len(learners) == 1
 
 
 def influence(plt, runs, out):
@@ -782,8 +797,11 @@ def influence_data(runs):
                 acc[0] += 1
                 acc[1] += dc
                 acc[2] += coll
-                acc[3] += float(r["theory_dc"])
-                acc[4] += float(r["theory_collision"])
+                # An empty theory cell (a run without a theory: the guarded
+                # design against HVs who forget or read with noise) is NaN:
+                # its mean-field line has a gap there, nothing is invented.
+                acc[3] += _theory(r, "theory_dc")
+                acc[4] += _theory(r, "theory_collision")
                 c = acc[5].setdefault((i, r["hv"]), [0, 0, 0])
                 c[0] += 1
                 c[1] += dc
@@ -798,10 +816,15 @@ def influence_data(runs):
                     t = e["first"].setdefault(k, [0, 0, 0.0])
                     t[0] += 1
                     t[1] += r["hv_action"] == "DC"
-                    t[2] += float(r["theory_dc"])
+                    t[2] += _theory(r, "theory_dc")
     for e in out.values():
         e["bins"] = {k: v for k, v in e["bins"].items() if v[0] > 0}
     return out
+
+
+def _theory(row, column):
+    v = number(row.get(column))
+    return math.nan if v is None else v
 
 
 def influence_table(runs):

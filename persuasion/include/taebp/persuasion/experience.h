@@ -157,7 +157,10 @@ ExperiencedDesign DesignForExperience(const CommittedScheme& paper, const AvHvPa
 // with a belief between the intuitive q(s_max) and a weighted go-frequency
 // whose mean is pi_b; both clear p* + m, so the HV drives recklessly after a
 // nudge only when the frequency's sampling noise falls more than the margin,
-// which RobustRiskUnderForgetting bounds. The tie rule is explicit: m > 0
+// which RobustRiskUnderForgetting bounds in the long run (an HV of small k can
+// still read its first false alarms as DR: ExperiencePath gives that risk per
+// encounter; in SUMO, k = 2 HVs cost 0.0003-0.001 collisions per encounter,
+// docs/influence.md). The tie rule is explicit: m > 0
 // keeps every belief the design relies on m away from p*, so no rounding or
 // nudge overshoot decides it. DC in the long run: lambda / pi_b (against any
 // learner whose beliefs stay persuaded), at most the paper's lambda + (1 -
