@@ -153,3 +153,26 @@ def test_colours_and_labels_come_with_the_package_not_the_program(tmp_path):
     for p in taebp.policy_table():
         assert legend.get(p["label"]) == p["colour"], (p["name"], legend)
 
+
+
+class _Runs:
+    """Stands in for tidy.Runs: the configs of a few run folders."""
+
+    def __init__(self, configs):
+        self.configs = configs
+        self.dirs = ["run%d" % i for i in range(len(configs))]
+
+    def config(self, i):
+        return self.configs[i]
+
+
+def test_influence_pools_runs_of_one_learner_only():
+    from taebp.plot import presets
+    exp = {"strength": 20, "bin_width": 0.1, "forgetting": 1.0, "design": "guarded", "margin": 0.1}
+    one = [{"model": {"experience": dict(exp, design=d)}} for d in ("guarded", "paper", "robust")]
+    assert presets._experienced(_Runs(one))  # designs differ: one learner
+    forgetting = one + [{"model": {"experience": dict(exp, forgetting=0.95)}}]
+    assert not presets._experienced(_Runs(forgetting))  # a learners sweep: not pooled
+    noisy = one + [{"model": {"experience": exp, "noise": {"kind": "gaussian", "scale": 0.1}}}]
+    assert not presets._experienced(_Runs(noisy))
+    assert not presets._experienced(_Runs([{"model": {}}]))  # nobody learns
