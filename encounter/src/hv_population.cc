@@ -6,6 +6,7 @@
 #include "taebp/encounter/design.h"
 #include "taebp/persuasion/number_text.h"
 #include "taebp/persuasion/random.h"
+#include "streams.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,32 +19,9 @@ namespace {
 namespace per = persuasion;
 using per::Policy;
 
-// Seeds of the population's own streams: scenario.seed mixed with a salt per
-// purpose (splitmix64), so the streams are independent of each other and of
-// the controller's encounter stream (std::mt19937_64(seed)).
-std::uint64_t StreamSeed(std::uint64_t seed, std::uint64_t salt) {
-  std::uint64_t x = seed ^ (salt * 0x9E3779B97F4A7C15ULL);
-  for (int i = 0; i < 2; ++i) {
-    x += 0x9E3779B97F4A7C15ULL;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-    x ^= x >> 31;
-  }
-  return x;
-}
-constexpr std::uint64_t kSaltNoise = 0x6e6f697365;  // "noise"
-constexpr std::uint64_t kSaltProbe = 0x70726f6265;  // "probe"
-constexpr std::uint64_t kSaltMagnitude = 0x6d61676e;  // "magn"
-constexpr std::uint64_t kSaltStrength = 0x6b;  // "k"
-
-// A uniform in [0, 1) from a vehicle id (FNV-1a), the seed and a salt: the
-// same id, seed and salt give the same draw in every policy's run.
-double IdUniform(std::uint64_t seed, const std::string& id, std::uint64_t salt) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (const unsigned char c : id) h = (h ^ c) * 0x100000001b3ULL;
-  return static_cast<double>(StreamSeed(seed ^ h, salt) >> 11) * 0x1.0p-53;
-}
-
+using streams::IdUniform;
+using streams::StreamSeed;
+using namespace streams;  // the salts
 
 bool TaebpFamily(Policy p) {
   return p == Policy::kTaEbp || p == Policy::kPopulationMean || p == Policy::kTaEbpLearned;
