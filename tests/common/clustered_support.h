@@ -30,6 +30,14 @@ inline std::vector<ClusterCount> HvClusters(const std::vector<EncounterRecord>& 
   return out;
 }
 
+// Whether p lies in a run's 99.9 % interval of rate metric `rate`, as the
+// outputs compute it (RunRateInterval: clustered by HV, each HV's
+// encounters dependent).
+inline bool InsideRun999(const PolicyRun& run, const char* rate, double p) {
+  const RateInterval ci = RunRateInterval(run, rate, kZ999);
+  return ci.low <= p && p <= ci.high;
+}
+
 inline RateInterval EncounterRate(const std::vector<EncounterRecord>& encounters,
                                   const EncounterHit& hit, double z) {
   return ClusteredRate(HvClusters(encounters, hit), z);

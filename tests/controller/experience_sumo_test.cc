@@ -13,6 +13,7 @@
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/report/report.h"
 #include "taebp/runner/runner.h"
+#include "clustered_support.h"
 
 #include <gtest/gtest.h>
 
@@ -62,13 +63,6 @@ Tally Replay(const PolicyRun& run, double forgetting = 1.0) {
   return t;
 }
 
-// The run's 99.9 % interval of rate metric `rate`, clustered by HV (each HV
-// learns on its own walk: report/clustered.h), holds p.
-bool Inside999(const PolicyRun& run, const char* rate, double p) {
-  const RateInterval ci = RunRateInterval(run, rate, kZ999);
-  return ci.low <= p && p <= ci.high;
-}
-
 TEST(ExperienceInSumo, HvsLearnFromSumosDisplacementAlwaysNudgeIsUnlearnedGuardedTaebpNeverCollides) {
   const ExperimentResult r =
       RunExperiment(kInfluence, {"scenario.duration=3600", "scenario.seed=3",
@@ -82,13 +76,13 @@ TEST(ExperienceInSumo, HvsLearnFromSumosDisplacementAlwaysNudgeIsUnlearnedGuarde
   // is learned as meaning the prior: few DC, collisions near lambda.
   EXPECT_LT(static_cast<double>(nudge.dc) / nudge.n, 0.1);
   EXPECT_GE(nudge.dc, 8);
-  EXPECT_TRUE(Inside999(r.runs[0], "collision_rate", nudge.theory_collisions / nudge.n));
-  EXPECT_TRUE(Inside999(r.runs[0], "dc_rate", nudge.theory_dc / nudge.n));
+  EXPECT_TRUE(test::InsideRun999(r.runs[0], "collision_rate", nudge.theory_collisions / nudge.n));
+  EXPECT_TRUE(test::InsideRun999(r.runs[0], "dc_rate", nudge.theory_dc / nudge.n));
   // Guarded ta_ebp: no nudge is ever read as DR, no collision.
   EXPECT_EQ(ta.dr_after_nudge, 0);
   EXPECT_EQ(ta.collisions, 0);
   EXPECT_EQ(ta.theory_collisions, 0.0);
-  EXPECT_TRUE(Inside999(r.runs[1], "dc_rate", ta.theory_dc / ta.n))
+  EXPECT_TRUE(test::InsideRun999(r.runs[1], "dc_rate", ta.theory_dc / ta.n))
       << ta.dc << "/" << ta.n << " vs " << ta.theory_dc / ta.n;
   EXPECT_GT(static_cast<double>(ta.dc) / ta.n, 0.25);
   EXPECT_NEAR(r.runs[1].beyond.long_run_dc, 0.375, 1e-12);
@@ -103,8 +97,8 @@ TEST(ExperienceInSumo, ThePapersSchemeAgainstALearnerSitsOnTheKnifeEdge) {
   ASSERT_GT(t.n, 300);
   EXPECT_GT(t.dr_after_nudge, t.nudges / 5);  // about half in the long run
   EXPECT_GT(t.collisions, 0);
-  EXPECT_TRUE(Inside999(r.runs[0], "collision_rate", t.theory_collisions / t.n));
-  EXPECT_TRUE(Inside999(r.runs[0], "dc_rate", t.theory_dc / t.n));
+  EXPECT_TRUE(test::InsideRun999(r.runs[0], "collision_rate", t.theory_collisions / t.n));
+  EXPECT_TRUE(test::InsideRun999(r.runs[0], "dc_rate", t.theory_dc / t.n));
   EXPECT_NEAR(r.runs[0].beyond.long_run_collision, 0.1, 1e-12);
 }
 
@@ -130,7 +124,7 @@ TEST(ExperienceInSumo, TheRobustDesignAgainstAForgettingLearnerIsSafeAndBeatsFul
   const double reveal_dc = static_cast<double>(reveal.dc) / reveal.n;
   EXPECT_LE(static_cast<double>(ta.collisions) / ta.n, 0.01);
   EXPECT_GE(ta_dc, reveal_dc + 0.05) << ta_dc << " vs " << reveal_dc;
-  EXPECT_TRUE(Inside999(r.runs[0], "dc_rate", ta.theory_dc / ta.n))
+  EXPECT_TRUE(test::InsideRun999(r.runs[0], "dc_rate", ta.theory_dc / ta.n))
       << ta.dc << "/" << ta.n << " vs " << ta.theory_dc / ta.n;
   EXPECT_NEAR(r.runs[0].beyond.long_run_dc, 0.2 / 0.7, 1e-6);
   EXPECT_LT(r.runs[0].beyond.long_run_collision, 1e-6);
@@ -153,8 +147,8 @@ TEST(ExperienceInSumo, HvsOfDifferentStrengthsFollowTheirOwnPaths) {
     }
     const double n = static_cast<double>(run.encounters.size());
     ASSERT_GT(n, 300) << run.policy;
-    EXPECT_TRUE(Inside999(run, "dc_rate", dc / n)) << run.policy << " theory " << dc / n;
-    EXPECT_TRUE(Inside999(run, "collision_rate", coll / n)) << run.policy << " theory " << coll / n;
+    EXPECT_TRUE(test::InsideRun999(run, "dc_rate", dc / n)) << run.policy << " theory " << dc / n;
+    EXPECT_TRUE(test::InsideRun999(run, "collision_rate", coll / n)) << run.policy << " theory " << coll / n;
   }
   long collisions = 0;
   for (const EncounterRecord& e : r.runs[2].encounters) collisions += e.collision;

@@ -13,6 +13,7 @@
 #include "taebp/report/clustered.h"
 #include "taebp/report/report.h"
 #include "taebp/runner/runner.h"
+#include "clustered_support.h"
 
 #include <gtest/gtest.h>
 
@@ -33,11 +34,6 @@ std::vector<EncounterRecord> ByTime(std::vector<EncounterRecord> recs) {
   std::stable_sort(recs.begin(), recs.end(),
                    [](const EncounterRecord& a, const EncounterRecord& b) { return a.time < b.time; });
   return recs;
-}
-
-bool Inside999(const PolicyRun& run, const char* rate, double p) {
-  const RateInterval ci = RunRateInterval(run, rate, kZ999);
-  return ci.low <= p && p <= ci.high;
 }
 
 TEST(RandomNudgeInSumo, UniformMagnitudesPersuadeAtOrAboveSStarOnTheSharedEncounterStream) {
@@ -75,8 +71,8 @@ TEST(RandomNudgeInSumo, UniformMagnitudesPersuadeAtOrAboveSStarOnTheSharedEncoun
   EXPECT_NEAR(sum / m, 1.0, 4.0 * 2.0 / std::sqrt(12.0 * m));
   EXPECT_GT(below, 0);
   // The rates against the closed form 1 - s*/s_max and lambda s*/s_max.
-  EXPECT_TRUE(Inside999(rn, "dc_rate", 1.0 - s_star / 2.0)) << dc << "/" << m;
-  EXPECT_TRUE(Inside999(rn, "collision_rate", 0.2 * s_star / 2.0)) << collisions << "/" << m;
+  EXPECT_TRUE(test::InsideRun999(rn, "dc_rate", 1.0 - s_star / 2.0)) << dc << "/" << m;
+  EXPECT_TRUE(test::InsideRun999(rn, "collision_rate", 0.2 * s_star / 2.0)) << collisions << "/" << m;
   EXPECT_NEAR(rn.encounters.front().theory_dc, 1.0 - s_star / 2.0, 1e-8);
   EXPECT_GT(collisions, 0);
 }
@@ -107,8 +103,8 @@ TEST(RandomNudgeInSumo, LearnersUnlearnItLevelByLevelAsTheMeanFieldSays) {
   }
   ASSERT_GT(n, 300);
   // The hour's mean-field rates (each HV's path at its encounter t).
-  EXPECT_TRUE(Inside999(run, "dc_rate", theory_dc / n)) << dc << "/" << n << " vs " << theory_dc / n;
-  EXPECT_TRUE(Inside999(run, "collision_rate", theory_collisions / n));
+  EXPECT_TRUE(test::InsideRun999(run, "dc_rate", theory_dc / n)) << dc << "/" << n << " vs " << theory_dc / n;
+  EXPECT_TRUE(test::InsideRun999(run, "collision_rate", theory_collisions / n));
   // Slower to unlearn than always-nudge (DC < 0.1 within this hour: the
   // experience tests), still below its first encounter's 0.18.
   EXPECT_GT(static_cast<double>(dc) / n, 0.1);
