@@ -19,9 +19,7 @@ namespace {
 namespace per = persuasion;
 using per::Policy;
 
-using streams::IdUniform;
-using streams::StreamSeed;
-using namespace streams;  // the salts
+using namespace streams;  // StreamSeed, IdUniform and the salts
 
 bool TaebpFamily(Policy p) {
   return p == Policy::kTaEbp || p == Policy::kPopulationMean || p == Policy::kTaEbpLearned;
@@ -206,10 +204,9 @@ const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const st
     if (experience_) {
       // The expected outcome of this HV's encounter number h.encounters over
       // its learning path; ta_ebp guarded: the design for what it learned.
-      // Not modelled: the guard on exact counts against an HV that forgets
-      // (the theory cells stay empty; docs/influence.md).
+      // Where it is not modelled (NoTheory) the theory cells stay empty.
       p.theory = NoTheory() ? Unmodelled()
-                                     : PathFor(h.design_trust, h.trust0, h.strength).At(h.encounters);
+                            : PathFor(h.design_trust, h.trust0, h.strength).At(h.encounters);
       if (guarded_) {
         const per::SignalExperience& e = h.history ? *h.history : *h.experience;
         p.scheme = per::DesignForExperience(h.scheme, params_, h.design_trust, *model_,
@@ -465,25 +462,29 @@ BeyondRun HvPopulation::Results(double end) {
     out.experience = true;
     double dc = 0, coll = 0;
     const bool forgets = experience_->forgetting < 1.0;
-    // Over the HVs' strengths (equally likely) where the long run depends on k.
+    // Each HV's k, equally likely (only a forgetting learner's long run needs it).
     const std::vector<double> ks = m.experience->strengths.empty()
                                        ? std::vector<double>{experience_->strength}
                                        : m.experience->strengths;
-    for (const auto& [theta, w] : TrustNodes(m.trust, 64)) {
-      const double hat = DesignTrustFor(theta);
-      const per::CommittedScheme sc = SchemeAt(hat);
-      for (const double k : ks) {
-        const double wk = w / static_cast<double>(ks.size());
-        const per::PredictedOutcome o =
-            NoTheory() ? Unmodelled()
-            : forgets ? per::ExperiencePath(sc, params_, theta, *model_, k, false,
-                                          experience_->forgetting, experience_->bin_width)
-                          .At(1000000)
-            : guarded_ ? per::PredictOutcome(sc, params_, theta, *model_)
-                       : per::LongRunUnderExperience(sc, params_, theta, *model_).outcome;
-        dc += wk * o.dc_rate;
-        coll += wk * o.collision_rate;
+    if (NoTheory()) dc = coll = kNoValue;
+    else for (const auto& [theta, w] : TrustNodes(m.trust, 64)) {
+      const per::CommittedScheme sc = SchemeAt(DesignTrustFor(theta));
+      per::PredictedOutcome o;
+      if (forgets) {
+        for (const double k : ks) {
+          const per::PredictedOutcome at_k =
+              per::ExperiencePath(sc, params_, theta, *model_, k, false, experience_->forgetting,
+                                  experience_->bin_width)
+                  .At(1000000);
+          o.dc_rate += at_k.dc_rate / static_cast<double>(ks.size());
+          o.collision_rate += at_k.collision_rate / static_cast<double>(ks.size());
+        }
+      } else {
+        o = guarded_ ? per::PredictOutcome(sc, params_, theta, *model_)
+                     : per::LongRunUnderExperience(sc, params_, theta, *model_).outcome;
       }
+      dc += w * o.dc_rate;
+      coll += w * o.collision_rate;
     }
     out.long_run_dc = dc;
     out.long_run_collision = coll;
