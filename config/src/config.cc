@@ -1,7 +1,7 @@
 #include "taebp/config/config.h"
 #include "taebp/config/model.h"
 
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 #include "taebp/persuasion/outcomes.h"
 
 #include <boost/math/special_functions/beta.hpp>
@@ -150,9 +150,11 @@ std::string TrustSpec::ToString() const {
   return NumberText(value, 10);
 }
 
-bool ExperimentConfig::IsValid(std::string* why) const {
-  Checker c(why);
-  const ScenarioConfig& s = scenario;
+namespace {
+
+// The vehicles, speeds, the step and the duration of a run.
+void CheckVehiclesAndTime(const ExperimentConfig& e, Checker& c) {
+  const ScenarioConfig& s = e.scenario;
   if (s.avs < 0) c.Fail("scenario.avs = " + std::to_string(s.avs) + " must be >= 0");
   if (s.hvs < 0) c.Fail("scenario.hvs = " + std::to_string(s.hvs) + " must be >= 0");
   for (const auto& [key, n] : {std::pair<const char*, int>{"scenario.avs", s.avs}, {"scenario.hvs", s.hvs}})
@@ -223,6 +225,11 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     c.Fail("scenario.stop_distance = " + NumberText(s.stop_distance, 10) +
            " is inside the junction: on the figure-8 the stop line is 1.6 m from the centre and "
            "SUMO holds vehicles 0.1 m before it, so it must be >= 1.7");
+}
+
+// A network run: its sources, the routes' scale and a generated grid.
+void CheckNetwork(const ExperimentConfig& e, Checker& c) {
+  const ScenarioConfig& s = e.scenario;
   if (s.IsNetwork()) {
     const int sources = !s.network.empty() + !s.sumocfg.empty() + s.grid.has_value();
     if (sources == 0)
@@ -255,6 +262,12 @@ bool ExperimentConfig::IsValid(std::string* why) const {
       c.Fail("scenario.grid.lanes = " + std::to_string(g.lanes) + " must be in 1..4");
     c.Positive("scenario.grid.speed", g.speed);
   }
+}
+
+// SUMO's safety measures (scenario.outputs.ssm), the demand, the junctions, the
+// AV share, the warm-up and which meetings are games.
+void CheckOutputsDemandJunctions(const ExperimentConfig& e, Checker& c) {
+  const ScenarioConfig& s = e.scenario;
   if (s.outputs.ssm) {
     const SsmConfig& ssm = *s.outputs.ssm;
     std::string known;
@@ -322,32 +335,40 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   if (!s.IsNetwork() && s.encounter_pairs == EncounterPairs::kAll)
     c.Fail("scenario.encounter_pairs = 'all' applies to scenario.kind = 'network' only (the "
            "figure-8's crossing is always the game)");
+}
 
+// The major-road game (scenario.major_road).
+void CheckMajorRoad(const ExperimentConfig& e, Checker& c) {
+  const ScenarioConfig& s = e.scenario;
   if (s.major_road) {
     const MajorRoadConfig& mr = *s.major_road;
     if (!s.IsNetwork())
       c.Fail("scenario.major_road applies to scenario.kind = 'network' only (the figure-8's "
              "crossing has no major road)");
     c.NonNegative("scenario.major_road.yield_cost", mr.yield_cost);
-    if (c.ok() && !(mr.yield_cost < model.collision_penalty))
+    if (c.ok() && !(mr.yield_cost < e.model.collision_penalty))
       c.Fail("scenario.major_road.yield_cost = " + NumberText(mr.yield_cost, 10) +
-             " must be below model.collision_penalty = " + NumberText(model.collision_penalty, 10) +
+             " must be below model.collision_penalty = " + NumberText(e.model.collision_penalty, 10) +
              " (else keeping its way is dominant for the HV: no signal can make it yield)");
-    if (c.ok()) c.Model("scenario.major_road: ", ToModel(model, mr));
+    if (c.ok()) c.Model("scenario.major_road: ", ToModel(e.model, mr));
     c.Positive("scenario.major_road.comfortable_decel", mr.comfortable_decel);
     if (c.ok() && mr.comfortable_decel > s.decel)
       c.Fail("scenario.major_road.comfortable_decel = " + NumberText(mr.comfortable_decel, 10) +
              " m/s^2 is above scenario.decel = " + NumberText(s.decel, 10) +
              " (a yielding HV brakes comfortably, within its type's deceleration)");
     c.NonNegative("scenario.major_road.reaction_time", mr.reaction_time);
-    if (BeyondPaper())
+    if (e.BeyondPaper())
       c.Fail("scenario.major_road is modelled in the paper's setting only: not with "
              "model.trust_dynamics, model.noise, model.learning or the policies "
              "beyond it (" + BeyondPaperPolicies() + ") (an HV's trust state and the fleet's beliefs "
              "would be split between two games, and regret would charge r_eff)");
   }
+}
 
-  const ModelConfig& m = model;
+// The model: the game's numbers, trust and the HV's reading.
+void CheckModel(const ExperimentConfig& e, Checker& c) {
+  const ScenarioConfig& s = e.scenario;
+  const ModelConfig& m = e.model;
   // The model's sections are checked by the model itself (config/model.h).
   c.Model("model.", ToModel(m));
   {
@@ -366,7 +387,12 @@ bool ExperimentConfig::IsValid(std::string* why) const {
   }
   if (c.ok() && l.s_max >= s.stop_distance + 50.0)
     c.Fail("model.likelihood.s_max = " + NumberText(l.s_max, 10) + " is not a nudge (> 50 m past the stop)");
+}
 
+// Beyond the paper: dynamic trust, perception noise, learned trust, experience.
+void CheckBeyondThePaper(const ExperimentConfig& e, Checker& c) {
+  const ScenarioConfig& s = e.scenario;
+  const ModelConfig& m = e.model;
   // Beyond the paper: dynamic trust, perception noise, learned trust.
   if (m.trust_dynamics) {
     const TrustDynamicsConfig& d = *m.trust_dynamics;
@@ -394,8 +420,8 @@ bool ExperimentConfig::IsValid(std::string* why) const {
     c.Model("model.", ToModel(n));
     c.Open01("model.noise.delta", n.delta);
   }
-  const bool learned = std::find(policies.begin(), policies.end(),
-                                 PolicyOf(PolicyKind::kTaEbpLearned).name) != policies.end();
+  const bool learned = std::find(e.policies.begin(), e.policies.end(),
+                                 PolicyOf(PolicyKind::kTaEbpLearned).name) != e.policies.end();
   if (m.learning) {
     const LearningConfig& l = *m.learning;
     c.Model("model.learning.", ToModel(l));
@@ -425,7 +451,7 @@ bool ExperimentConfig::IsValid(std::string* why) const {
       c.Fail("model.experience is not modelled with model.trust_dynamics, model.learning or "
              "scenario.major_road (their theories assume an HV whose reading of a nudge never "
              "changes); with model.noise it runs without a theory");
-    for (const std::string& p : policies) {
+    for (const std::string& p : e.policies) {
       const PolicyInfo* info = FindPolicy(p);
       if (info && info->plays_game &&
           (info->game == persuasion::Policy::kPopulationMean ||
@@ -434,50 +460,68 @@ bool ExperimentConfig::IsValid(std::string* why) const {
                PolicyOf(PolicyKind::kTaEbp).name + ")");
     }
   }
-  if (!(std::isfinite(outputs.interval) && outputs.interval >= 1.0))
-    c.Fail("outputs.interval = " + NumberText(outputs.interval, 10) +
+}
+
+// Outputs, policies, pairing and the sweep.
+void CheckPoliciesAndSweep(const ExperimentConfig& e, Checker& c) {
+  const ScenarioConfig& s = e.scenario;
+  if (!(std::isfinite(e.outputs.interval) && e.outputs.interval >= 1.0))
+    c.Fail("outputs.interval = " + NumberText(e.outputs.interval, 10) +
            " must be >= 1 s (the time series are sampled once a simulated second)");
 
-  if (policies.empty())
+  if (e.policies.empty())
     c.Fail("policies is empty: list at least one of " + PolicyChoices());
   std::set<std::string> seen;
-  for (const std::string& p : policies) {
+  for (const std::string& p : e.policies) {
     if (!FindPolicy(p)) c.Fail("policies: '" + p + "' is not one of " + PolicyChoices());
     if (!seen.insert(p).second) c.Fail("policies: '" + p + "' is listed twice");
   }
   if (s.paired) {
-    const bool game = std::any_of(policies.begin(), policies.end(), [](const std::string& p) {
+    const bool game = std::any_of(e.policies.begin(), e.policies.end(), [](const std::string& p) {
       const PolicyInfo* info = FindPolicy(p);
       return info && info->plays_game;
     });
-    if (!policies.empty() && !game)
+    if (!e.policies.empty() && !game)
       c.Fail("scenario.paired needs a policy that plays the game in policies (" +
              std::string(SumoNative().name) +
              " plays none, so there is no game to pair): add one of " + PolicyChoices() +
              " or set scenario.paired: false");
-    if (BeyondPaper())
+    if (e.BeyondPaper())
       c.Fail("scenario.paired is modelled in the paper's setting only: not with "
              "model.trust_dynamics, model.noise, model.learning, model.experience or the "
              "policies beyond it (" + BeyondPaperPolicies() + "): an HV's state there comes from "
              "its earlier games under one policy, so a game's branches would not start from the "
              "same state; remove them or set scenario.paired: false");
   }
-  if (sweep) {
-    if (sweep->replicates < 1)
-      c.Fail("sweep.replicates = " + std::to_string(sweep->replicates) + " must be >= 1");
+  if (e.sweep) {
+    if (e.sweep->replicates < 1)
+      c.Fail("sweep.replicates = " + std::to_string(e.sweep->replicates) + " must be >= 1");
     else if (s.seed <= kMaxSeed &&
-             static_cast<std::uint64_t>(sweep->replicates) - 1 > kMaxSeed - s.seed)
-      c.Fail("sweep.replicates = " + std::to_string(sweep->replicates) + " from scenario.seed = " +
+             static_cast<std::uint64_t>(e.sweep->replicates) - 1 > kMaxSeed - s.seed)
+      c.Fail("sweep.replicates = " + std::to_string(e.sweep->replicates) + " from scenario.seed = " +
              std::to_string(s.seed) + " would reach seed " +
-             std::to_string(s.seed + static_cast<std::uint64_t>(sweep->replicates) - 1) +
+             std::to_string(s.seed + static_cast<std::uint64_t>(e.sweep->replicates) - 1) +
              ", above " + std::to_string(kMaxSeed) + " (SUMO takes its seed modulo 2147483647)");
-    for (const auto& [key, values] : sweep->grid) {
+    for (const auto& [key, values] : e.sweep->grid) {
       if (key.empty()) c.Fail("sweep.grid has an empty key");
       if (key == "sweep" || key.rfind("sweep.", 0) == 0)
         c.Fail("sweep.grid key '" + key + "' cannot sweep the sweep section");
       if (values.empty()) c.Fail("sweep.grid." + key + " has no values");
     }
   }
+}
+
+}  // namespace
+
+bool ExperimentConfig::IsValid(std::string* why) const {
+  Checker c(why);
+  CheckVehiclesAndTime(*this, c);
+  CheckNetwork(*this, c);
+  CheckOutputsDemandJunctions(*this, c);
+  CheckMajorRoad(*this, c);
+  CheckModel(*this, c);
+  CheckBeyondThePaper(*this, c);
+  CheckPoliciesAndSweep(*this, c);
   return c.ok();
 }
 

@@ -1,9 +1,11 @@
-// The one place that uses yaml-cpp: loading (with unknown-key rejection and
-// --set overrides) and saving of every config struct, through the structs'
-// Serialize() schema.
+// The one config loader's reading of keys: every config struct loaded through
+// the structs' Serialize() schema, unknown keys rejected, errors naming the
+// key, the value and where it came from. The loader's other parts: yaml_text.cc
+// (the text), config_overrides.cc (--set), config_json.cc (saving).
 #include "taebp/config/config.h"
 #include "taebp/config/reference.h"
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
+#include "yaml_keys.h"
 #include "yaml_text.h"
 
 #include <nlohmann/json.hpp>
@@ -24,7 +26,14 @@
 
 namespace taebp {
 
+using config_text::ApplyOverride;
+using config_text::Clip;
 using config_text::InvalidUtf8;
+using config_text::IsOptional;
+using config_text::IsVector;
+using config_text::Join;
+using config_text::Origins;
+using config_text::Show;
 using config_text::OneDocument;
 using config_text::ParseFileYaml;
 using config_text::ParseYaml;
@@ -32,81 +41,6 @@ using config_text::ReadFileText;
 
 namespace {
 
-// Where a key came from, for error messages: the file, or the --set that wrote it.
-// A value as an error message shows it: at most 200 characters (a 10 MB
-// value gives a short message, not a 20 MB one).
-// A value as an error message shows it: control characters (a NUL, which
-// would cut the message, a tab, an escape) as \xNN so that they can be seen;
-// clipped past 200 characters.
-std::string Clip(const std::string& raw) {
-  std::string text;
-  for (const char ch : raw) {
-    const unsigned char u = static_cast<unsigned char>(ch);
-    if (u < 0x20 || u == 0x7F) {
-      static const char kHex[] = "0123456789abcdef";
-      text += "\\x";
-      text += kHex[u >> 4];
-      text += kHex[u & 15];
-    } else {
-      text += ch;
-    }
-  }
-  constexpr std::size_t kMax = 200;
-  if (text.size() <= kMax) return text;
-  std::size_t cut = kMax;
-  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // UTF-8
-  return text.substr(0, cut) + "... (" + std::to_string(raw.size()) + " characters)";
-}
-
-class Origins {
- public:
-  Origins(std::string file) : file_(std::move(file)) {}
-  void AddOverride(const std::string& key, const std::string& text) { overrides_[key] = text; }
-  // Forgets the overrides of `key` and below (a key removed from the config).
-  void Forget(const std::string& key) {
-    for (auto it = overrides_.begin(); it != overrides_.end();)
-      it = it->first == key || it->first.rfind(key + ".", 0) == 0 ? overrides_.erase(it) : ++it;
-  }
-  // "--set a.b=1" if `key` or one of its parents was overridden, else the file.
-  std::string For(const std::string& key) const {
-    for (const auto& [k, text] : overrides_) {
-      if (key == k || key.rfind(k + ".", 0) == 0 || k.rfind(key + ".", 0) == 0)
-        return "--set " + Clip(text);
-    }
-    return file_;
-  }
-  std::string Locate(const std::string& key, const YAML::Node& node) const {
-    std::string where = For(key);
-    if (where == file_ && node.IsDefined() && node.Mark().line >= 0)
-      where += ":" + std::to_string(node.Mark().line + 1);
-    return where;
-  }
-
- private:
-  std::string file_;
-  std::map<std::string, std::string> overrides_;
-};
-
-std::string Join(const std::string& prefix, const std::string& name) {
-  return prefix.empty() ? name : prefix + "." + name;
-}
-
-std::string Show(const YAML::Node& node) {
-  if (node.IsScalar()) return "'" + Clip(node.Scalar()) + "'";
-  if (node.IsNull()) return "null";
-  YAML::Emitter out;
-  out << YAML::Flow << node;
-  return Clip(out.c_str());
-}
-
-template <typename T>
-struct IsVector : std::false_type {};
-template <typename T>
-struct IsVector<std::vector<T>> : std::true_type {};
-template <typename T>
-struct IsOptional : std::false_type {};
-template <typename T>
-struct IsOptional<std::optional<T>> : std::true_type {};
 
 class YamlReader {
  public:
@@ -379,250 +313,8 @@ class YamlReader {
   std::set<std::string> visited_;
 };
 
-// Writes a struct through the same schema into nlohmann::ordered_json.
-nlohmann::ordered_json YamlToJson(const YAML::Node& node) {
-  if (node.IsMap()) {
-    nlohmann::ordered_json j = nlohmann::ordered_json::object();
-    for (const auto& kv : node)
-      j[kv.first.IsScalar() ? kv.first.Scalar() : Show(kv.first)] = YamlToJson(kv.second);
-    return j;
-  }
-  if (node.IsSequence()) {
-    nlohmann::ordered_json j = nlohmann::ordered_json::array();
-    for (const auto& v : node) j.push_back(YamlToJson(v));
-    return j;
-  }
-  if (!node.IsDefined() || node.IsNull()) return nullptr;
-  const std::string& s = node.Scalar();
-  long long i = 0;
-  double d = 0;
-  bool b = false;
-  if (node.Tag() != "!" && YAML::convert<long long>::decode(node, i) &&
-      s.find_first_of(".eE") == std::string::npos)
-    return i;
-  if (node.Tag() != "!" && YAML::convert<double>::decode(node, d)) return d;
-  if (node.Tag() != "!" && YAML::convert<bool>::decode(node, b)) return b;
-  return s;
-}
-
-class JsonWriter {
- public:
-  explicit JsonWriter(nlohmann::ordered_json* out) : out_(out) {}
-  template <typename T>
-  void Visit(const char* name, T* value) {
-    Write(&(*out_)[name], *value);
-  }
-
- private:
-  static void Write(nlohmann::ordered_json* j, const TrustSpec& t) {
-    if (t.IsFixed()) {
-      *j = t.value;
-      return;
-    }
-    *j = nlohmann::ordered_json::object();
-    (*j)["dist"] = EnumName(t.dist);
-    if (t.dist == TrustDist::kUniform) {
-      (*j)["low"] = t.low;
-      (*j)["high"] = t.high;
-    } else if (t.dist == TrustDist::kBeta) {
-      (*j)["alpha"] = t.alpha;
-      (*j)["beta"] = t.beta;
-    } else {
-      (*j)["values"] = t.values;
-      if (!t.weights.empty()) (*j)["weights"] = t.weights;
-    }
-  }
-  static void Write(nlohmann::ordered_json* j,
-                    const std::vector<std::pair<std::string, std::vector<std::string>>>& grid) {
-    *j = nlohmann::ordered_json::object();
-    for (const auto& [key, values] : grid) {
-      nlohmann::ordered_json arr = nlohmann::ordered_json::array();
-      for (const std::string& v : values) arr.push_back(YamlToJson(YAML::Load(v)));
-      (*j)[key] = arr;
-    }
-  }
-  template <typename T>
-  static void Write(nlohmann::ordered_json* j, const T& v) {
-    if constexpr (IsOptional<T>::value) {
-      if (v) Write(j, *v); else *j = nullptr;
-    } else if constexpr (IsVector<T>::value) {
-      *j = nlohmann::ordered_json::array();
-      for (const auto& e : v) {
-        nlohmann::ordered_json item;
-        Write(&item, e);
-        j->push_back(item);
-      }
-    } else if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>) {
-      *j = v;
-    } else if constexpr (HasEnumNames<T>::value) {
-      *j = EnumName(v);
-    } else {
-      *j = nlohmann::ordered_json::object();
-      JsonWriter sub(j);
-      const_cast<T&>(v).Serialize(&sub);
-    }
-  }
-  nlohmann::ordered_json* out_;
-};
-
-// A double as YAML text that reads back as the same double and as a number
-// with a fraction (1.0, not 1: a sweep's grid keeps its values' text, so "1"
-// and "1.0" are different grids): the shortest round-trip digits.
-std::string YamlDouble(double v) {
-  if (std::isnan(v)) return ".nan";
-  if (std::isinf(v)) return v > 0 ? ".inf" : "-.inf";
-  std::string s = NumberText(v);
-  if (s.find_first_of(".eE") == std::string::npos) s += ".0";
-  return s;
-}
-
-void EmitJson(YAML::Emitter& out, const nlohmann::ordered_json& j) {
-  if (j.is_object()) {
-    out << YAML::BeginMap;
-    for (auto it = j.begin(); it != j.end(); ++it) {
-      out << YAML::Key << it.key() << YAML::Value;
-      EmitJson(out, it.value());
-    }
-    out << YAML::EndMap;
-  } else if (j.is_array()) {
-    out << YAML::Flow << YAML::BeginSeq;
-    for (const auto& e : j) EmitJson(out, e);
-    out << YAML::EndSeq;
-  } else if (j.is_null()) {
-    out << YAML::Null;
-  } else if (j.is_string()) {
-    out << j.get<std::string>();
-  } else if (j.is_boolean()) {
-    out << j.get<bool>();
-  } else if (j.is_number_unsigned()) {
-    out << j.get<std::uint64_t>();
-  } else if (j.is_number_integer()) {
-    out << j.get<long long>();
-  } else {
-    out << YamlDouble(j.get<double>());
-  }
-}
 
 
-// The key paths of the config sections: nested structs, into which a map
-// VALUE of --set is merged key by key (everything else is replaced).
-class SectionCollector {
- public:
-  SectionCollector(std::set<std::string>* out, std::string prefix)
-      : out_(out), prefix_(std::move(prefix)) {}
-  template <typename T>
-  void Visit(const char* name, T* value) {
-    Collect(Join(prefix_, name), value);
-  }
-
- private:
-  template <typename T>
-  void Collect(const std::string& key, std::optional<T>*) {
-    T inner{};
-    Collect(key, &inner);
-  }
-  template <typename T>
-  void Collect(const std::string& key, T* value) {
-    if constexpr (HasSerialize<T>::value) {
-      out_->insert(key);
-      SectionCollector sub(out_, key);
-      value->Serialize(&sub);
-    }
-  }
-  template <typename T, typename = void>
-  struct HasSerialize : std::false_type {};
-  template <typename T>
-  struct HasSerialize<T, std::void_t<decltype(std::declval<T&>().Serialize(
-                             static_cast<SectionCollector*>(nullptr)))>> : std::true_type {};
-
-  std::set<std::string>* out_;
-  std::string prefix_;
-};
-
-const std::set<std::string>& ExperimentSections() {
-  static const std::set<std::string> sections = [] {
-    std::set<std::string> s;
-    ExperimentConfig c;
-    SectionCollector collector(&s, "");
-    c.Serialize(&collector);
-    return s;
-  }();
-  return sections;
-}
-
-// node[name] = value, except that a map value for a config section that is
-// already a map is merged into it key by key (recursively for sub-sections).
-// `written` gets the key path of every value set.
-void Assign(YAML::Node node, const std::string& name, const std::string& key,
-            const YAML::Node& value, std::vector<std::string>* written) {
-  YAML::Node existing = node[name];
-  if (value.IsMap() && ExperimentSections().count(key) && existing.IsDefined() &&
-      existing.IsMap()) {
-    for (const auto& kv : value) {
-      if (!kv.first.IsScalar()) {  // the loader names it as an unknown key
-        existing[kv.first] = kv.second;
-        written->push_back(key);
-        continue;
-      }
-      const std::string sub = kv.first.Scalar();
-      Assign(existing, sub, key + "." + sub, kv.second, written);
-    }
-    return;
-  }
-  node[name] = value;
-  written->push_back(key);
-}
-
-// Sets root[a][b][c] = value for key "a.b.c", creating maps on the way.
-void SetPath(YAML::Node node, const std::vector<std::string>& parts, std::size_t i,
-             const YAML::Node& value, const std::string& text, std::vector<std::string>* written) {
-  if (!node.IsMap() && !node.IsNull())
-    throw ConfigError("--set " + text + ": " +
-                      (i == 0 ? std::string("the config is not a map of keys")
-                              : "'" + parts[i - 1] + "' is not a map"));
-  if (i + 1 == parts.size()) {
-    std::string key;
-    for (const std::string& p : parts) key = Join(key, p);
-    Assign(node, parts[i], key, value, written);
-    return;
-  }
-  YAML::Node child = node[parts[i]];
-  if (!child.IsDefined() || child.IsNull()) {
-    node[parts[i]] = YAML::Node(YAML::NodeType::Map);
-    child = node[parts[i]];
-  }
-  SetPath(child, parts, i + 1, value, text, written);
-}
-
-void ApplyOverride(YAML::Node& root, const std::string& text, Origins* origins) {
-  if (InvalidUtf8(text) != std::string::npos)
-    throw ConfigError("--set " + text + ": not UTF-8 text");
-  const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw ConfigError("--set " + text + ": expected KEY=VALUE (e.g. scenario.avs=4)");
-  const std::string key = text.substr(0, eq);
-  const std::string value_text = text.substr(eq + 1);
-  std::vector<std::string> parts;
-  std::stringstream ss(key);
-  for (std::string part; std::getline(ss, part, '.');) {
-    if (part.empty()) throw ConfigError("--set " + text + ": empty component in key '" + key + "'");
-    parts.push_back(part);
-  }
-  YAML::Node value;
-  try {
-    value = value_text.empty() ? YAML::Node(YAML::NodeType::Null)
-                               : OneDocument(value_text, "--set " + Clip(text) + ": the value");
-  } catch (const YAML::DeepRecursion& e) {
-    throw ConfigError("--set " + text + ": value is not valid YAML: nested more than " +
-                      std::to_string(e.depth() - 1) + " levels deep");
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError("--set " + text + ": value is not valid YAML: " + e.msg);
-  }
-  if (!root.IsDefined() || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
-  std::vector<std::string> written;
-  SetPath(root, parts, 0, value, text, &written);
-  for (const std::string& k : written) origins->AddOverride(k, text);
-}
 
 template <typename T>
 T ReadRoot(const YAML::Node& root, const Origins& origins, const std::string& origin,
@@ -706,18 +398,6 @@ ExperimentConfig LoadExperimentConfig(const std::string& path,
   return ParseExperimentRoot(ParseFileYaml(path), Origins(path), path, overrides);
 }
 
-std::string ToJson(const ExperimentConfig& config) {
-  nlohmann::ordered_json j = nlohmann::ordered_json::object();
-  JsonWriter w(&j);
-  const_cast<ExperimentConfig&>(config).Serialize(&w);
-  return j.dump();
-}
-
-std::string ToYaml(const ExperimentConfig& config) {
-  YAML::Emitter out;
-  EmitJson(out, nlohmann::ordered_json::parse(ToJson(config)));
-  return std::string(out.c_str()) + "\n";
-}
 
 ProblemConfig LoadProblemConfig(const std::string& path) {
   YAML::Node root = ParseFileYaml(path);
@@ -733,8 +413,5 @@ ProblemConfig ParseProblemConfig(const std::string& yaml_text, const std::string
   return ReadRoot<ProblemConfig>(root, origins, origin, true);
 }
 
-std::string YamlValueAsJson(const std::string& yaml_text) {
-  return YamlToJson(ParseYaml(yaml_text, "value " + yaml_text)).dump();
-}
 
 }  // namespace taebp

@@ -3,7 +3,7 @@
 #include "taebp/config/reference.h"
 
 #include "taebp/config/config.h"
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 
 #include <nlohmann/json.hpp>
 

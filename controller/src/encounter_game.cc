@@ -143,25 +143,7 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
   const Vehicle& h = s_.vehicles[hv];
   const JunctionInfo& info = s_.topo.junctions()[a.junction];
   const auto key = std::make_pair(av, hv);
-  auto it = major_geometry_.find(key);
-  if (it == major_geometry_.end() || it->second.av_movement != av_movement ||
-      it->second.hv_movement != at.movement) {
-    if (major_geometry_.size() > 256) major_geometry_.clear();
-    MajorGeometry g;
-    g.av_movement = av_movement;
-    g.hv_movement = at.movement;
-    const double signal = LargestNudge();
-    g.signal = NudgeSeconds(s_, signal);
-    g.av = Sized(info.movements[av_movement].mover, a);
-    g.line = g.av.entry - a.line_gap;
-    g.av.front = g.line + signal;
-    g.hv = Sized(info.movements[at.movement].mover, h);
-    g.hv.front = 0;
-    g.hv_zone = junction::ZoneOnPath(g.hv, g.av);
-    g.av_zone = junction::ZoneOnPath(g.av, g.hv);
-    it = major_geometry_.insert_or_assign(key, g).first;
-  }
-  const MajorGeometry& g = it->second;
+  const MajorGeometry& g = GeometryOf(av, at, av_movement);
   if (!g.hv_zone.conflict || !g.av_zone.conflict) return {Kind::kNever, 0};
   const double v = at.speed;
   const double front_now = g.hv.entry - at.gap;
@@ -205,14 +187,7 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
   // Nothing ahead of the HV on its way that would make it brake: its
   // movement's internal lanes empty, its exit clear for a while.
   const MovementInfo& hm = info.movements[at.movement];
-  for (const std::string& in : hm.internal)
-    if (s_.sumo.LaneVehicleNumber(in) > 0) return {Kind::kNotYet, 0};
-  if (s_.sumo.LaneVehicleNumber(hm.to_lane) > 0) {
-    const std::vector<std::string> ids = s_.sumo.LaneVehicleIDs(hm.to_lane);
-    if (!ids.empty() && s_.sumo.LanePosition(ids.front()) - s_.sumo.Length(ids.front()) < 30.0 &&
-        s_.sumo.Speed(ids.front()) < v - 0.5)
-      return {Kind::kNotYet, 0};
-  }
+  if (!HvWayClear(hm, v)) return {Kind::kNotYet, 0};
   // The premise at the decision, on the geometry. A merge (the HV's movement
   // ends on the AV's exit lane) is not predictable: SUMO's car following
   // makes the HV brake for the AV ahead of it on the merging lanes whatever
@@ -231,6 +206,48 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
   verdicts_[key] = premise;
   major_.insert(key);
   return {Kind::kGame, g.signal};
+}
+
+// The geometry of a major-road pair for these movements (cached per pair).
+const EncounterGame::MajorGeometry& EncounterGame::GeometryOf(int av, const junction::MajorAt& at,
+                                                              int av_movement) {
+  const Vehicle& a = s_.vehicles[av];
+  const Vehicle& h = s_.vehicles[at.vehicle];
+  const JunctionInfo& info = s_.topo.junctions()[a.junction];
+  const auto key = std::make_pair(av, at.vehicle);
+  auto it = major_geometry_.find(key);
+  if (it == major_geometry_.end() || it->second.av_movement != av_movement ||
+      it->second.hv_movement != at.movement) {
+    if (major_geometry_.size() > 256) major_geometry_.clear();
+    MajorGeometry g;
+    g.av_movement = av_movement;
+    g.hv_movement = at.movement;
+    const double signal = LargestNudge();
+    g.signal = NudgeSeconds(s_, signal);
+    g.av = Sized(info.movements[av_movement].mover, a);
+    g.line = g.av.entry - a.line_gap;
+    g.av.front = g.line + signal;
+    g.hv = Sized(info.movements[at.movement].mover, h);
+    g.hv.front = 0;
+    g.hv_zone = junction::ZoneOnPath(g.hv, g.av);
+    g.av_zone = junction::ZoneOnPath(g.av, g.hv);
+    it = major_geometry_.insert_or_assign(key, g).first;
+  }
+  return it->second;
+}
+
+// Nothing ahead of the major-road HV (at speed v) on its way that would make
+// it brake: its movement's internal lanes empty, its exit clear for a while.
+bool EncounterGame::HvWayClear(const MovementInfo& hm, double v) const {
+  for (const std::string& in : hm.internal)
+    if (s_.sumo.LaneVehicleNumber(in) > 0) return false;
+  if (s_.sumo.LaneVehicleNumber(hm.to_lane) > 0) {
+    const std::vector<std::string> ids = s_.sumo.LaneVehicleIDs(hm.to_lane);
+    if (!ids.empty() && s_.sumo.LanePosition(ids.front()) - s_.sumo.Length(ids.front()) < 30.0 &&
+        s_.sumo.Speed(ids.front()) < v - 0.5)
+      return false;
+  }
+  return true;
 }
 
 Premise EncounterGame::MajorPremiseNow(int av, int hv) const {

@@ -2,14 +2,15 @@
 
 #include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_adapter.h"
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 #include "taebp/rundir/interrupt.h"
 #include "taebp/rundir/synced_file.h"
-#include "taebp/report/exit_codes.h"
+#include "taebp/base/exit_codes.h"
 #include "taebp/report/ssm.h"
 #include "taebp/scenario/ssm_args.h"
 
 #include "sumo_messages.h"
+#include "sumo_run_outputs.h"
 #include "vehicles.h"
 
 #include <pugixml.hpp>
@@ -33,22 +34,14 @@ namespace taebp {
 namespace {
 
 namespace fs = std::filesystem;
+using control::kSsmSumoFile;
+using control::PolicyOutputDir;
+using control::TripinfoPath;
 
 std::string Join(const std::vector<std::string>& items) {
   std::string out;
   for (const std::string& s : items) out += (out.empty() ? "" : ",") + s;
   return out;
-}
-
-std::string TripinfoPath(const Scenario& scenario, const std::string& policy) {
-  return (fs::path(scenario.scratch->path()) / ("tripinfo-" + policy + ".xml")).string();
-}
-
-// SUMO's outputs of one policy (scenario.outputs, and those the user's
-// additional files name) are written into scratch/<policy>/ and end up in
-// the run folder as <policy>/NAME.
-fs::path PolicyOutputDir(const Scenario& scenario, const std::string& policy) {
-  return fs::path(scenario.scratch->path()) / "outputs" / policy;
 }
 
 // Elements of an additional file whose `file` attribute is an output SUMO
@@ -101,35 +94,6 @@ std::string PolicyAdditional(const std::string& path, const fs::path& dir, int i
     throw ConfigError("scenario.additional: cannot write " + copy.string());
   return copy.string();
 }
-
-// SUMO heads its outputs with a comment holding the date and this run's
-// scratch paths: replaced (streaming: an fcd output can be large) so the
-// same config and seed give the same bytes (the provenance is in
-// summary.json).
-constexpr const char* kOwnOutput = "<!-- SUMO's own output; provenance in summary.json -->";
-void StripGeneratedComment(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::string head(1 << 16, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
-  const auto begin = head.find("<!-- generated on");
-  const auto end = begin == std::string::npos ? begin : head.find("-->", begin);
-  if (end == std::string::npos) return;
-  head.replace(begin, end + 3 - begin, kOwnOutput);
-  SyncedWriter writer(file.string(), /*sync=*/false);  // scratch: copied into place synced
-  std::ostream& out = writer.Stream();
-  out << head;
-  std::vector<char> buf(1 << 20);
-  while (in.read(buf.data(), static_cast<std::streamsize>(buf.size())) || in.gcount() > 0)
-    out.write(buf.data(), in.gcount());
-  writer.Commit();
-}
-
-// The file SUMO's SSM device writes, copied to ssm.xml once the policy's
-// simulation is closed: SUMO 1.15 keeps the names of the SSM files it created
-// across simulations in one process and reopens (empties) them when the next
-// one ends, so the policies run before the last would keep an empty file.
-constexpr const char* kSsmSumoFile = ".ssm-sumo.xml";
 
 std::vector<std::string> SumoArgs(const ExperimentConfig& config, const Scenario& scenario,
                                   const std::string& policy) {
@@ -249,69 +213,63 @@ std::optional<persuasion::Policy> PolicyOf(const std::string& name) {
   return ParseGamePolicy(name);
 }
 
-// SUMO's tripinfo records of the vehicles that departed after the warm-up,
-// finished or not. SUMO 1.15 writes a vehicle still in the network at the
-// end with arrival="-1.00" and its duration, timeLoss and waitingTime up to
-// the end (vaporized="end" for some, empty for others: arrival is the
-// marker); a vehicle never inserted has no record.
-// AVs and HVs apart as the controller told them at their departure.
-void ReadTripinfo(const std::string& path, const ScenarioConfig& sc,
-                  const std::function<bool(const std::string&)>& departed_as_av,
-                  NetworkRun* net) {
-  pugi::xml_document doc;
-  if (!doc.load_file(path.c_str())) return;
-  for (pugi::xml_node t : doc.child("tripinfos").children("tripinfo")) {
-    if (t.attribute("depart").as_double() < sc.warmup) continue;
-    ++net->trips;
-    if (t.attribute("arrival").as_double() < 0) ++net->trips_unfinished;
-    net->duration_sum += t.attribute("duration").as_double();
-    const double loss = t.attribute("timeLoss").as_double();
-    const double waiting = t.attribute("waitingTime").as_double();
-    net->time_loss_sum += loss;
-    net->time_loss_max = std::max(net->time_loss_max, loss);
-    net->waiting_time_sum += waiting;
-    if (departed_as_av(t.attribute("id").as_string())) {
-      ++net->trips_av;
-      net->time_loss_sum_av += loss;
-      net->waiting_time_sum_av += waiting;
+using Clock = std::chrono::steady_clock;
+
+// The run's steps: SUMO's, then the controller's, until the end or a stall
+// (scenario.stall_action: error); the time each took is added up.
+PolicyRun Simulate(const ExperimentConfig& config, const std::string& policy,
+                   const RunOptions& options, NetworkController& controller, SumoSimulation& sumo,
+                   Clock::duration* in_sumo, Clock::duration* in_controller) {
+  const long steps = std::lround(config.scenario.duration / config.scenario.step_length);
+  const long minute = std::max(1L, std::lround(60.0 / config.scenario.step_length));
+  const long progress_every = std::max(1L, std::lround(10.0 / config.scenario.step_length));
+  try {
+    for (long k = 0; k < steps; ++k) {
+      ThrowIfInterrupted();  // Ctrl-C, SIGTERM: unwind, scratch removed (interrupt.h)
+      const Clock::time_point t0 = Clock::now();
+      sumo.Step();
+      const Clock::time_point t1 = Clock::now();
+      controller.Step();
+      *in_sumo += t1 - t0;
+      *in_controller += Clock::now() - t1;
+      if (options.every_minute && (k + 1) % minute == 0)
+        options.every_minute(policy, sumo.Time());
+      if (options.progress && ((k + 1) % progress_every == 0 || k + 1 == steps))
+        options.progress({policy, sumo.Time(), config.scenario.duration,
+                          controller.VehiclesNow(), controller.EncountersSoFar()});
     }
+    // A branch of a paired game never gets here but at the run's end.
+    if (controller.InBranch()) controller.EndBranch("ok", "the run ended first");
+    if (options.before_close) options.before_close();
+    return controller.Finish();
+  } catch (const StallError& e) {
+    if (controller.InBranch()) controller.EndBranch("ok", e.what());
+    // scenario.stall_action: error. The run is measured up to the stall
+    // (SUMO's tripinfo with every vehicle still in the network, below);
+    // the runner stops the experiment after this policy.
+    PolicyRun run = controller.Finish();  // every junction stalled by then is in run.stalls
+    run.stall_error = e.what();
+    return run;
   }
 }
 
-// SUMO's SSM conflicts of this policy (scenario.outputs.ssm, report/ssm.h),
-// placed at the controlled junctions by their internal lanes; those of a pair
-// SUMO's collision check found colliding then are that collision, not a
-// conflict (the collisions after the warm-up, CollisionRecord).
-SsmRun ReadSsm(const fs::path& file, const ScenarioConfig& sc, const Scenario& scenario,
-               const std::vector<EncounterRecord>& encounters,
-               const std::vector<CollisionRecord>& collisions) {
-  const SsmConfig& c = *sc.outputs.ssm;
-  SsmRules rules;
-  rules.on = {c.Measures("TTC"), c.Measures("DRAC"), c.Measures("PET")};
-  rules.threshold = {c.thresholds.ttc, c.thresholds.drac, c.thresholds.pet};
-  rules.warmup = sc.warmup;
-  rules.junction_radius = c.junction_radius;
-  std::vector<SsmJunctionArea> areas;
-  for (const ControlledJunction& cj : scenario.junctions) {
-    SsmJunctionArea a{cj.id, {}};
-    if (const net::Junction* j = scenario.topology->FindJunction(cj.id)) {
-      for (const std::string& id : j->int_lanes)
-        if (const net::Lane* lane = scenario.topology->FindLane(id)) {
-          std::vector<std::array<double, 2>> shape;
-          for (const net::Point& p : lane->shape) shape.push_back({p.x, p.y});
-          a.shapes.push_back(std::move(shape));
-        }
-      if (a.shapes.empty()) a.shapes.push_back({{j->pos.x, j->pos.y}});
-    }
-    areas.push_back(std::move(a));
+// SUMO's warnings of the run into `run`; a warning that SUMO changed the
+// demand the route files hold is an error (the run is not the one asked for).
+void TakeWarnings(const control::SumoWarnings& warned, const std::string& policy, PolicyRun* r) {
+  PolicyRun& run = *r;
+  run.sumo_warnings = warned.count;
+  run.sumo_collision_warnings = warned.collisions;
+  run.sumo_warnings_first = warned.first;
+  if (!warned.demand_changed.empty()) {
+    const std::size_t n = warned.demand_changed.size();
+    throw SumoError(
+        "SUMO did not simulate the demand the route files hold (" + std::to_string(n) +
+        (n == 1 ? " warning" : " warnings") + " of policy " + policy + "): " +
+        warned.demand_changed.front() +
+        (n > 1 ? " (and " + std::to_string(n - 1) + " more)" : std::string()) +
+        ". Fix the route files (sort them by departure time: SUMO's tools/route/sort_routes.py; "
+        "give every vehicle a route its edges connect)");
   }
-  std::vector<SsmGame> games;
-  games.reserve(encounters.size());
-  for (const EncounterRecord& e : encounters) games.push_back({e.av, e.hv, e.junction, e.time});
-  std::vector<SsmCollision> collided;
-  collided.reserve(collisions.size());
-  for (const CollisionRecord& c : collisions) collided.push_back({c.collider, c.victim, c.time});
-  return ReadSsmOutput(file.string(), rules, areas, games, collided);
 }
 
 }  // namespace
@@ -342,7 +300,6 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
         e.what(), policy, files, scenario.scratch ? scenario.scratch->path() : ""));
   };
   SumoSimulation& sumo = Sumo();  // the backend selected for this run
-  using Clock = std::chrono::steady_clock;
   const Clock::time_point started = Clock::now();
   Clock::duration in_start{}, in_sumo{}, in_controller{};
   try {
@@ -357,36 +314,7 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
     controller.Start();
     in_start = Clock::now() - started;
     if (options.after_start) options.after_start();
-    const long steps = std::lround(config.scenario.duration / config.scenario.step_length);
-    const long minute = std::max(1L, std::lround(60.0 / config.scenario.step_length));
-    const long progress_every = std::max(1L, std::lround(10.0 / config.scenario.step_length));
-    try {
-      for (long k = 0; k < steps; ++k) {
-        ThrowIfInterrupted();  // Ctrl-C, SIGTERM: unwind, scratch removed (interrupt.h)
-        const Clock::time_point t0 = Clock::now();
-        sumo.Step();
-        const Clock::time_point t1 = Clock::now();
-        controller.Step();
-        in_sumo += t1 - t0;
-        in_controller += Clock::now() - t1;
-        if (options.every_minute && (k + 1) % minute == 0)
-          options.every_minute(policy, sumo.Time());
-        if (options.progress && ((k + 1) % progress_every == 0 || k + 1 == steps))
-          options.progress({policy, sumo.Time(), config.scenario.duration,
-                            controller.VehiclesNow(), controller.EncountersSoFar()});
-      }
-      // A branch of a paired game never gets here but at the run's end.
-      if (controller.InBranch()) controller.EndBranch("ok", "the run ended first");
-      if (options.before_close) options.before_close();
-      run = controller.Finish();
-    } catch (const StallError& e) {
-      if (controller.InBranch()) controller.EndBranch("ok", e.what());
-      // scenario.stall_action: error. The run is measured up to the stall
-      // (SUMO's tripinfo with every vehicle still in the network, below);
-      // the runner stops the experiment after this policy.
-      run = controller.Finish();  // every junction stalled by then is in run.stalls
-      run.stall_error = e.what();
-    }
+    run = Simulate(config, policy, options, controller, sumo, &in_sumo, &in_controller);
   } catch (const SumoError& e) {
     // A branch of a paired game ends here, whatever happened in it.
     if (controller.InBranch()) controller.EndBranch("failed", e.what());
@@ -408,62 +336,11 @@ PolicyRun RunPolicy(const ExperimentConfig& config, const std::string& policy,
   abort_guard.reset();
   const control::SumoWarnings warned = messages->Finish();
   messages.reset();
-  run.sumo_warnings = warned.count;
-  run.sumo_collision_warnings = warned.collisions;
-  run.sumo_warnings_first = warned.first;
-  if (!warned.demand_changed.empty()) {
-    const std::size_t n = warned.demand_changed.size();
-    throw SumoError(
-        "SUMO did not simulate the demand the route files hold (" + std::to_string(n) +
-        (n == 1 ? " warning" : " warnings") + " of policy " + policy + "): " +
-        warned.demand_changed.front() +
-        (n > 1 ? " (and " + std::to_string(n - 1) + " more)" : std::string()) +
-        ". Fix the route files (sort them by departure time: SUMO's tools/route/sort_routes.py; "
-        "give every vehicle a route its edges connect)");
-  }
-  if (scenario.scratch) {
-    // SUMO's outputs of this policy (their files, as SUMO closed them).
-    std::error_code ec;
-    const fs::path dir = PolicyOutputDir(scenario, policy);
-    if (config.scenario.outputs.ssm &&
-        !fs::copy_file(dir / kSsmSumoFile, dir / "ssm.xml", fs::copy_options::overwrite_existing, ec))
-      throw SumoError("SUMO wrote no SSM output for policy " + policy + " (" +
-                      (dir / kSsmSumoFile).string() + ": " + ec.message() + ")");
-    std::vector<std::string> names;
-    for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
-      const std::string name = e.path().filename().string();
-      if (!name.empty() && name[0] != '.' && e.is_regular_file(ec)) names.push_back(name);
-    }
-    std::sort(names.begin(), names.end());
-    for (const std::string& name : names) {
-      StripGeneratedComment(dir / name);
-      run.sumo_output_files.emplace_back(policy + "/" + name, (dir / name).string());
-    }
-    if (config.scenario.outputs.ssm) {
-      run.ssm = ReadSsm(dir / "ssm.xml", config.scenario, scenario, run.encounters, run.collisions);
-      for (std::size_t k = 0; k < run.encounters.size() && k < run.ssm.games.size(); ++k)
-        run.encounters[k].ssm = run.ssm.games[k];
-      run.ssm.device_warnings = warned.ssm;
-    }
-  }
-  if (scenario.scratch && scenario.kind == ScenarioKind::kNetwork) {
-    ReadTripinfo(TripinfoPath(scenario, policy), config.scenario,
-                 [&controller](const std::string& id) { return controller.DepartedAsAv(id); },
-                 &run.network);
-    // SUMO's tripinfo and summary, their dated header replaced as for the
-    // outputs (StripGeneratedComment).
-    auto slurp = [](const fs::path& path) {
-      StripGeneratedComment(path);
-      std::ifstream in(path, std::ios::binary);
-      std::ostringstream text;
-      text << in.rdbuf();
-      return text.str();
-    };
-    if (config.scenario.tripinfo_output) run.sumo_tripinfo_xml = slurp(TripinfoPath(scenario, policy));
-    if (config.scenario.summary_output)
-      run.sumo_summary_xml =
-          slurp(fs::path(scenario.scratch->path()) / ("summary-" + policy + ".xml"));
-  }
+  TakeWarnings(warned, policy, &run);
+  control::ReadSumoOutputs(
+      config, scenario, policy,
+      [&controller](const std::string& id) { return controller.DepartedAsAv(id); }, warned.ssm,
+      &run);
   return run;
 }
 

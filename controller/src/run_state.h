@@ -10,7 +10,7 @@
 #include "taebp/controller/sumo_world.h"
 #include "taebp/encounter/hv_population.h"
 #include "taebp/junction/interception.h"
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 #include "topology.h"
 #include "vehicles.h"
 

@@ -112,6 +112,30 @@ void Observe(RunState& s, JunctionState& j) {
   }
 }
 
+namespace {
+
+// Whether vehicle `cv`, on feeder lane `fl` `offset` m upstream of the
+// approach lane (0: on it), has `edge` (the approach lane's) ahead on its
+// route; `k`: where `edge` is on it.
+bool GoesThrough(const RunState& s, const Vehicle& cv, const net::Lane* fl, double offset,
+                 const std::string& edge, std::size_t* k) {
+  const std::size_t from = static_cast<std::size_t>(std::max(0, cv.route_pos));
+  *k = from;
+  while (*k < cv.route.size() && s.topo.EdgeName(cv.route[*k]) != edge) ++*k;
+  bool through = *k < cv.route.size();
+  // On a node's internal lane upstream: on its way into the feeders
+  // (the lane leads there) when its route goes on through `lane`.
+  const bool connector = fl && !fl->edge.empty() && fl->edge[0] == ':';
+  if (through && offset > 0 && !connector) {  // upstream: its own edge comes before `lane`'s
+    through = false;
+    for (std::size_t q = from; q < *k; ++q)
+      if (fl && s.topo.EdgeName(cv.route[q]) == fl->edge) through = true;
+  }
+  return through;
+}
+
+}  // namespace
+
 void ObserveMajor(RunState& s, JunctionState& j) {
   j.major.clear();
   if (!s.sc.major_road) return;
@@ -154,19 +178,8 @@ void ObserveMajor(RunState& s, JunctionState& j) {
           gap = d;
           break;
         }
-        const Vehicle& cv = s.vehicles[c];
-        const std::size_t from = static_cast<std::size_t>(std::max(0, cv.route_pos));
-        std::size_t k = from;
-        while (k < cv.route.size() && s.topo.EdgeName(cv.route[k]) != l->edge) ++k;
-        bool through = k < cv.route.size();
-        // On a node's internal lane upstream: on its way into the feeders
-        // (the lane leads there) when its route goes on through `lane`.
-        const bool connector = fl && !fl->edge.empty() && fl->edge[0] == ':';
-        if (through && offset > 0 && !connector) {  // upstream: its own edge comes before `lane`'s
-          through = false;
-          for (std::size_t q = from; q < k; ++q)
-            if (fl && s.topo.EdgeName(cv.route[q]) == fl->edge) through = true;
-        }
+        std::size_t k = 0;
+        const bool through = GoesThrough(s, s.vehicles[c], fl, offset, l->edge, &k);
         if (offset > 0 && !through) continue;  // turns off before: not in the way
         blocked = false;
         h = c;

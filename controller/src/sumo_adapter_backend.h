@@ -5,7 +5,7 @@
 #pragma once
 
 #include "taebp/controller/sumo_adapter.h"
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 
 #include <string>
 #include <vector>

@@ -121,6 +121,12 @@ class Topology {
   double vmax() const { return vmax_; }
 
  private:
+  // The parts of the constructor: one junction's movements and SUMO's
+  // conflicts between them; its stop approaches; the lanes that feed a major
+  // movement up to `reach` metres (two-way stops).
+  JunctionInfo MovementsOf(const ControlledJunction& cj, const net::Junction& nj);
+  void AddApproaches(JunctionInfo* junction, int jx);
+  void AddFeeders(MovementInfo* major, double reach) const;
   bool Controlled(const std::string& junction_id) const { return junction_index_.count(junction_id); }
   int ExitFor(const std::string& to_lane);
   junction::Mover MoverFor(MovementInfo* m) const;

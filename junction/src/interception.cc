@@ -70,9 +70,36 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
                                         Environment& env, EncounterModel& model,
                                         const std::vector<MajorAt>& major) {
   std::vector<Command> out;
+  Forget(at_line, &out);
+  // A new meeting only once every vehicle of the encounters before is inside
+  // the junction or out of it: one still at its line (a move not yet begun)
+  // is not at the lines the meeting looks at, nor yet inside where the new
+  // moves' ways are checked.
+  const bool all_inside = std::all_of(leaving_.begin(), leaving_.end(), [](const Active& e) {
+    return e.av_entered && e.hv_entered;
+  });
+  if (!encounter_ && all_inside) Meet(now, at_line, env, model, &out);
+  if (timing_.major_road && spec_.rule == Rule::kTwoWay) {
+    ForgetMajor(at_line, major);
+    if (!encounter_ && all_inside) FormMajor(now, at_line, major, env, model, &out);
+  }
+  if (!encounter_) return out;
+
+  HoldThirds(at_line, &out);
+  if (encounter_->major) {
+    StepMajor(now, env, &out);
+    return out;
+  }
+  if (!encounter_->drawn && !Arrive(now, at_line, model, &out)) return out;
+  StartNudge(env, &out);
+  if (encounter_->sequence) Release(now, env, &out);
+  return out;
+}
+
+void Interception::Forget(const std::vector<AtLine>& at_line, std::vector<Command>* out) {
   // The encounter ended: its held third vehicles go back to SUMO.
   if (!encounter_ && !thirds_.empty()) {
-    for (int v : thirds_) out.push_back({Command::Kind::kHandBack, v});
+    for (int v : thirds_) out->push_back({Command::Kind::kHandBack, v});
     thirds_.clear();
   }
   // Pairs judged not the game are forgotten once either left its line.
@@ -83,103 +110,103 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
     };
     it = here(it->first) && here(it->second) ? std::next(it) : not_game_.erase(it);
   }
+}
 
-  // A new meeting only once every vehicle of the encounters before is inside
-  // the junction or out of it: one still at its line (a move not yet begun)
-  // is not at the lines the meeting looks at, nor yet inside where the new
-  // moves' ways are checked.
-  const bool all_inside = std::all_of(leaving_.begin(), leaving_.end(), [](const Active& e) {
-    return e.av_entered && e.hv_entered;
+void Interception::Meet(double now, const std::vector<AtLine>& at_line, Environment& env,
+                        EncounterModel& model, std::vector<Command>* out) {
+  // Who meets whom: the head first at its line picks its earliest partner.
+  std::vector<const AtLine*> order;
+  for (const AtLine& a : at_line)
+    if (a.movement >= 0 && spec_.movements[a.movement].controlled) order.push_back(&a);
+  std::sort(order.begin(), order.end(), [&](const AtLine* x, const AtLine* y) {
+    if (x->waiting != y->waiting) return x->waiting;
+    if (x->waiting && x->since != y->since) return x->since < y->since;
+    const int ax = spec_.movements[x->movement].approach;
+    const int ay = spec_.movements[y->movement].approach;
+    if (ax != ay) return ax < ay;
+    return x->vehicle < y->vehicle;
   });
-  if (!encounter_ && all_inside) {
-    // Who meets whom: the head first at its line picks its earliest partner.
-    std::vector<const AtLine*> order;
-    for (const AtLine& a : at_line)
-      if (a.movement >= 0 && spec_.movements[a.movement].controlled) order.push_back(&a);
-    std::sort(order.begin(), order.end(), [&](const AtLine* x, const AtLine* y) {
-      if (x->waiting != y->waiting) return x->waiting;
-      if (x->waiting && x->since != y->since) return x->since < y->since;
-      const int ax = spec_.movements[x->movement].approach;
-      const int ay = spec_.movements[y->movement].approach;
-      if (ax != ay) return ax < ay;
-      return x->vehicle < y->vehicle;
-    });
-    for (std::size_t i = 0; i < order.size() && !encounter_ && order[i]->waiting; ++i) {
-      for (std::size_t k = 0; k < order.size(); ++k) {
-        const AtLine& a = *order[i];
-        const AtLine& b = *order[k];
-        if (a.kind == b.kind || !spec_.Conflict(a.movement, b.movement)) continue;
-        const AtLine& av = a.kind == VehicleKind::kAV ? a : b;
-        const AtLine& hv = a.kind == VehicleKind::kAV ? b : a;
-        if (not_game_.count({av.vehicle, hv.vehicle})) continue;
-        // Keep clear: a head whose exit cannot take it does not enter under
-        // SUMO's rules either; it meets nobody until there is room.
-        if (!env.ExitHasRoom(av.movement, av.vehicle) || !env.ExitHasRoom(hv.movement, hv.vehicle))
-          continue;
-        if (!model.Game(av.vehicle, hv.vehicle, av.movement, hv.movement)) {
-          not_game_.insert({av.vehicle, hv.vehicle});
-          ++non_game_;
-          continue;
-        }
-        Form(now, av, hv, &out);
-        break;
+  for (std::size_t i = 0; i < order.size() && !encounter_ && order[i]->waiting; ++i) {
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const AtLine& a = *order[i];
+      const AtLine& b = *order[k];
+      if (a.kind == b.kind || !spec_.Conflict(a.movement, b.movement)) continue;
+      const AtLine& av = a.kind == VehicleKind::kAV ? a : b;
+      const AtLine& hv = a.kind == VehicleKind::kAV ? b : a;
+      if (not_game_.count({av.vehicle, hv.vehicle})) continue;
+      // Keep clear: a head whose exit cannot take it does not enter under
+      // SUMO's rules either; it meets nobody until there is room.
+      if (!env.ExitHasRoom(av.movement, av.vehicle) || !env.ExitHasRoom(hv.movement, hv.vehicle))
+        continue;
+      if (!model.Game(av.vehicle, hv.vehicle, av.movement, hv.movement)) {
+        not_game_.insert({av.vehicle, hv.vehicle});
+        ++non_game_;
+        continue;
       }
+      Form(now, av, hv, out);
+      break;
     }
   }
-  if (timing_.major_road && spec_.rule == Rule::kTwoWay) {
-    // Pairs judged never the game are forgotten once the AV has left its
-    // line or the HV is no longer approaching.
-    for (auto it = major_never_.begin(); it != major_never_.end();) {
-      const bool av_here = std::any_of(at_line.begin(), at_line.end(), [&](const AtLine& a) {
-        return a.vehicle == it->first;
-      });
-      const bool hv_here = std::any_of(major.begin(), major.end(), [&](const MajorAt& m) {
-        return m.vehicle == it->second;
-      });
-      it = av_here && hv_here ? std::next(it) : major_never_.erase(it);
-    }
-    if (!encounter_ && all_inside) FormMajor(now, at_line, major, env, model, &out);
-  }
-  if (!encounter_) return out;
+}
 
-  Active& e = *encounter_;
+void Interception::ForgetMajor(const std::vector<AtLine>& at_line,
+                               const std::vector<MajorAt>& major) {
+  // Pairs judged never the game are forgotten once the AV has left its
+  // line or the HV is no longer approaching.
+  for (auto it = major_never_.begin(); it != major_never_.end();) {
+    const bool av_here = std::any_of(at_line.begin(), at_line.end(), [&](const AtLine& a) {
+      return a.vehicle == it->first;
+    });
+    const bool hv_here = std::any_of(major.begin(), major.end(), [&](const MajorAt& m) {
+      return m.vehicle == it->second;
+    });
+    it = av_here && hv_here ? std::next(it) : major_never_.erase(it);
+  }
+}
+
+void Interception::HoldThirds(const std::vector<AtLine>& at_line, std::vector<Command>* out) {
+  const Active& e = *encounter_;
   // Third vehicles at the line on conflicting movements wait for the encounter.
   for (const AtLine& a : at_line) {
     if (a.vehicle == e.out.av || a.vehicle == e.out.hv || a.movement < 0) continue;
     if (std::find(thirds_.begin(), thirds_.end(), a.vehicle) != thirds_.end()) continue;
     if (!a.waiting || !ConflictsWithEncounter(a.movement)) continue;
     thirds_.push_back(a.vehicle);
-    out.push_back({Command::Kind::kHold, a.vehicle});
+    out->push_back({Command::Kind::kHold, a.vehicle});
   }
-  if (e.major) {
-    StepMajor(now, env, &out);
-    return out;
-  }
+}
+
+bool Interception::Arrive(double now, const std::vector<AtLine>& at_line, EncounterModel& model,
+                          std::vector<Command>* out) {
+  Active& e = *encounter_;
   // The arriving partner: held once at its line; gone or too late, the
   // meeting ends.
-  if (!e.drawn) {
-    for (bool av : {true, false}) {
-      bool& held = av ? e.av_held : e.hv_held;
-      if (held) continue;
-      const int who = av ? e.out.av : e.out.hv;
-      const auto it = std::find_if(at_line.begin(), at_line.end(),
-                                   [&](const AtLine& a) { return a.vehicle == who; });
-      if (it != at_line.end() && it->waiting) {
-        held = true;
-        out.push_back({Command::Kind::kHold, who});
-      } else if (it == at_line.end() || now - e.out.time > kArrivalLimit) {
-        ++abandoned_;
-        for (int v : {e.out.av, e.out.hv})
-          if (v != who) out.push_back({Command::Kind::kHandBack, v});
-        encounter_.reset();
-        return out;
-      }
+  for (bool av : {true, false}) {
+    bool& held = av ? e.av_held : e.hv_held;
+    if (held) continue;
+    const int who = av ? e.out.av : e.out.hv;
+    const auto it = std::find_if(at_line.begin(), at_line.end(),
+                                 [&](const AtLine& a) { return a.vehicle == who; });
+    if (it != at_line.end() && it->waiting) {
+      held = true;
+      out->push_back({Command::Kind::kHold, who});
+    } else if (it == at_line.end() || now - e.out.time > kArrivalLimit) {
+      ++abandoned_;
+      for (int v : {e.out.av, e.out.hv})
+        if (v != who) out->push_back({Command::Kind::kHandBack, v});
+      encounter_.reset();
+      return false;
     }
-    if (!e.av_held || !e.hv_held) return out;  // still arriving
-    e.drawn = true;
-    e.out.time = now;
-    e.out.draw = model.Draw(e.out.av, e.out.hv);
   }
+  if (!e.av_held || !e.hv_held) return false;  // still arriving
+  e.drawn = true;
+  e.out.time = now;
+  e.out.draw = model.Draw(e.out.av, e.out.hv);
+  return true;
+}
+
+void Interception::StartNudge(Environment& env, std::vector<Command>* out) {
+  Active& e = *encounter_;
   // The nudge, once nobody inside the junction can touch the AV on its way
   // and, at a two-way stop, the major road is clear on both movements for
   // the critical gap: SUMO makes every vehicle that reaches the AV nudged
@@ -193,94 +220,105 @@ std::vector<Command> Interception::Step(double now, const std::vector<AtLine>& a
     e.nudge_started = true;
     Command c{Command::Kind::kStartNudge, e.out.av};
     c.distance = e.out.draw.nudge_distance;
-    out.push_back(c);
+    out->push_back(c);
   }
-  // After the HV decided: the releases as the paper orders them. A move of
-  // the game (the AV that goes, the HV that drives recklessly, a careful one
-  // while the other still stands in the junction or at its line, yielding)
-  // goes with SUMO's right of way off once nobody inside the junction can
-  // touch it on its way; a careful one whose partner is on its way is handed
-  // back to SUMO's rules.
-  if (e.sequence) {
-    const bool av_goes = e.out.draw.goes_first;
-    const bool hv_dc = e.out.reading.drives_if_clear;
-    // Its nudge took the still AV's front past its line (read while it stands).
-    const bool av_past = !e.av_released && env.PastLine(e.out.av);
-    // SUMO's once released: a careful move after its partner from its line
-    // (the still AV after the HV, the HV driving if clear after the AV).
-    // SUMO's rules decide when it enters (its own gap acceptance and keep
-    // clear). A still AV that its nudge took past its line has passed its
-    // link, where SUMO no longer makes it yield: the controller checks for it.
-    const bool av_sumos = !e.av_released && !av_goes && !av_past;
-    const bool hv_sumos = !e.hv_released && av_goes && hv_dc;
-    // The others: room at the exit (not the reckless HV: EncounterSequence)
-    // and, at a two-way stop, a gap in the major road; and the way.
-    auto may = [&](int movement, int vehicle) {
-      return env.ExitHasRoom(movement, vehicle) &&
-             (spec_.rule == Rule::kAllWay || env.MajorClear(movement));
-    };
-    bool av_may = e.av_released || av_sumos || may(e.out.av_movement, e.out.av);
-    const bool hv_may = e.hv_released || hv_sumos || may(e.out.hv_movement, e.out.hv);
-    const bool av_way = e.av_released || av_sumos ||
-                        env.WayClear(e.out.av, e.out.hv);
-    const bool hv_way = e.hv_released || hv_sumos || env.WayClear(e.out.hv, e.out.av);
-    // A standoff: the AV stands nudged inside the junction and vehicles SUMO
-    // stopped there for it block a move of the game: those free to go may
-    // pass it.
-    if (av_past && (!av_way || !hv_way)) {
-      std::vector<int> blockers;
-      if (!av_way) blockers = env.Unblockable(e.out.av, e.out.hv);
-      if (!hv_way)
-        for (int b : env.Unblockable(e.out.hv, e.out.av))
-          if (std::find(blockers.begin(), blockers.end(), b) == blockers.end()) blockers.push_back(b);
-      for (int b : blockers) out.push_back({Command::Kind::kUnblock, b});
-      // They go first: a move of the game released in the same step would
-      // meet them on its way (at a two-way stop MajorClear took them for
-      // vehicles SUMO holds for the AV: issue 30, the left turn at C3).
-      if (!blockers.empty()) return out;
-    }
-    // The AV goes and the HV drives recklessly: the game's premise is that
-    // both start together, so each waits with the other for both ways and,
-    // at a two-way stop, the major road on both movements.
-    const bool together = av_goes && !hv_dc && !e.av_released && !e.hv_released;
-    if (together) {
-      if (spec_.rule == Rule::kTwoWay) av_may = av_may && env.MajorClear(e.out.hv_movement);
-      if (!av_may || !av_way || !hv_way) return out;
-    }
-    // The HV drives recklessly while the AV waits: reckless toward the AV
-    // alone. At a two-way stop it waits for the major road's gap like every
-    // other move (released with SUMO's right of way off, it would enter in
-    // front of the major road's traffic: issue 30). The AV waits for it.
-    const bool reckless_alone = !av_goes && !hv_dc && !e.hv_released;
-    if (reckless_alone && spec_.rule == Rule::kTwoWay && !env.MajorClear(e.out.hv_movement))
-      return out;
-    // The AV follows the HV once the HV is inside the junction (SUMO makes
-    // it yield at the crossing point), unless its nudge took it past its own
-    // line: once the HV has passed its way or left.
-    const bool hv_ahead =
-        e.hv_cleared || (e.hv_entered && (!av_past || env.Passed(e.out.hv, e.out.av)));
-    for (const auto& rel :
-         e.sequence->Update(now, e.av_entered, hv_ahead, av_may, hv_may, av_way, hv_way)) {
-      // A careful move after its partner (released, inside the junction) is
-      // SUMO's; before it (the partner still standing), the game's.
-      const bool partner_released = rel.av ? e.hv_released : e.av_released;
-      (rel.av ? e.av_released : e.hv_released) = true;
-      const bool game = rel.reckless || (rel.av && av_goes) || !partner_released;
-      if (!game) (rel.av ? e.av_handed_back : e.hv_handed_back) = true;
-      Command c{game ? Command::Kind::kRelease : Command::Kind::kHandBack,
-                rel.av ? e.out.av : e.out.hv};
-      c.in_encounter = true;
-      c.partner = rel.av ? e.out.hv : e.out.av;
-      out.push_back(c);
-      last_activity_ = now;
-    }
-    // Both on their way: the game holds nobody any more; the junction is
-    // SUMO's again (third vehicles are handed back next step, and SUMO's own
-    // logic makes them yield to the two), the two are watched until they
-    // have left it (collisions, the record).
-    if (e.av_released && e.hv_released) Hand();
+}
+
+// After the HV decided: the releases as the paper orders them. A move of
+// the game (the AV that goes, the HV that drives recklessly, a careful one
+// while the other still stands in the junction or at its line, yielding)
+// goes with SUMO's right of way off once nobody inside the junction can
+// touch it on its way; a careful one whose partner is on its way is handed
+// back to SUMO's rules.
+void Interception::Release(double now, Environment& env, std::vector<Command>* out) {
+  Active& e = *encounter_;
+  const bool av_goes = e.out.draw.goes_first;
+  const bool hv_dc = e.out.reading.drives_if_clear;
+  // Its nudge took the still AV's front past its line (read while it stands).
+  const bool av_past = !e.av_released && env.PastLine(e.out.av);
+  Ways w = WaysOf(env, av_past);
+  // A standoff: the AV stands nudged inside the junction and vehicles SUMO
+  // stopped there for it block a move of the game: those free to go may
+  // pass it. They go first: a move of the game released in the same step
+  // would meet them on its way (at a two-way stop MajorClear took them for
+  // vehicles SUMO holds for the AV: issue 30, the left turn at C3).
+  if (av_past && (!w.av_way || !w.hv_way) && Unblock(env, w, out)) return;
+  // The AV goes and the HV drives recklessly: the game's premise is that
+  // both start together, so each waits with the other for both ways and,
+  // at a two-way stop, the major road on both movements.
+  const bool together = av_goes && !hv_dc && !e.av_released && !e.hv_released;
+  if (together) {
+    if (spec_.rule == Rule::kTwoWay) w.av_may = w.av_may && env.MajorClear(e.out.hv_movement);
+    if (!w.av_may || !w.av_way || !w.hv_way) return;
   }
-  return out;
+  // The HV drives recklessly while the AV waits: reckless toward the AV
+  // alone. At a two-way stop it waits for the major road's gap like every
+  // other move (released with SUMO's right of way off, it would enter in
+  // front of the major road's traffic: issue 30). The AV waits for it.
+  const bool reckless_alone = !av_goes && !hv_dc && !e.hv_released;
+  if (reckless_alone && spec_.rule == Rule::kTwoWay && !env.MajorClear(e.out.hv_movement))
+    return;
+  // The AV follows the HV once the HV is inside the junction (SUMO makes
+  // it yield at the crossing point), unless its nudge took it past its own
+  // line: once the HV has passed its way or left.
+  const bool hv_ahead =
+      e.hv_cleared || (e.hv_entered && (!av_past || env.Passed(e.out.hv, e.out.av)));
+  for (const auto& rel : e.sequence->Update(now, e.av_entered, hv_ahead, w.av_may, w.hv_may,
+                                            w.av_way, w.hv_way)) {
+    // A careful move after its partner (released, inside the junction) is
+    // SUMO's; before it (the partner still standing), the game's.
+    const bool partner_released = rel.av ? e.hv_released : e.av_released;
+    (rel.av ? e.av_released : e.hv_released) = true;
+    const bool game = rel.reckless || (rel.av && av_goes) || !partner_released;
+    if (!game) (rel.av ? e.av_handed_back : e.hv_handed_back) = true;
+    Command c{game ? Command::Kind::kRelease : Command::Kind::kHandBack,
+              rel.av ? e.out.av : e.out.hv};
+    c.in_encounter = true;
+    c.partner = rel.av ? e.out.hv : e.out.av;
+    out->push_back(c);
+    last_activity_ = now;
+  }
+  // Both on their way: the game holds nobody any more; the junction is
+  // SUMO's again (third vehicles are handed back next step, and SUMO's own
+  // logic makes them yield to the two), the two are watched until they
+  // have left it (collisions, the record).
+  if (e.av_released && e.hv_released) Hand();
+}
+
+Interception::Ways Interception::WaysOf(Environment& env, bool av_past) const {
+  const Active& e = *encounter_;
+  const bool av_goes = e.out.draw.goes_first;
+  const bool hv_dc = e.out.reading.drives_if_clear;
+  // SUMO's once released: a careful move after its partner from its line
+  // (the still AV after the HV, the HV driving if clear after the AV).
+  // SUMO's rules decide when it enters (its own gap acceptance and keep
+  // clear). A still AV that its nudge took past its line has passed its
+  // link, where SUMO no longer makes it yield: the controller checks for it.
+  const bool av_sumos = !e.av_released && !av_goes && !av_past;
+  const bool hv_sumos = !e.hv_released && av_goes && hv_dc;
+  // The others: room at the exit (not the reckless HV: EncounterSequence)
+  // and, at a two-way stop, a gap in the major road; and the way.
+  auto may = [&](int movement, int vehicle) {
+    return env.ExitHasRoom(movement, vehicle) &&
+           (spec_.rule == Rule::kAllWay || env.MajorClear(movement));
+  };
+  Ways w;
+  w.av_may = e.av_released || av_sumos || may(e.out.av_movement, e.out.av);
+  w.hv_may = e.hv_released || hv_sumos || may(e.out.hv_movement, e.out.hv);
+  w.av_way = e.av_released || av_sumos || env.WayClear(e.out.av, e.out.hv);
+  w.hv_way = e.hv_released || hv_sumos || env.WayClear(e.out.hv, e.out.av);
+  return w;
+}
+
+bool Interception::Unblock(Environment& env, const Ways& w, std::vector<Command>* out) {
+  const Active& e = *encounter_;
+  std::vector<int> blockers;
+  if (!w.av_way) blockers = env.Unblockable(e.out.av, e.out.hv);
+  if (!w.hv_way)
+    for (int b : env.Unblockable(e.out.hv, e.out.av))
+      if (std::find(blockers.begin(), blockers.end(), b) == blockers.end()) blockers.push_back(b);
+  for (int b : blockers) out->push_back({Command::Kind::kUnblock, b});
+  return !blockers.empty();
 }
 
 void Interception::Hand() {

@@ -418,14 +418,13 @@ PredictedOutcome ExperiencePath::Forgetting(long t) const {
   return o;
 }
 
-void ExperiencePath::Step() {
-  const double lambda = params_.prior_go;
-  const bool nudges = Nudges(scheme_);
-  const std::size_t rows = dist_.size();
-  std::vector<std::vector<double>> next(rows + 1);
-  std::vector<long> next_lo(rows + 1, 0);
-  // The range of g each new row can hold: its own (no reading) and the row
-  // below's shifted by 0 or 1 (a nudge reading, Stop or Go).
+namespace {
+
+// The range of g each new row can hold: its own (no reading) and the row
+// below's shifted by 0 or 1 (a nudge reading, Stop or Go): rows of zeros.
+void RowRanges(const std::vector<std::vector<double>>& dist, const std::vector<long>& lo_of,
+               std::vector<std::vector<double>>* next, std::vector<long>* next_lo) {
+  const std::size_t rows = dist.size();
   for (std::size_t n = 0; n <= rows; ++n) {
     long lo = 0, hi = -1;
     bool any = false;
@@ -435,15 +434,50 @@ void ExperiencePath::Step() {
       hi = any ? std::max(hi, h) : h;
       any = true;
     };
-    if (n < rows && !dist_[n].empty())
-      take(lo_[n], lo_[n] + static_cast<long>(dist_[n].size()) - 1);
-    if (n > 0 && !dist_[n - 1].empty())
-      take(lo_[n - 1], lo_[n - 1] + static_cast<long>(dist_[n - 1].size()));
+    if (n < rows && !dist[n].empty())
+      take(lo_of[n], lo_of[n] + static_cast<long>(dist[n].size()) - 1);
+    if (n > 0 && !dist[n - 1].empty())
+      take(lo_of[n - 1], lo_of[n - 1] + static_cast<long>(dist[n - 1].size()));
     if (any) {
-      next_lo[n] = lo;
-      next[n].assign(static_cast<std::size_t>(hi - lo + 1), 0.0);
+      (*next_lo)[n] = lo;
+      (*next)[n].assign(static_cast<std::size_t>(hi - lo + 1), 0.0);
     }
   }
+}
+
+// Drops the negligible tails of each row (and empty rows at the end).
+void DropTails(std::vector<std::vector<double>>* rows, std::vector<long>* rows_lo) {
+  std::vector<std::vector<double>>& next = *rows;
+  std::vector<long>& next_lo = *rows_lo;
+  constexpr double kDrop = 1e-15;
+  for (std::size_t n = 0; n < next.size(); ++n) {
+    std::vector<double>& row = next[n];
+    std::size_t first = 0, last = row.size();
+    while (first < last && row[first] < kDrop) ++first;
+    while (last > first && row[last - 1] < kDrop) --last;
+    if (first == last) {
+      row.clear();
+      continue;
+    }
+    next_lo[n] += static_cast<long>(first);
+    row = std::vector<double>(row.begin() + static_cast<long>(first),
+                              row.begin() + static_cast<long>(last));
+  }
+  while (!next.empty() && next.back().empty()) {
+    next.pop_back();
+    next_lo.pop_back();
+  }
+}
+
+}  // namespace
+
+void ExperiencePath::Step() {
+  const double lambda = params_.prior_go;
+  const bool nudges = Nudges(scheme_);
+  const std::size_t rows = dist_.size();
+  std::vector<std::vector<double>> next(rows + 1);
+  std::vector<long> next_lo(rows + 1, 0);
+  RowRanges(dist_, lo_, &next, &next_lo);
   auto add = [&](std::size_t n, long g, double p) {
     next[n][static_cast<std::size_t>(g - next_lo[n])] += p;
   };
@@ -494,25 +528,7 @@ void ExperiencePath::Step() {
       add(n, g, p * (go_still + stop_still));
     }
   }
-  // Drop the negligible tails of each row.
-  constexpr double kDrop = 1e-15;
-  for (std::size_t n = 0; n < next.size(); ++n) {
-    std::vector<double>& row = next[n];
-    std::size_t first = 0, last = row.size();
-    while (first < last && row[first] < kDrop) ++first;
-    while (last > first && row[last - 1] < kDrop) --last;
-    if (first == last) {
-      row.clear();
-      continue;
-    }
-    next_lo[n] += static_cast<long>(first);
-    row = std::vector<double>(row.begin() + static_cast<long>(first),
-                              row.begin() + static_cast<long>(last));
-  }
-  while (!next.empty() && next.back().empty()) {
-    next.pop_back();
-    next_lo.pop_back();
-  }
+  DropTails(&next, &next_lo);
   dist_ = std::move(next);
   lo_ = std::move(next_lo);
   path_.push_back(o);

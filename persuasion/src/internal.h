@@ -1,7 +1,7 @@
 // Private helpers shared by the persuasion sources (not installed, not public).
 #pragma once
 
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 #include "taebp/persuasion/persuasion.h"
 
 #include <cmath>

@@ -282,11 +282,10 @@ void SolveWithGlpk(void* arg) {
 
 }  // namespace
 
-LpResult SolveTrustAwarePersuasion(const Game& game, double theta, const LpOptions& options) {
-  game.Validate();
-  internal::CheckTrust(theta);
-  const int n = static_cast<int>(game.prior.size());
-  const int m = static_cast<int>(game.actions.size());
+namespace {
+
+// The LP's size against its limits (lp.h): an InvalidArgument naming both.
+void CheckLpSize(int n, int m) {
   const double variables = static_cast<double>(n) * m;
   const double entries = variables * (m - 1);
   if (variables > kMaxLpVariables || entries > kMaxLpObedienceEntries) {
@@ -299,18 +298,20 @@ LpResult SolveTrustAwarePersuasion(const Game& game, double theta, const LpOptio
         std::to_string(static_cast<long long>(kMaxLpObedienceEntries)) +
         " (200 x 200 takes ~15 s, see lp.h)");
   }
-  const Eigen::VectorXd& p0 = game.prior;
-  const double u_scale = PowerOfTwoScale(game.receiver_utility);
-  const double v_scale = PowerOfTwoScale(game.sender_utility);
-  const Eigen::MatrixXd u = game.receiver_utility / u_scale;  // |u| < 2
-  const Eigen::MatrixXd v = game.sender_utility / v_scale;    // |v| < 2
+}
 
-  // Obedience coefficients, differences first:
-  //   c(a, a')(w) = p0(w) [(1 - theta) dU0(a, a') + theta D(w; a, a')],
-  //   dU0(a, a') = sum_w p0(w) D(w; a, a'),
-  // each row divided by its largest |c| (c >= 0 does not change; GLPK's
-  // tolerances then mean the same thing on every row).
-  std::vector<double> obedience(static_cast<std::size_t>(m) * m * n, 0.0);
+// Obedience coefficients, differences first:
+//   c(a, a')(w) = p0(w) [(1 - theta) dU0(a, a') + theta D(w; a, a')],
+//   dU0(a, a') = sum_w p0(w) D(w; a, a'),
+// each row divided by its largest |c| (c >= 0 does not change; GLPK's
+// tolerances then mean the same thing on every row). Returns "" or what is
+// wrong with a row.
+std::string ObedienceRows(const Game& game, const Eigen::MatrixXd& u, double theta,
+                          std::vector<double>* obedience) {
+  const Eigen::VectorXd& p0 = game.prior;
+  const int n = static_cast<int>(p0.size());
+  const int m = static_cast<int>(u.cols());
+  obedience->assign(static_cast<std::size_t>(m) * m * n, 0.0);
   std::vector<double> d(n);
   for (int a = 0; a < m; ++a) {
     for (int alt = 0; alt < m; ++alt) {
@@ -320,7 +321,7 @@ LpResult SolveTrustAwarePersuasion(const Game& game, double theta, const LpOptio
         d[w] = u(w, a) - u(w, alt);
         du0 += p0(w) * d[w];
       }
-      double* c = obedience.data() + (static_cast<std::size_t>(a) * m + alt) * n;
+      double* c = obedience->data() + (static_cast<std::size_t>(a) * m + alt) * n;
       double top = 0.0;
       for (int w = 0; w < n; ++w) {
         c[w] = p0(w) * ((1.0 - theta) * du0 + theta * d[w]);
@@ -331,14 +332,112 @@ LpResult SolveTrustAwarePersuasion(const Game& game, double theta, const LpOptio
       }
       // Finite by construction (|u| < 2, p0 <= 1); GLPK would take inf or NaN
       // without complaint and answer nonsense, so never hand it one.
-      if (!std::isfinite(top)) {
-        LpResult result;
-        result.status = LpResult::Status::kSolverError;
-        result.message = "obedience row (" + game.actions[a] + ", " + game.actions[alt] +
-                         ") has a non-finite coefficient";
-        return result;
-      }
+      if (!std::isfinite(top))
+        return "obedience row (" + game.actions[a] + ", " + game.actions[alt] +
+               ") has a non-finite coefficient";
     }
+  }
+  return "";
+}
+
+// GLPK's outcome as the result's status; false unless optimal.
+bool SolverStatus(const LpWork& work, LpResult* result) {
+  result->simplex_rounds = work.rounds;
+  result->obedience_rows = work.rows;
+  if (work.code == GLP_ENOPFS || work.status == GLP_NOFEAS) {
+    result->status = LpResult::Status::kInfeasible;
+    result->message = "GLPK: the LP has no primal feasible solution";
+    return false;
+  }
+  if (work.code != 0) {
+    result->status = LpResult::Status::kSolverError;
+    result->message = "glp_simplex failed with code " + std::to_string(work.code);
+    return false;
+  }
+  if (work.status != GLP_OPT) {
+    result->status = LpResult::Status::kSolverError;
+    result->message = "GLPK solution status " + std::to_string(work.status) + " is not optimal";
+    return false;
+  }
+  result->status = LpResult::Status::kOptimal;
+  return true;
+}
+
+// Obedience at each recommendation's own posterior, under the tolerance
+// policy with kObedienceTolerance (persuasion.h): a recommendation a that the
+// receiver does not weakly prefer is merged into her best response b there.
+// The trust posterior is affine in the Bayes posterior, so the merged
+// posterior mixes a's and b's and b, optimal at both, stays optimal. Each
+// merge empties a column, so this ends within m passes.
+void MergeDisobeyed(const Eigen::VectorXd& p0, const Eigen::MatrixXd& u, double theta,
+                    LpResult* result) {
+  const int m = static_cast<int>(u.cols());
+  const double u_range = UtilityScale(u);
+  for (int pass = 0; pass < m; ++pass) {
+    bool merged = false;
+    for (int a = 0; a < m; ++a) {
+      const double pa = result->scheme.col(a).dot(p0);
+      if (!(pa > 0.0)) continue;
+      const Eigen::VectorXd posterior =
+          TrustPosterior(p0, result->scheme.col(a).cwiseProduct(p0) / pa, theta);
+      const Eigen::VectorXd utilities = ExpectedUtilities(u, posterior);
+      Eigen::Index best = 0;
+      const double top = utilities.maxCoeff(&best);
+      if (WeaklyPrefers(utilities(a) - top, u_range, kObedienceTolerance)) continue;
+      result->scheme.col(best) += result->scheme.col(a);
+      result->scheme.col(a).setZero();
+      ++result->merged_recommendations;
+      merged = true;
+    }
+    if (!merged) break;
+  }
+}
+
+// The value of the scheme found, from its definition (in v's own units,
+// `v_scale` undone), each signal's probability and the receiver's posterior.
+void ValueAndPosteriors(const Eigen::VectorXd& p0, const Eigen::MatrixXd& v, double v_scale,
+                        double theta, LpResult* result) {
+  const int n = static_cast<int>(p0.size());
+  const int m = static_cast<int>(v.cols());
+  double value_scaled = 0.0;
+  for (int w = 0; w < n; ++w) {
+    for (int a = 0; a < m; ++a) value_scaled += p0(w) * result->scheme(w, a) * v(w, a);
+  }
+  result->sender_value = value_scaled * v_scale;
+  result->signal_probability = result->scheme.transpose() * p0;
+  result->posteriors.resize(n, m);
+  for (int a = 0; a < m; ++a) {
+    const double pa = result->signal_probability(a);
+    if (pa < kMinSignalProbability) {
+      result->posteriors.col(a).setConstant(std::numeric_limits<double>::quiet_NaN());
+      continue;
+    }
+    const Eigen::VectorXd full_trust = result->scheme.col(a).cwiseProduct(p0) / pa;
+    result->posteriors.col(a) = TrustPosterior(p0, full_trust, theta);
+  }
+}
+
+}  // namespace
+
+LpResult SolveTrustAwarePersuasion(const Game& game, double theta, const LpOptions& options) {
+  game.Validate();
+  internal::CheckTrust(theta);
+  const int n = static_cast<int>(game.prior.size());
+  const int m = static_cast<int>(game.actions.size());
+  CheckLpSize(n, m);
+  const Eigen::VectorXd& p0 = game.prior;
+  const double u_scale = PowerOfTwoScale(game.receiver_utility);
+  const double v_scale = PowerOfTwoScale(game.sender_utility);
+  const Eigen::MatrixXd u = game.receiver_utility / u_scale;  // |u| < 2
+  const Eigen::MatrixXd v = game.sender_utility / v_scale;    // |v| < 2
+
+  LpResult result;
+  std::vector<double> obedience;
+  const std::string bad_row = ObedienceRows(game, u, theta, &obedience);
+  if (!bad_row.empty()) {
+    result.status = LpResult::Status::kSolverError;
+    result.message = bad_row;
+    return result;
   }
   std::vector<double> objective(static_cast<std::size_t>(n) * m);
   for (int a = 0; a < m; ++a) {
@@ -361,32 +460,13 @@ LpResult SolveTrustAwarePersuasion(const Game& game, double theta, const LpOptio
   work.in_lp = in_lp.data();
   work.x = x.data();
 
-  LpResult result;
   std::string glpk_error;
   if (!RunGlpkGuarded(SolveWithGlpk, &work, &glpk_error)) {
     result.status = LpResult::Status::kSolverError;
     result.message = "GLPK failed: " + glpk_error;
     return result;
   }
-  result.simplex_rounds = work.rounds;
-  result.obedience_rows = work.rows;
-  if (work.code == GLP_ENOPFS || work.status == GLP_NOFEAS) {
-    result.status = LpResult::Status::kInfeasible;
-    result.message = "GLPK: the LP has no primal feasible solution";
-    return result;
-  }
-  if (work.code != 0) {
-    result.status = LpResult::Status::kSolverError;
-    result.message = "glp_simplex failed with code " + std::to_string(work.code);
-    return result;
-  }
-  if (work.status != GLP_OPT) {
-    result.status = LpResult::Status::kSolverError;
-    result.message = "GLPK solution status " + std::to_string(work.status) + " is not optimal";
-    return result;
-  }
-
-  result.status = LpResult::Status::kOptimal;
+  if (!SolverStatus(work, &result)) return result;
   result.scheme.resize(n, m);
   for (int w = 0; w < n; ++w) {
     for (int a = 0; a < m; ++a) {
@@ -394,48 +474,8 @@ LpResult SolveTrustAwarePersuasion(const Game& game, double theta, const LpOptio
       result.scheme(w, a) = std::max(0.0, x[a * n + w]);
     }
   }
-  // Obedience at each recommendation's own posterior, under the tolerance
-  // policy with kObedienceTolerance (persuasion.h): a recommendation a that the
-  // receiver does not weakly prefer is merged into her best response b there.
-  // The trust posterior is affine in the Bayes posterior, so the merged
-  // posterior mixes a's and b's and b, optimal at both, stays optimal. Each
-  // merge empties a column, so this ends within m passes.
-  const double u_range = UtilityScale(u);
-  for (int pass = 0; pass < m; ++pass) {
-    bool merged = false;
-    for (int a = 0; a < m; ++a) {
-      const double pa = result.scheme.col(a).dot(p0);
-      if (!(pa > 0.0)) continue;
-      const Eigen::VectorXd posterior =
-          TrustPosterior(p0, result.scheme.col(a).cwiseProduct(p0) / pa, theta);
-      const Eigen::VectorXd utilities = ExpectedUtilities(u, posterior);
-      Eigen::Index best = 0;
-      const double top = utilities.maxCoeff(&best);
-      if (WeaklyPrefers(utilities(a) - top, u_range, kObedienceTolerance)) continue;
-      result.scheme.col(best) += result.scheme.col(a);
-      result.scheme.col(a).setZero();
-      ++result.merged_recommendations;
-      merged = true;
-    }
-    if (!merged) break;
-  }
-  // The value of the scheme found, from its definition (in v's own units).
-  double value_scaled = 0.0;
-  for (int w = 0; w < n; ++w) {
-    for (int a = 0; a < m; ++a) value_scaled += p0(w) * result.scheme(w, a) * v(w, a);
-  }
-  result.sender_value = value_scaled * v_scale;
-  result.signal_probability = result.scheme.transpose() * p0;
-  result.posteriors.resize(n, m);
-  for (int a = 0; a < m; ++a) {
-    const double pa = result.signal_probability(a);
-    if (pa < kMinSignalProbability) {
-      result.posteriors.col(a).setConstant(std::numeric_limits<double>::quiet_NaN());
-      continue;
-    }
-    const Eigen::VectorXd full_trust = result.scheme.col(a).cwiseProduct(p0) / pa;
-    result.posteriors.col(a) = TrustPosterior(p0, full_trust, theta);
-  }
+  MergeDisobeyed(p0, u, theta, &result);
+  ValueAndPosteriors(p0, v, v_scale, theta, &result);
   return result;
 }
 

@@ -396,23 +396,15 @@ class DriftEvaluator {
 
 int Sign(double x) { return x > 0.0 ? 1 : (x < 0.0 ? -1 : 0); }
 
-}  // namespace
+// A piece [start, end] of [0, 1] on which the drift's shape is constant.
+struct Piece {
+  double start, end;
+};
 
-LongRunTrust FindLongRunTrust(const DesignRule& rule, const AvHvParams& params,
-                              const LikelihoodModel& model, const TrustUpdateRule& update,
-                              double alpha0, double beta0, int grid) {
-  params.Validate();
-  update.Validate();
-  CheckInitial(alpha0, beta0);
-  if (grid < 2) throw InvalidArgument("grid = " + std::to_string(grid) + " must be >= 2");
-  LongRunTrust result;
-  if (update.IsStatic()) return result;  // G = 0 everywhere: trust never moves
-  const DriftEvaluator eval(rule, params, model, update, alpha0, beta0);
-
-  // 1. Pieces [start, end] on which the shape is constant.
-  struct Piece {
-    double start, end;
-  };
+// The pieces on which the shape is constant: scanned on `grid` points, each
+// switch bisected to adjacent doubles lo < hi (hi appended to `breakpoints`).
+std::vector<Piece> ShapePieces(const DriftEvaluator& eval, int grid,
+                               std::vector<double>* breakpoints) {
   std::vector<Piece> pieces;
   double start = 0.0;
   double known = 0.0;  // the last theta known to have `shape`
@@ -432,11 +424,29 @@ LongRunTrust FindLongRunTrust(const DesignRule& rule, const AvHvParams& params,
       (eval.ShapeAt(mid) == shape ? lo : hi) = mid;
     }
     pieces.push_back({start, lo});
-    result.breakpoints.push_back(hi);
+    breakpoints->push_back(hi);
     start = known = hi;
     shape = eval.ShapeAt(hi);  // x is tested again against the new shape
   }
   pieces.push_back({start, 1.0});
+  return pieces;
+}
+
+}  // namespace
+
+LongRunTrust FindLongRunTrust(const DesignRule& rule, const AvHvParams& params,
+                              const LikelihoodModel& model, const TrustUpdateRule& update,
+                              double alpha0, double beta0, int grid) {
+  params.Validate();
+  update.Validate();
+  CheckInitial(alpha0, beta0);
+  if (grid < 2) throw InvalidArgument("grid = " + std::to_string(grid) + " must be >= 2");
+  LongRunTrust result;
+  if (update.IsStatic()) return result;  // G = 0 everywhere: trust never moves
+  const DriftEvaluator eval(rule, params, model, update, alpha0, beta0);
+
+  // 1. Pieces [start, end] on which the shape is constant.
+  const std::vector<Piece> pieces = ShapePieces(eval, grid, &result.breakpoints);
 
   // 2. Sign changes of G inside each piece (G is continuous there).
   auto add = [&result](double theta, TrustEquilibrium::Kind kind, bool stable) {

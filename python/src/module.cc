@@ -7,7 +7,7 @@
 #include "taebp/config/config.h"
 #include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_adapter.h"
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/persuasion.h"
 #include "taebp/report/metrics.h"
@@ -170,7 +170,7 @@ PYBIND11_MODULE(_taebp, m) {
   m.doc() = "taebp's C++ library; use the `taebp` package, not this module";
 
   // Python exceptions for the library's errors (same messages), each with the
-  // CLI's exit code as `exit_code` (report/exit_codes.h; runner/errors.h).
+  // CLI's exit code as `exit_code` (base/exit_codes.h; runner/errors.h).
   using taebp::ErrorKind;
   auto code = [](ErrorKind k) { return taebp::ErrorKindOf(k).exit_code; };
   auto name = [](ErrorKind k) { return taebp::ErrorKindOf(k).python_name; };

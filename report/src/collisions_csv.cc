@@ -2,7 +2,7 @@
 // reported after the warm-up, and the count each is in.
 #include "taebp/report/report.h"
 
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 
 #include <set>
 #include <string>

@@ -4,7 +4,7 @@
 #include "taebp/report/report.h"
 
 #include "metric_facts.h"
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 
 #include <algorithm>
 #include <cmath>

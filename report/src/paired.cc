@@ -4,7 +4,7 @@
 // two policies on the same games.
 #include "taebp/report/paired.h"
 
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 #include "taebp/report/clustered.h"
 #include "taebp/report/report.h"
 

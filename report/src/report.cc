@@ -1,7 +1,7 @@
 #include "taebp/report/report.h"
 
 #include "taebp/config/policies.h"
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 
 #include "metric_facts.h"
 #include "taebp/report/clustered.h"

@@ -3,7 +3,7 @@
 #include "taebp/encounter/design.h"
 #include "taebp/persuasion/lp.h"
 #include "taebp/persuasion/noise.h"
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 
 #include <cmath>
 

@@ -1,7 +1,7 @@
 #include "taebp/scenario/demand.h"
 
 #include "taebp/config/config.h"
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 
 #include <algorithm>
 #include <cmath>

@@ -37,9 +37,9 @@ std::string LaneId(const std::string& edge, int index) { return edge + "_" + std
 const std::vector<int> kNoLinks;
 const std::vector<std::string> kNoLanes;
 
-}  // namespace
-
-NetFile NetFile::Load(const std::string& path) {
+// The <net> element of a SUMO network file, parsed into `doc`; a
+// runtime_error naming the file when it is not one.
+pugi::xml_node ReadNet(const std::string& path, pugi::xml_document* doc) {
   // Read by us, not by pugixml's load_file: a directory opens with fopen on
   // Linux and its "size" made pugixml ask for 2^63 bytes.
   if (const std::string why = NotAFile(path); !why.empty())
@@ -50,28 +50,22 @@ NetFile NetFile::Load(const std::string& path) {
   text << in.rdbuf();
   if (in.bad()) throw std::runtime_error(path + ": cannot read the file");
   const std::string content = text.str();
-  pugi::xml_document doc;
-  const pugi::xml_parse_result parsed = doc.load_buffer(content.data(), content.size());
+  const pugi::xml_parse_result parsed = doc->load_buffer(content.data(), content.size());
   if (!parsed) {
     throw std::runtime_error(path + ": not a readable XML file (" +
                              std::string(parsed.description()) + " at byte " +
                              std::to_string(parsed.offset) + ")");
   }
-  const pugi::xml_node root = doc.child("net");
+  const pugi::xml_node root = doc->child("net");
   if (!root)
     throw std::runtime_error(path + ": not a SUMO network (no <net> element; root is <" +
-                             std::string(doc.first_child().name()) + ">)");
-  NetFile net;
-  net.path_ = path;
-  if (const pugi::xml_node loc = root.child("location")) {
-    const std::string b = loc.attribute("convBoundary").as_string();
-    double v[4] = {0, 0, 0, 0};
-    std::istringstream in(b);
-    char comma;
-    in >> v[0] >> comma >> v[1] >> comma >> v[2] >> comma >> v[3];
-    net.boundary_min = {v[0], v[1]};
-    net.boundary_max = {v[2], v[3]};
-  }
+                             std::string(doc->first_child().name()) + ">)");
+  return root;
+}
+
+// The edges and their lanes (SUMO's permissions read for passenger cars).
+void ReadEdges(const pugi::xml_node& root, std::map<std::string, Edge>* edges,
+               std::map<std::string, Lane>* lanes) {
   for (pugi::xml_node e : root.children("edge")) {
     Edge edge;
     edge.id = e.attribute("id").as_string();
@@ -100,33 +94,58 @@ NetFile NetFile::Load(const std::string& path) {
         lane.passenger = !has_passenger(Words(d.as_string()));
       if (static_cast<int>(edge.lanes.size()) <= lane.index) edge.lanes.resize(lane.index + 1);
       edge.lanes[lane.index] = lane.id;
-      net.lanes_[lane.id] = lane;
+      (*lanes)[lane.id] = lane;
     }
-    net.edges_[edge.id] = edge;
+    (*edges)[edge.id] = edge;
   }
+}
+
+// A junction: its lanes and SUMO's foes matrix (request index by index).
+Junction ReadJunction(const pugi::xml_node& j) {
+  Junction junction;
+  junction.id = j.attribute("id").as_string();
+  junction.type = j.attribute("type").as_string();
+  junction.pos = {j.attribute("x").as_double(), j.attribute("y").as_double()};
+  junction.inc_lanes = Words(j.attribute("incLanes").as_string());
+  junction.int_lanes = Words(j.attribute("intLanes").as_string());
+  std::vector<std::string> foes;
+  for (pugi::xml_node r : j.children("request")) {
+    const int index = r.attribute("index").as_int(-1);
+    if (index < 0) continue;
+    if (static_cast<int>(foes.size()) <= index) foes.resize(index + 1);
+    foes[index] = r.attribute("foes").as_string();
+  }
+  const int n = static_cast<int>(foes.size());
+  junction.foes.assign(n, std::vector<bool>(n, false));
+  for (int i = 0; i < n; ++i) {
+    const std::string& bits = foes[i];
+    const int len = static_cast<int>(bits.size());
+    for (int k = 0; k < n && k < len; ++k) junction.foes[i][k] = bits[len - 1 - k] == '1';
+  }
+  return junction;
+}
+
+}  // namespace
+
+NetFile NetFile::Load(const std::string& path) {
+  pugi::xml_document doc;
+  const pugi::xml_node root = ReadNet(path, &doc);
+  NetFile net;
+  net.path_ = path;
+  if (const pugi::xml_node loc = root.child("location")) {
+    const std::string b = loc.attribute("convBoundary").as_string();
+    double v[4] = {0, 0, 0, 0};
+    std::istringstream in(b);
+    char comma;
+    in >> v[0] >> comma >> v[1] >> comma >> v[2] >> comma >> v[3];
+    net.boundary_min = {v[0], v[1]};
+    net.boundary_max = {v[2], v[3]};
+  }
+  ReadEdges(root, &net.edges_, &net.lanes_);
   if (net.edges_.empty()) throw std::runtime_error(path + ": a SUMO network without edges");
   for (pugi::xml_node j : root.children("junction")) {
-    Junction junction;
-    junction.id = j.attribute("id").as_string();
-    junction.type = j.attribute("type").as_string();
-    junction.pos = {j.attribute("x").as_double(), j.attribute("y").as_double()};
-    junction.inc_lanes = Words(j.attribute("incLanes").as_string());
-    junction.int_lanes = Words(j.attribute("intLanes").as_string());
-    std::vector<std::string> foes;
-    for (pugi::xml_node r : j.children("request")) {
-      const int index = r.attribute("index").as_int(-1);
-      if (index < 0) continue;
-      if (static_cast<int>(foes.size()) <= index) foes.resize(index + 1);
-      foes[index] = r.attribute("foes").as_string();
-    }
-    const int n = static_cast<int>(foes.size());
-    junction.foes.assign(n, std::vector<bool>(n, false));
-    for (int i = 0; i < n; ++i) {
-      const std::string& bits = foes[i];
-      const int len = static_cast<int>(bits.size());
-      for (int k = 0; k < n && k < len; ++k) junction.foes[i][k] = bits[len - 1 - k] == '1';
-    }
-    net.junctions_[junction.id] = junction;
+    Junction junction = ReadJunction(j);
+    net.junctions_[junction.id] = std::move(junction);
   }
   // Connections: normal -> normal (the links) and internal -> next (the chains).
   std::map<std::string, std::pair<std::string, std::string>> internal_next;  // lane -> (via, to)

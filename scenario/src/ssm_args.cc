@@ -1,6 +1,6 @@
 #include "taebp/scenario/ssm_args.h"
 
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 
 namespace taebp {
 

@@ -13,7 +13,7 @@
 #include "sweep_folder.h"
 #include "workers.h"
 #include "taebp/config/config.h"
-#include "taebp/report/exit_codes.h"
+#include "taebp/base/exit_codes.h"
 #include "taebp/report/report.h"
 #include "taebp/rundir/interrupt.h"
 #include "taebp/rundir/output_dir.h"
@@ -34,7 +34,7 @@ using namespace internal;
 
 namespace {
 
-// report/exit_codes.h: kExitFailed (a failed or missing task); interrupted:
+// base/exit_codes.h: kExitFailed (a failed or missing task); interrupted:
 // 128 + the signal (130 Ctrl-C, 143 SIGTERM, 129 SIGHUP), as `run`.
 int ExitInterrupted() { return kExitSignalBase + (PendingInterrupt() ? PendingInterrupt() : SIGINT); }
 

@@ -6,7 +6,7 @@
 #include "sweep_folder.h"
 #include "workers.h"
 #include "taebp/config/config.h"
-#include "taebp/report/exit_codes.h"
+#include "taebp/base/exit_codes.h"
 #include "taebp/report/report.h"
 #include "taebp/rundir/interrupt.h"
 #include "taebp/rundir/output_dir.h"

@@ -5,7 +5,7 @@
 
 #include "plan_values.h"
 #include "taebp/config/policies.h"
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 #include "taebp/report/clustered.h"
 #include "taebp/report/metrics.h"
 #include "taebp/report/report.h"

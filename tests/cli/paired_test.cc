@@ -39,6 +39,37 @@ CliResult RunCli(const std::vector<std::string>& args) {
 
 using taebp::test::ReadCsvRows;
 
+// The paired rates meet their theory: No Trust's collisions at lambda
+// (0.2), TA-EBP's DC at lambda + (1 - lambda) b = 0.375, No EBP's DC 0:
+// inside the 95 % intervals clustered by HV; and on the same games No Trust
+// collides more than TA-EBP.
+void ExpectPairedRatesMeetTheory(const fs::path& summary) {
+  const nlohmann::json s = nlohmann::json::parse(ReadText(summary));
+  ASSERT_TRUE(s.contains("paired")) << "summary.json has no paired section";
+  const nlohmann::json& p = s["paired"]["policies"];
+  for (const auto& [policy, measure] : std::vector<std::pair<std::string, std::string>>{
+           {"no_trust", "collision_rate"}, {"ta_ebp", "dc_rate"}, {"no_ebp", "dc_rate"}}) {
+    const nlohmann::json& q = p[policy];
+    const double theory = q["theory_" + measure].get<double>();
+    EXPECT_LE(q[measure + "_lo"].get<double>(), theory) << policy << " " << measure;
+    EXPECT_GE(q[measure + "_hi"].get<double>(), theory) << policy << " " << measure;
+  }
+  EXPECT_NEAR(p["no_trust"]["theory_collision_rate"].get<double>(), 0.2, 1e-12);
+  EXPECT_NEAR(p["ta_ebp"]["theory_dc_rate"].get<double>(), 0.375, 1e-12);
+  // The differences on the same games: No Trust collides more than TA-EBP.
+  bool found = false;
+  for (const nlohmann::json& d : s["paired"]["differences"]) {
+    if (d["measure"] != "collision") continue;
+    const bool nt_ta = d["a"] == "no_trust" && d["b"] == "ta_ebp";
+    const bool ta_nt = d["a"] == "ta_ebp" && d["b"] == "no_trust";
+    if (!nt_ta && !ta_nt) continue;
+    found = true;
+    EXPECT_GT(d["games"].get<long>(), 20);
+    EXPECT_GT((nt_ta ? 1 : -1) * d["mean"].get<double>(), 0) << d.dump();
+  }
+  EXPECT_TRUE(found);
+}
+
 // The acceptance run of issue 41: the shipped two-way grid, 600 s (300 of
 // them warm-up), the three game policies, paired; and the same run without
 // --paired. One test (the runs take about a minute and a half): every game
@@ -108,33 +139,7 @@ TEST(PairedGrid, EveryGameUnderEveryPolicySameDrawTheRunUnchangedAndTheTheoryMet
   EXPECT_EQ(ReadText(out / "junctions.csv"), ReadText(plain / "junctions.csv"));
   EXPECT_FALSE(fs::exists(plain / "paired.csv"));
 
-  // The paired rates meet their theory: No Trust's collisions at lambda
-  // (0.2), TA-EBP's DC at lambda + (1 - lambda) b = 0.375, No EBP's DC 0:
-  // inside the 95 % intervals clustered by HV.
-  const nlohmann::json s = nlohmann::json::parse(ReadText(out / "summary.json"));
-  ASSERT_TRUE(s.contains("paired")) << "summary.json has no paired section";
-  const nlohmann::json& p = s["paired"]["policies"];
-  for (const auto& [policy, measure] : std::vector<std::pair<std::string, std::string>>{
-           {"no_trust", "collision_rate"}, {"ta_ebp", "dc_rate"}, {"no_ebp", "dc_rate"}}) {
-    const nlohmann::json& q = p[policy];
-    const double theory = q["theory_" + measure].get<double>();
-    EXPECT_LE(q[measure + "_lo"].get<double>(), theory) << policy << " " << measure;
-    EXPECT_GE(q[measure + "_hi"].get<double>(), theory) << policy << " " << measure;
-  }
-  EXPECT_NEAR(p["no_trust"]["theory_collision_rate"].get<double>(), 0.2, 1e-12);
-  EXPECT_NEAR(p["ta_ebp"]["theory_dc_rate"].get<double>(), 0.375, 1e-12);
-  // The differences on the same games: No Trust collides more than TA-EBP.
-  bool found = false;
-  for (const nlohmann::json& d : s["paired"]["differences"]) {
-    if (d["measure"] != "collision") continue;
-    const bool nt_ta = d["a"] == "no_trust" && d["b"] == "ta_ebp";
-    const bool ta_nt = d["a"] == "ta_ebp" && d["b"] == "no_trust";
-    if (!nt_ta && !ta_nt) continue;
-    found = true;
-    EXPECT_GT(d["games"].get<long>(), 20);
-    EXPECT_GT((nt_ta ? 1 : -1) * d["mean"].get<double>(), 0) << d.dump();
-  }
-  EXPECT_TRUE(found);
+  ExpectPairedRatesMeetTheory(out / "summary.json");
 }
 
 TEST(Paired, SumoNativeAloneOrBeyondThePaperIsAConfigErrorNamingTheKey) {

@@ -84,6 +84,43 @@ class ScenarioPoint : public ::testing::TestWithParam<Point> {};
 // hour gives ~500 encounters; the 99.9% interval half-width is then <= 0.07.
 constexpr double kDuration = 3600;
 
+// One encounter of a run against the library: the nudge commanded (Theorem 2),
+// SUMO's displacement realising it, the HV's belief and action at that
+// displacement (eq:pp), the AV's move and SUMO's collision exactly when both
+// proceed.
+void ExpectEncounterFollowsTheLibrary(const EncounterRecord& e, const per::CommittedScheme& scheme,
+                                      const per::AvHvParams& params, double theta,
+                                      const per::LikelihoodModel& model, double expected_nudge,
+                                      const per::PredictedOutcome& theory) {
+  const double s_max = model.SMax();
+  EXPECT_EQ(e.av.rfind("av", 0), 0u);
+  EXPECT_EQ(e.hv.rfind("hv", 0), 0u);
+  EXPECT_EQ(e.hv_trust, theta);
+  EXPECT_GE(e.decided_at, e.time);
+  if (e.commanded > 0) {
+    EXPECT_EQ(e.commanded, expected_nudge);
+    // SUMO's reported displacement realises the nudge, never short of it.
+    EXPECT_GE(e.observed, e.commanded);
+    EXPECT_LE(e.observed - e.commanded, kNudgeTolerance);
+  } else {
+    // A still AV: the HV reads what SUMO reports, which is (nearly) nothing.
+    EXPECT_LE(std::abs(e.observed), kNudgeTolerance);
+  }
+  // The HV's belief and action follow eq:pp at the observed displacement
+  // (read as s_max when SUMO's overshoot passes it), or the prior when the
+  // scheme never signals (no_ebp, TA-EBP's fallback).
+  const double posterior =
+      per::HvPosteriorGo(scheme, params, theta, model, std::min(e.observed, s_max));
+  EXPECT_NEAR(e.posterior, posterior, 1e-12);
+  EXPECT_EQ(e.hv_dc, per::HvDrivesIfClear(params, e.posterior));
+  // The AV goes iff its intent is Go and the committed scheme lets it.
+  EXPECT_EQ(e.av_first, e.intent_go && scheme.av_may_go);
+  // SUMO reports a collision exactly when both proceed.
+  EXPECT_EQ(e.collision, e.av_first && !e.hv_dc);
+  EXPECT_NEAR(e.theory_dc, theory.dc_rate, 1e-12);
+  EXPECT_NEAR(e.theory_collision, theory.collision_rate, 1e-12);
+}
+
 TEST_P(ScenarioPoint, EveryEncounterFollowsTheLibraryAndRatesAgreeWithTheory) {
   std::vector<std::string> overrides = GetParam().overrides;
   overrides.push_back("scenario.duration=" + std::to_string(kDuration));
@@ -138,33 +175,8 @@ TEST_P(ScenarioPoint, EveryEncounterFollowsTheLibraryAndRatesAgreeWithTheory) {
                                       << e.hv);
       EXPECT_GE(e.time, last_time);
       last_time = e.time;
-      EXPECT_EQ(e.av.rfind("av", 0), 0u);
-      EXPECT_EQ(e.hv.rfind("hv", 0), 0u);
-      EXPECT_EQ(e.hv_trust, theta);
-      EXPECT_GE(e.decided_at, e.time);
-      if (e.commanded > 0) {
-        ++nudges;
-        EXPECT_EQ(e.commanded, expected_nudge);
-        // SUMO's reported displacement realises the nudge, never short of it.
-        EXPECT_GE(e.observed, e.commanded);
-        EXPECT_LE(e.observed - e.commanded, kNudgeTolerance);
-      } else {
-        // A still AV: the HV reads what SUMO reports, which is (nearly) nothing.
-        EXPECT_LE(std::abs(e.observed), kNudgeTolerance);
-      }
-      // The HV's belief and action follow eq:pp at the observed displacement
-      // (read as s_max when SUMO's overshoot passes it), or the prior when the
-      // scheme never signals (no_ebp, TA-EBP's fallback).
-      const double posterior =
-          per::HvPosteriorGo(scheme, params, theta, *model, std::min(e.observed, s_max));
-      EXPECT_NEAR(e.posterior, posterior, 1e-12);
-      EXPECT_EQ(e.hv_dc, per::HvDrivesIfClear(params, e.posterior));
-      // The AV goes iff its intent is Go and the committed scheme lets it.
-      EXPECT_EQ(e.av_first, e.intent_go && scheme.av_may_go);
-      // SUMO reports a collision exactly when both proceed.
-      EXPECT_EQ(e.collision, e.av_first && !e.hv_dc);
-      EXPECT_NEAR(e.theory_dc, theory.dc_rate, 1e-12);
-      EXPECT_NEAR(e.theory_collision, theory.collision_rate, 1e-12);
+      ExpectEncounterFollowsTheLibrary(e, scheme, params, theta, *model, expected_nudge, theory);
+      nudges += e.commanded > 0;
       go += e.intent_go;
       dc += e.hv_dc;
       collisions += e.collision;

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Numbers become text in one place (issue 27): taebp::NumberText
-(persuasion/include/taebp/persuasion/number_text.h). Any other formatter of a
+(base/include/taebp/base/number_text.h). Any other formatter of a
 double in the C++ sources (a std::to_chars, a stream precision, a "%g"
 conversion) fails here, naming the file and line. Fixed-point conversions
 ("%.2f": a column with a set number of decimals) are a different job and
@@ -10,9 +10,9 @@ import re
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-FOLDERS = ("persuasion", "config", "rundir", "report", "encounter", "junction", "scenario",
-           "controller", "runner", "sweep", "tools/cli", "python/src")
-HOME = "persuasion/src/number_text.cc"
+FOLDERS = ("base", "persuasion", "config", "rundir", "report", "encounter", "junction", "scenario",
+           "controller", "runner", "sweep", "cli", "python/src")
+HOME = "base/src/number_text.cc"
 FORMATTER = re.compile(r"std::to_chars\s*\(|\bprecision\s*\(|setprecision\s*\(|"
                        r'"[^"\n]*%[-+ #0]*[0-9]*(\.[0-9*]+)?[gG]')
 
@@ -35,7 +35,7 @@ def main():
                             home_seen = True
                             continue
                         problems.append("%s:%d: a number formatted here (%s); use "
-                                        "taebp::NumberText (taebp/persuasion/number_text.h)"
+                                        "taebp::NumberText (taebp/base/number_text.h)"
                                         % (rel, n, line.strip()))
     if not home_seen:
         problems.append("%s does not format numbers: the check looks in the wrong place" % HOME)

@@ -1,4 +1,4 @@
-"""One list of exit codes and error kinds (report/exit_codes.h): every Python
+"""One list of exit codes and error kinds (base/exit_codes.h): every Python
 exception carries the code `taebp` exits with for the same error, and the
 README's table says the same."""
 import os

@@ -103,6 +103,11 @@ class HvPopulation {
   persuasion::PredictedOutcome EncounterTheory() const;
 
  private:
+  // The parts of Results, each for its model (hv_population_results.cc).
+  void ExperienceLongRun(BeyondRun* out) const;
+  void DynamicsLongRun(BeyondRun* out) const;
+  void LearningResults(BeyondRun* out) const;
+  void NoiseResults(BeyondRun* out) const;
   struct Hv {
     double trust0 = 0;
     std::optional<persuasion::BetaTrust> state;       // trust dynamics

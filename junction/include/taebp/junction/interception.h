@@ -352,6 +352,31 @@ class Interception {
   // A meeting: the waiting ones held (the draw comes once both are).
   void Form(double now, const AtLine& av, const AtLine& hv, std::vector<Command>* out);
 
+  // The parts of Step, in its order. Thirds of an ended encounter handed
+  // back; pairs judged not the game forgotten once either left its line.
+  void Forget(const std::vector<AtLine>& at_line, std::vector<Command>* out);
+  // Who meets whom (not at the major road): the head first at its line picks
+  // its earliest partner; a meeting that is the game is formed.
+  void Meet(double now, const std::vector<AtLine>& at_line, Environment& env,
+            EncounterModel& model, std::vector<Command>* out);
+  void ForgetMajor(const std::vector<AtLine>& at_line, const std::vector<MajorAt>& major);
+  // Third vehicles at the line on conflicting movements wait for the encounter.
+  void HoldThirds(const std::vector<AtLine>& at_line, std::vector<Command>* out);
+  // The arriving partner held at its line, then the draw: true once drawn;
+  // false while arriving or when the meeting was abandoned.
+  bool Arrive(double now, const std::vector<AtLine>& at_line, EncounterModel& model,
+              std::vector<Command>* out);
+  void StartNudge(Environment& env, std::vector<Command>* out);
+  // After the HV decided: the releases as the paper orders them.
+  void Release(double now, Environment& env, std::vector<Command>* out);
+  // Whether each move may go (room, the major road) and has its way.
+  struct Ways {
+    bool av_may = false, hv_may = false, av_way = false, hv_way = false;
+  };
+  Ways WaysOf(Environment& env, bool av_past) const;
+  // Lets vehicles SUMO stopped for the nudged AV pass it; true if any.
+  bool Unblock(Environment& env, const Ways& w, std::vector<Command>* out);
+
   JunctionSpec spec_;
   Timing timing_;
   std::optional<Active> encounter_;             // holding vehicles

@@ -1,10 +1,10 @@
 // The exception being handled as the program reports it: its kind
-// (report/exit_codes.h), the line for stderr and the exit code. The CLI's
+// (base/exit_codes.h), the line for stderr and the exit code. The CLI's
 // ReportErrors, the Python module's sweep tasks and its exception translator
 // use it, so a kind has one exit code and one message everywhere.
 #pragma once
 
-#include "taebp/report/exit_codes.h"
+#include "taebp/base/exit_codes.h"
 
 #include <exception>
 #include <string>

@@ -1,7 +1,7 @@
 // The sweep engine: runs a config's sweep (grid point x seed replicate
 // tasks, each a `run` of every policy in its own process: forked workers,
 // MPI ranks or Slurm-array shards) with a crash-safe journal, and merges
-// shard directories. `taebp sweep` / `taebp merge` (tools/cli) only parse
+// shard directories. `taebp sweep` / `taebp merge` (cli/) only parse
 // the command line into these options.
 #pragma once
 

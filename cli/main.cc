@@ -15,7 +15,7 @@
 #include "taebp/controller/sumo_adapter.h"
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/lp.h"
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 #include "taebp/persuasion/outcomes.h"
 #include "config_cmd.h"
 #include "gui_cmd.h"
@@ -44,7 +44,7 @@ using nlohmann::ordered_json;
 namespace per = taebp::persuasion;
 namespace fs = std::filesystem;
 
-using taebp::kExitConfig;  // report/exit_codes.h: the one list of exit codes
+using taebp::kExitConfig;  // base/exit_codes.h: the one list of exit codes
 using taebp::kExitFailed;
 
 // ------------------------------------------------------------------ theory
@@ -229,7 +229,7 @@ int RunExperimentCommand(const std::string& config_path, const std::vector<std::
 }
 
 // Runs `body`, turning an error into its message on stderr and the exit code
-// the README documents (report/exit_codes.h; runner/errors.h classifies).
+// the README documents (base/exit_codes.h; runner/errors.h classifies).
 template <typename F>
 int ReportErrors(F&& body) {
   try {

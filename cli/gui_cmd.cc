@@ -4,7 +4,7 @@
 #include "taebp/config/config.h"
 #include "taebp/controller/policy_run.h"
 #include "taebp/controller/sumo_adapter.h"
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 #include "taebp/persuasion/outcomes.h"
 #include "taebp/persuasion/persuasion.h"
 #include "taebp/rundir/interrupt.h"
@@ -105,7 +105,7 @@ const char* const kLegend[] = {
 
 std::string PolicyTitle(const std::string& p) { return PolicyLabel(p); }  // config/policies.h
 
-// Composes `shot` with a legend strip into `out` (tools/snapshot_legend.py,
+// Composes `shot` with a legend strip into `out` (cli/snapshot_legend.py,
 // Debian's python3 and python3-pil): sumo-gui cannot draw a legend itself.
 void AddLegend(const fs::path& shot, const fs::path& out, const std::string& title, double at) {
   const std::string python = access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3"

@@ -1,4 +1,4 @@
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 
 #include <charconv>
 #include <cstdio>

@@ -2,7 +2,7 @@
 // out by hand and against a second method (strtod reads the shortest text back
 // as the same double; a stream's precision, which the project's messages used
 // before, for the digits form).
-#include "taebp/persuasion/number_text.h"
+#include "taebp/base/number_text.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Numbers as text: the project's one formatter. Every file, message and
 // generated SUMO input writes a double through one of these two (tests/layers
 // fails on another formatter: a std::to_chars, a stream precision or a %g
-// outside persuasion/src/number_text.cc).
+// outside base/src/number_text.cc).
 #pragma once
 
 #include <string>
