@@ -3,8 +3,7 @@
 
 #include "taebp/base/number_text.h"
 #include "taebp/persuasion/outcomes.h"
-
-#include <boost/math/special_functions/beta.hpp>
+#include "taebp/persuasion/random.h"
 
 #include <algorithm>
 #include <cmath>
@@ -84,7 +83,7 @@ double TrustSpec::Quantile(double q) const {
   if (dist == TrustDist::kBeta) {
     if (q <= 0) return 0.0;
     if (q >= 1) return 1.0;
-    return boost::math::ibeta_inv(alpha, beta, q);
+    return persuasion::BetaQuantile(alpha, beta, q);
   }
   if (dist == TrustDist::kDiscrete) {
     const double total = TotalWeight();

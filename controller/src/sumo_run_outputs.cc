@@ -4,6 +4,7 @@
 #include "sumo_run_outputs.h"
 
 #include "taebp/report/ssm.h"
+#include "taebp/controller/sumo_world.h"
 #include "taebp/rundir/synced_file.h"
 
 #include <pugixml.hpp>

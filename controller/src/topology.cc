@@ -61,8 +61,8 @@ Topology::Topology(const ScenarioConfig& sc, const Scenario& scenario, const net
   }
 }
 
-Topology::JunctionInfo Topology::MovementsOf(const ControlledJunction& cj,
-                                             const net::Junction& nj) {
+JunctionInfo Topology::MovementsOf(const ControlledJunction& cj,
+                                   const net::Junction& nj) {
   const net::NetFile& net = net_;
   JunctionInfo rt;
   rt.info = cj;
