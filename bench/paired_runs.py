@@ -55,7 +55,9 @@ def run_once(cmd):
     return usage.ru_utime + usage.ru_stime, wall
 
 
-def main():
+def parse_args():
+    """The command line: (args, the baseline command split, or None, the
+    scratch folder of the runs, the --set arguments)."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("taebp")
     ap.add_argument("config")
@@ -68,8 +70,7 @@ def main():
     args = ap.parse_args()
     if args.pairs < 1:
         ap.error("--pairs must be at least 1 (got %d)" % args.pairs)
-    policies = args.policy
-    if not policies:
+    if not args.policy:
         ap.error("name at least one policy to compare with the baseline (--policy P)")
     scratch = tempfile.mkdtemp(prefix="paired_runs.")
     sets = [a for kv in args.set for a in ("--set", kv)]
@@ -80,28 +81,90 @@ def main():
         ap.error("--baseline-command is empty")
     if baseline_cmd and shutil.which(baseline_cmd[0]) is None:
         ap.error("--baseline-command: %s is not a program on PATH" % baseline_cmd[0])
+    return args, baseline_cmd, scratch, sets
 
-    def out_dir(policy, k):
-        return os.path.join(scratch, "%s-%d" % (policy, k))
 
-    def split(policy, k):
+class Runs:
+    """The runs of one comparison: their commands and output folders (in
+    `scratch`), and what each run's timing.json says."""
+
+    def __init__(self, args, baseline_cmd, scratch, sets):
+        self.args, self.baseline_cmd, self.scratch, self.sets = args, baseline_cmd, scratch, sets
+
+    def out_dir(self, policy, k):
+        return os.path.join(self.scratch, "%s-%d" % (policy, k))
+
+    def split(self, policy, k):
         """(SUMO's steps, the controller's steps, all of the run) in wall
         seconds, from the run's timing.json; None for the baseline command."""
         if policy is None:
             return None
-        with open(os.path.join(out_dir(policy, k), "timing.json")) as f:
+        with open(os.path.join(self.out_dir(policy, k), "timing.json")) as f:
             t = json.load(f)["policies"][policy]
         return (t["wall_seconds_sumo_steps"], t["wall_seconds_controller_steps"],
                 t["wall_seconds_start"] + t["wall_seconds_sumo_steps"] +
                 t["wall_seconds_controller_steps"])
 
-    def command(policy, k):
-        if baseline_cmd and policy is None:
-            return baseline_cmd
-        out = out_dir(policy, k)
-        return [args.taebp, "run", args.config, *sets, "--set", "policies=[%s]" % policy,
-                "--out", out, "--quiet"]
+    def command(self, policy, k):
+        if self.baseline_cmd and policy is None:
+            return self.baseline_cmd
+        out = self.out_dir(policy, k)
+        return [self.args.taebp, "run", self.args.config, *self.sets, "--set",
+                "policies=[%s]" % policy, "--out", out, "--quiet"]
 
+
+def measure(runs, policy):
+    """The policy's pairs against the baseline, each pair's order alternating:
+    (baseline CPU, policy CPU, CPU ratios, wall ratios, SUMO steps' ratios,
+    the controller's extra share), one value per pair."""
+    args, baseline_cmd = runs.args, runs.baseline_cmd
+    base, pol, ratios, walls, sumo_ratios, shares = [], [], [], [], [], []
+    for k in range(args.pairs):
+        order = [(None if baseline_cmd else args.baseline, base), (policy, pol)]
+        if k % 2 == 0:
+            order.reverse()
+        got = {}
+        for name, sink in order:
+            cpu, wall = run_once(runs.command(name, k))
+            sink.append(cpu)
+            got[name] = (cpu, wall)
+        b = None if baseline_cmd else args.baseline
+        ratios.append(got[policy][0] / got[b][0])
+        walls.append(got[policy][1] / got[b][1])
+        sp, sb = runs.split(policy, k), runs.split(b, k)
+        if sb:
+            sumo_ratios.append(sp[0] / sb[0])
+            shares.append((sp[1] - sb[1]) / sb[2])
+    return base, pol, ratios, walls, sumo_ratios, shares
+
+
+def report(args, policy, measured):
+    """Prints the policy's lines; 1 when it missed --target, else 0."""
+    base, pol, ratios, walls, sumo_ratios, shares = measured
+    med = statistics.median(ratios)
+    verdict = ""
+    missed = 0
+    if args.target is not None:
+        verdict = "  met" if med <= args.target else "  missed"
+        missed += med > args.target
+    print("%-12s %10.3f %10.3f %8.3f %8.3f %8.3f %10.3f%s" % (
+        policy, statistics.median(base), statistics.median(pol), med, min(ratios),
+        max(ratios), statistics.median(walls), verdict))
+    print("pairs %s %.3f %.3f %.3f %d" % (policy, med, min(ratios), max(ratios), len(ratios)))
+    if sumo_ratios:
+        # Where the difference is (timing.json, wall seconds inside the
+        # runs): SUMO's own steps on this policy's traffic against the
+        # baseline's, and the controller's steps beyond the baseline's
+        # as a share of the baseline run.
+        print("split %s sumo_steps_ratio %.3f (%.3f-%.3f) controller_extra %.3f (%.3f-%.3f)"
+              % (policy, statistics.median(sumo_ratios), min(sumo_ratios),
+                 max(sumo_ratios), statistics.median(shares), min(shares), max(shares)))
+    return missed
+
+
+def main():
+    args, baseline_cmd, scratch, sets = parse_args()
+    runs = Runs(args, baseline_cmd, scratch, sets)
     missed = 0
     try:
         print("%s %s, %d pairs per policy, order alternating; CPU = user + system of the "
@@ -110,41 +173,8 @@ def main():
                   " ".join(baseline_cmd) if baseline_cmd else args.baseline))
         print("%-12s %10s %10s %8s %8s %8s %10s" % ("policy", "cpu base", "cpu pol", "ratio",
                                                    "min", "max", "wall ratio"))
-        for policy in policies:
-            base, pol, ratios, walls, sumo_ratios, shares = [], [], [], [], [], []
-            for k in range(args.pairs):
-                order = [(None if baseline_cmd else args.baseline, base), (policy, pol)]
-                if k % 2 == 0:
-                    order.reverse()
-                got = {}
-                for name, sink in order:
-                    cpu, wall = run_once(command(name, k))
-                    sink.append(cpu)
-                    got[name] = (cpu, wall)
-                b = None if baseline_cmd else args.baseline
-                ratios.append(got[policy][0] / got[b][0])
-                walls.append(got[policy][1] / got[b][1])
-                sp, sb = split(policy, k), split(b, k)
-                if sb:
-                    sumo_ratios.append(sp[0] / sb[0])
-                    shares.append((sp[1] - sb[1]) / sb[2])
-            med = statistics.median(ratios)
-            verdict = ""
-            if args.target is not None:
-                verdict = "  met" if med <= args.target else "  missed"
-                missed += med > args.target
-            print("%-12s %10.3f %10.3f %8.3f %8.3f %8.3f %10.3f%s" % (
-                policy, statistics.median(base), statistics.median(pol), med, min(ratios),
-                max(ratios), statistics.median(walls), verdict))
-            print("pairs %s %.3f %.3f %.3f %d" % (policy, med, min(ratios), max(ratios), len(ratios)))
-            if sumo_ratios:
-                # Where the difference is (timing.json, wall seconds inside the
-                # runs): SUMO's own steps on this policy's traffic against the
-                # baseline's, and the controller's steps beyond the baseline's
-                # as a share of the baseline run.
-                print("split %s sumo_steps_ratio %.3f (%.3f-%.3f) controller_extra %.3f (%.3f-%.3f)"
-                      % (policy, statistics.median(sumo_ratios), min(sumo_ratios),
-                         max(sumo_ratios), statistics.median(shares), min(shares), max(shares)))
+        for policy in args.policy:
+            missed += report(args, policy, measure(runs, policy))
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
     return 1 if missed else 0

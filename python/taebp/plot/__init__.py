@@ -11,9 +11,10 @@ notebook (pure Python and matplotlib; no compiled module needed).
 
 `tools/plot` is these two on the command line (`tools/plot --help`): the same
 calls draw the same files. Modules: tidy (results as long tables; also
-SweepResult.tidy()), view (panels of marks at the printed width), presets
-(the shipped figures), style (colours, labels, titles and units from the
-program's tables), netmap (a network run's map)."""
+SweepResult.tidy()), view (any swept key against any metrics), figure
+(panels of marks at the printed width), presets (the shipped figures:
+sweep_presets, beyond_presets, run_presets), style (colours, labels, titles
+and units from the program's tables), netmap (a network run's map)."""
 
 import argparse
 import json
