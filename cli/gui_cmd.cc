@@ -355,6 +355,144 @@ int RunUnderXvfb(std::vector<std::string> args) {
   return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
 
+// --at, --zoom and --out: a positive time, a positive magnification, a
+// .png file in a folder that can be written.
+void CheckSnapshotOptions(double at, double zoom, const std::string& out) {
+  if (!(std::isfinite(at) && at > 0))
+    throw persuasion::InvalidArgument("--at " + NumberText(at, 6) +
+                                      ": the time must be a positive number of seconds");
+  if (!(std::isfinite(zoom) && zoom > 0))
+    throw persuasion::InvalidArgument("--zoom " + NumberText(zoom, 6) +
+                                      ": the magnification must be a positive number");
+  {
+    std::string ext = fs::path(out).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (ext != ".png")
+      throw persuasion::InvalidArgument("--out " + out +
+                                        ": the picture must be a .png file (sumo-gui picks the "
+                                        "format from the name and writes nothing else here)");
+    const fs::path parent = fs::absolute(out).parent_path();
+    CheckOutputDir(parent.string(), "--out " + out + ": its folder");
+  }
+}
+
+// The policy to show (--policy, else the config's first), checked, and
+// --at within the scenario.
+std::string SnapshotPolicy(const ExperimentConfig& config, const std::string& policy, double at,
+                           const std::string& config_path) {
+  // IsValid guarantees at least one policy.
+  const std::string name = policy.empty() ? config.policies.front() : policy;
+  if (name != SumoNative().name) ParseGamePolicy(name);  // throws for an unknown name
+  if (at > config.scenario.duration)
+    throw persuasion::InvalidArgument("--at " + NumberText(at, 6) + " s is beyond the scenario's end (" +
+                                      config_path + ": scenario.duration = " +
+                                      NumberText(config.scenario.duration, 6) +
+                                      " s): choose a time within it, or --set scenario.duration");
+  return name;
+}
+
+// Without a display: this command again under xvfb-run; its exit code.
+int RerunUnderXvfb(int argc, char** argv) {
+  if (std::getenv(kUnderXvfbEnv))
+    throw GuiError("DISPLAY is still unset under xvfb-run: cannot open sumo-gui");
+  const std::string xvfb = FindOnPath("xvfb-run");
+  if (xvfb.empty())
+    throw GuiError("DISPLAY is not set and xvfb-run is not installed: install the Debian "
+                   "packages 'xvfb' and 'xauth', or run with a display");
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) throw GuiError("cannot find this program to re-run it under xvfb-run: " + ec.message());
+  std::vector<std::string> args = {xvfb, "-a", "-s", kXvfbScreen, self.string()};
+  for (int i = 1; i < argc; ++i) args.emplace_back(argv[i]);
+  return RunUnderXvfb(args);
+}
+
+// The picture (--out, absolute) and the temporary files beside it.
+struct ShotFiles {
+  fs::path out, tmp, composed, settings;
+};
+
+// --out's folder made, and the names of the temporary files beside it (an
+// old temporary picture removed).
+ShotFiles ShotFilesFor(const std::string& out_option) {
+  ShotFiles f;
+  const fs::path out = fs::absolute(out_option);
+  f.out = out;
+  if (out.has_parent_path()) fs::create_directories(out.parent_path());
+  // sumo-gui writes a temporary picture next to --out, renamed over it once
+  // complete: a failing run leaves an earlier picture as it was and never an
+  // empty or partial file.
+  f.tmp = out.parent_path() / ("." + out.stem().string() + ".taebp-" +
+                               std::to_string(::getpid()) + ".png");
+  std::error_code ec;
+  // sumo-gui's picture goes to `tmp`; with the legend, the composed picture
+  // goes to a second temporary name; either is renamed over --out.
+  f.composed = out.parent_path() / ("." + out.stem().string() + ".taebp-legend-" +
+                                    std::to_string(::getpid()) + ".png");
+  f.settings = out.parent_path() / ("." + out.stem().string() + ".taebp-gui-" +
+                                    std::to_string(::getpid()) + ".xml");
+  fs::remove(f.tmp, ec);
+  return f;
+}
+
+// The policy's run in sumo-gui up to the config's end, framed, with a
+// screenshot to `f.tmp` at the end.
+PolicyRun RunInGui(const ExperimentConfig& config, const std::string& policy,
+                   const Scenario& scenario, const Framing& framing, bool own_frame,
+                   const ShotFiles& f) {
+  std::error_code ec;
+  std::vector<std::string> gui_args = {"--window-size", kSnapshotWindow, "--delay", "0"};
+  if (own_frame) {
+    WriteGuiSettings(f.settings, framing.exaggeration);
+    gui_args.insert(gui_args.end(), {"--gui-settings-file", f.settings.string()});
+  }
+  sumo::SetBackend(sumo::Backend::kLibtraciGui, gui_args);
+  RunOptions ro;
+  ro.colour_states = true;
+  ro.after_start = FrameTrack;
+  if (own_frame)
+    ro.after_start = [&] {
+      Sumo().GuiSetSchema("taebp");
+      Sumo().GuiSetBoundary(framing.lo, framing.hi);
+    };
+  ro.before_close = [&] {
+    Sumo().GuiScreenshot(f.tmp.string());
+    Sumo().Step();  // sumo-gui writes the picture during this step
+  };
+  PolicyRun run = RunPolicy(config, policy, scenario, ro);
+  sumo::SetBackend(sumo::Backend::kLibsumo);
+  fs::remove(f.settings, ec);
+  return run;
+}
+
+// sumo-gui has written the file by the end of the step; allow a moment
+// for the file system all the same.
+void WaitForPicture(const fs::path& tmp) {
+  std::error_code ec;
+  auto written = [&] {
+    return fs::exists(tmp, ec) && fs::file_size(tmp, ec) > 0 && PngSize(tmp.string()).first > 0;
+  };
+  for (int i = 0; i < 50 && !written(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  if (!written()) throw GuiError("sumo-gui did not write a PNG picture to " + tmp.string());
+}
+
+// The legend's title: the config, the policy, the seed, the junction, the
+// vehicles' exaggeration.
+std::string SnapshotTitle(const std::string& config_path, const std::string& name,
+                          const ExperimentConfig& config, const std::string& junction,
+                          const Framing& framing) {
+  std::string title = config_path + " · " + PolicyTitle(name) + " · seed " +
+                      std::to_string(config.scenario.seed);
+  if (!junction.empty()) title += " · junction " + junction;
+  if (framing.exaggeration > 1.0) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " · vehicles drawn %.1fx their size", framing.exaggeration);
+    title += buf;
+  }
+  return title;
+}
+
 }  // namespace
 
 bool Snapshot::Parsed() const { return impl_->cmd->parsed(); }
@@ -367,49 +505,14 @@ void Snapshot::HandBack(int exit_code) {
 
 int Snapshot::Run(int argc, char** argv) {
   const Impl& o = *impl_;
-  if (!(std::isfinite(o.at) && o.at > 0))
-    throw persuasion::InvalidArgument("--at " + NumberText(o.at, 6) +
-                                      ": the time must be a positive number of seconds");
-  if (!(std::isfinite(o.zoom) && o.zoom > 0))
-    throw persuasion::InvalidArgument("--zoom " + NumberText(o.zoom, 6) +
-                                      ": the magnification must be a positive number");
-  {
-    std::string ext = fs::path(o.out).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (ext != ".png")
-      throw persuasion::InvalidArgument("--out " + o.out +
-                                        ": the picture must be a .png file (sumo-gui picks the "
-                                        "format from the name and writes nothing else here)");
-    const fs::path parent = fs::absolute(o.out).parent_path();
-    CheckOutputDir(parent.string(), "--out " + o.out + ": its folder");
-  }
+  CheckSnapshotOptions(o.at, o.zoom, o.out);
   RequireSumoGui();
   // Config and policy errors before any re-execution.
   ExperimentConfig config = LoadExperimentConfig(o.config_path, o.overrides);
-  // IsValid guarantees at least one policy.
-  const std::string name = o.policy.empty() ? config.policies.front() : o.policy;
-  if (name != SumoNative().name) ParseGamePolicy(name);  // throws for an unknown name
+  const std::string name = SnapshotPolicy(config, o.policy, o.at, o.config_path);
   const std::string policy = name;
-  if (o.at > config.scenario.duration)
-    throw persuasion::InvalidArgument("--at " + NumberText(o.at, 6) + " s is beyond the scenario's end (" +
-                                      o.config_path + ": scenario.duration = " +
-                                      NumberText(config.scenario.duration, 6) +
-                                      " s): choose a time within it, or --set scenario.duration");
 
-  if (!HasDisplay()) {
-    if (std::getenv(kUnderXvfbEnv))
-      throw GuiError("DISPLAY is still unset under xvfb-run: cannot open sumo-gui");
-    const std::string xvfb = FindOnPath("xvfb-run");
-    if (xvfb.empty())
-      throw GuiError("DISPLAY is not set and xvfb-run is not installed: install the Debian "
-                     "packages 'xvfb' and 'xauth', or run with a display");
-    std::error_code ec;
-    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-    if (ec) throw GuiError("cannot find this program to re-run it under xvfb-run: " + ec.message());
-    std::vector<std::string> args = {xvfb, "-a", "-s", kXvfbScreen, self.string()};
-    for (int i = 1; i < argc; ++i) args.emplace_back(argv[i]);
-    return RunUnderXvfb(args);
-  }
+  if (!HasDisplay()) return RerunUnderXvfb(argc, argv);
 
   const std::string config_dir = fs::path(o.config_path).parent_path().string();
   const Scenario scenario = BuildScenario(config, config_dir);
@@ -419,72 +522,25 @@ int Snapshot::Run(int argc, char** argv) {
   const Framing framing = FrameFor(scenario.net, o.junction, o.zoom);
   const bool own_frame = !o.junction.empty() || o.zoom != 1.0 || framing.exaggeration > 1.0;
 
-  const fs::path out = fs::absolute(o.out);
-  if (out.has_parent_path()) fs::create_directories(out.parent_path());
-  // sumo-gui writes a temporary picture next to --out, renamed over it once
-  // complete: a failing run leaves an earlier picture as it was and never an
-  // empty or partial file.
-  const fs::path tmp = out.parent_path() / ("." + out.stem().string() + ".taebp-" +
-                                            std::to_string(::getpid()) + ".png");
+  const ShotFiles f = ShotFilesFor(o.out);
+  const fs::path& out = f.out;
   std::error_code ec;
-  // sumo-gui's picture goes to `tmp`; with the legend, the composed picture
-  // goes to a second temporary name; either is renamed over --out.
-  const fs::path composed = out.parent_path() / ("." + out.stem().string() + ".taebp-legend-" +
-                                                 std::to_string(::getpid()) + ".png");
-  const fs::path settings = out.parent_path() / ("." + out.stem().string() + ".taebp-gui-" +
-                                                 std::to_string(::getpid()) + ".xml");
-  fs::remove(tmp, ec);
   PolicyRun run;
   try {
-    std::vector<std::string> gui_args = {"--window-size", kSnapshotWindow, "--delay", "0"};
-    if (own_frame) {
-      WriteGuiSettings(settings, framing.exaggeration);
-      gui_args.insert(gui_args.end(), {"--gui-settings-file", settings.string()});
-    }
-    sumo::SetBackend(sumo::Backend::kLibtraciGui, gui_args);
-    RunOptions ro;
-    ro.colour_states = true;
-    ro.after_start = FrameTrack;
-    if (own_frame)
-      ro.after_start = [&] {
-        Sumo().GuiSetSchema("taebp");
-        Sumo().GuiSetBoundary(framing.lo, framing.hi);
-      };
-    ro.before_close = [&] {
-      Sumo().GuiScreenshot(tmp.string());
-      Sumo().Step();  // sumo-gui writes the picture during this step
-    };
-    run = RunPolicy(config, policy, scenario, ro);
-    sumo::SetBackend(sumo::Backend::kLibsumo);
-    fs::remove(settings, ec);
-
-    // sumo-gui has written the file by the end of the step; allow a moment
-    // for the file system all the same.
-    auto written = [&] {
-      return fs::exists(tmp, ec) && fs::file_size(tmp, ec) > 0 && PngSize(tmp.string()).first > 0;
-    };
-    for (int i = 0; i < 50 && !written(); ++i)
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    if (!written()) throw GuiError("sumo-gui did not write a PNG picture to " + tmp.string());
+    run = RunInGui(config, policy, scenario, framing, own_frame, f);
+    WaitForPicture(f.tmp);
     if (o.no_legend) {
-      PutInPlace(tmp.string(), out.string());
+      PutInPlace(f.tmp.string(), out.string());
     } else {
-      std::string title = o.config_path + " · " + PolicyTitle(name) + " · seed " +
-                          std::to_string(config.scenario.seed);
-      if (!o.junction.empty()) title += " · junction " + o.junction;
-      if (framing.exaggeration > 1.0) {
-        char buf[64];
-        std::snprintf(buf, sizeof buf, " · vehicles drawn %.1fx their size", framing.exaggeration);
-        title += buf;
-      }
-      AddLegend(tmp, composed, title, o.at);
-      fs::remove(tmp, ec);
-      PutInPlace(composed.string(), out.string());
+      AddLegend(f.tmp, f.composed, SnapshotTitle(o.config_path, name, config, o.junction, framing),
+                o.at);
+      fs::remove(f.tmp, ec);
+      PutInPlace(f.composed.string(), out.string());
     }
   } catch (...) {
-    fs::remove(tmp, ec);
-    fs::remove(composed, ec);
-    fs::remove(settings, ec);
+    fs::remove(f.tmp, ec);
+    fs::remove(f.composed, ec);
+    fs::remove(f.settings, ec);
     throw;
   }
   const auto [w, h] = PngSize(out.string());

@@ -287,14 +287,8 @@ int PrintPolicies(const std::string& what) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"taebp: Trust-Aware Embodied Bayesian Persuasion in SUMO"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", taebp::TaebpVersion() + " (git " + taebp::BuildGitRevision() + ")");
-
-  TheoryOptions th;
+// `taebp theory`: its options into `th`.
+CLI::App* AddTheory(CLI::App& app, TheoryOptions& th) {
   CLI::App* theory = app.add_subcommand(
       "theory", "The TA-EBP design and predicted outcomes for the AV-HV game (paper Sec. IV)");
   theory->add_option("--prior", th.prior, "prior probability lambda = p0(Go) that the AV goes, in (0, 1)")
@@ -324,44 +318,56 @@ int main(int argc, char** argv) {
                      "the noise-aware design's failure budget delta in (0, 1)")
       ->capture_default_str();
   theory->add_flag("--json", th.json, "print one JSON object instead of a table");
+  return theory;
+}
 
+// `taebp solve PROBLEM [--json]`.
+struct SolveArgs {
   std::string problem;
-  bool solve_json = false;
+  bool json = false;
+};
+
+CLI::App* AddSolve(CLI::App& app, SolveArgs& a) {
   CLI::App* solve = app.add_subcommand(
       "solve", "Optimal trust-aware signaling scheme for a finite game (linear program, GLPK)");
-  solve->add_option("PROBLEM", problem,
+  solve->add_option("PROBLEM", a.problem,
                     "YAML file with states, actions, prior, receiver_utility, sender_utility, trust")
       ->required();
-  solve->add_flag("--json", solve_json, "print one JSON object (status, sender_value, scheme, posteriors)");
+  solve->add_flag("--json", a.json, "print one JSON object (status, sender_value, scheme, posteriors)");
+  return solve;
+}
 
+// `taebp run CONFIG`'s arguments.
+struct RunArgs {
   std::string config_path, out_dir;
   std::vector<std::string> overrides;
   bool quiet = false;
+  bool paired = false;
+  std::string rss_log;
+};
+
+CLI::App* AddRun(CLI::App& app, RunArgs& a) {
   CLI::App* run = app.add_subcommand(
       "run", "Run every listed policy of an experiment config in SUMO and write the results "
              "(policies: " + taebp::PolicyChoices() + "; `taebp policies` says what each does)");
-  run->add_option("CONFIG", config_path, "experiment YAML (e.g. configs/paper.yaml)")->required();
-  run->add_option("--set", overrides,
+  run->add_option("CONFIG", a.config_path, "experiment YAML (e.g. configs/paper.yaml)")->required();
+  run->add_option("--set", a.overrides,
                   "override a config key, KEY=VALUE with VALUE read as YAML (repeatable), "
                   "e.g. --set scenario.duration=600 --set policies=[" +
                       std::string(taebp::PolicyOf(taebp::PolicyKind::kTaEbp).name) + "]");
-  run->add_option("--out", out_dir, "output directory (default: results/<config name>)");
-  run->add_flag("--quiet", quiet, "no progress on stderr");
-  bool paired = false;
-  run->add_flag("--paired", paired,
+  run->add_option("--out", a.out_dir, "output directory (default: results/<config name>)");
+  run->add_flag("--quiet", a.quiet, "no progress on stderr");
+  run->add_flag("--paired", a.paired,
                 "paired games: play each game from the state it formed in under every game policy "
                 "of the config (scenario.paired; paired.csv, docs/paired.md)");
-  std::string rss_log;
-  run->add_option("--rss-log", rss_log,
+  run->add_option("--rss-log", a.rss_log,
                   "append 'policy,simulated_seconds,rss_kb' every simulated minute (tools/soak)")
       ->group("");  // hidden: for tools/soak and benchmarks
-  taebp::gui::RunGui run_gui(run);           // run --gui [--delay MS]
-  taebp::sweep::Commands sweep_commands(  // sweep, merge; a task = `run` in a forked worker
-      app, [](const std::string& c, const std::vector<std::string>& o, const std::string& out) {
-        return ReportErrors([&] { return RunExperimentCommand(c, o, out, true); });
-      });
-  taebp::gui::Snapshot snapshot(app);
-  std::string metrics_what = "markdown";
+  return run;
+}
+
+// `taebp metrics --print WHAT`.
+CLI::App* AddMetrics(CLI::App& app, std::string& metrics_what) {
   CLI::App* metrics = app.add_subcommand(
       "metrics", "The result metrics: names, units, meaning and how sweeps pool them");
   metrics->add_option("--print", metrics_what,
@@ -369,7 +375,11 @@ int main(int argc, char** argv) {
                       "table as data; paired: paired.csv's columns (docs/paired.md)")
       ->check(CLI::IsMember({"markdown", "renames", "json", "paired"}))
       ->capture_default_str();
-  std::string policies_what = "list";
+  return metrics;
+}
+
+// `taebp policies --print WHAT`.
+CLI::App* AddPolicies(CLI::App& app, std::string& policies_what) {
   CLI::App* policies = app.add_subcommand(
       "policies", "The policies: names, labels, whether they play the game and the config keys "
                   "they do not read");
@@ -378,28 +388,58 @@ int main(int argc, char** argv) {
                        "table; json: the table as data")
       ->check(CLI::IsMember({"list", "markdown", "json"}))
       ->capture_default_str();
+  return policies;
+}
+
+// `taebp run`: the experiment, with --gui, --rss-log and --paired applied.
+int RunCommand(RunArgs& a, taebp::gui::RunGui& run_gui) {
+  taebp::RunOptions options = run_gui.Prepare();
+  if (!a.rss_log.empty()) {
+    const std::string& rss_log = a.rss_log;
+    std::ofstream(rss_log, std::ios::trunc) << "policy,simulated_seconds,rss_kb\n";
+    options.every_minute = [&rss_log](const std::string& policy, double t) {
+      std::ifstream status("/proc/self/status");
+      long kb = -1;
+      for (std::string line; std::getline(status, line);)
+        if (line.rfind("VmRSS:", 0) == 0) kb = std::atol(line.c_str() + 6);
+      std::ofstream(rss_log, std::ios::app) << policy << ',' << t << ',' << kb << '\n';
+    };
+  }
+  if (a.paired) a.overrides.push_back("scenario.paired=true");
+  return RunExperimentCommand(a.config_path, a.overrides, a.out_dir, a.quiet, options);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"taebp: Trust-Aware Embodied Bayesian Persuasion in SUMO"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", taebp::TaebpVersion() + " (git " + taebp::BuildGitRevision() + ")");
+
+  TheoryOptions th;
+  CLI::App* theory = AddTheory(app, th);
+  SolveArgs solve_args;
+  CLI::App* solve = AddSolve(app, solve_args);
+  RunArgs run_args;
+  CLI::App* run = AddRun(app, run_args);
+  taebp::gui::RunGui run_gui(run);           // run --gui [--delay MS]
+  taebp::sweep::Commands sweep_commands(  // sweep, merge; a task = `run` in a forked worker
+      app, [](const std::string& c, const std::vector<std::string>& o, const std::string& out) {
+        return ReportErrors([&] { return RunExperimentCommand(c, o, out, true); });
+      });
+  taebp::gui::Snapshot snapshot(app);
+  std::string metrics_what = "markdown";
+  CLI::App* metrics = AddMetrics(app, metrics_what);
+  std::string policies_what = "list";
+  CLI::App* policies = AddPolicies(app, policies_what);
 
   taebp::cli::ConfigCommand config_command(app);  // config --reference
 
   if (const std::optional<int> code = ParseCommandLine(app, argc, argv)) return *code;
   const int code = ReportErrors([&] {
     if (*theory) return Theory(th);
-    if (*solve) return Solve(problem, solve_json);
-    if (*run) {
-      taebp::RunOptions options = run_gui.Prepare();
-      if (!rss_log.empty()) {
-        std::ofstream(rss_log, std::ios::trunc) << "policy,simulated_seconds,rss_kb\n";
-        options.every_minute = [&rss_log](const std::string& policy, double t) {
-          std::ifstream status("/proc/self/status");
-          long kb = -1;
-          for (std::string line; std::getline(status, line);)
-            if (line.rfind("VmRSS:", 0) == 0) kb = std::atol(line.c_str() + 6);
-          std::ofstream(rss_log, std::ios::app) << policy << ',' << t << ',' << kb << '\n';
-        };
-      }
-      if (paired) overrides.push_back("scenario.paired=true");
-      return RunExperimentCommand(config_path, overrides, out_dir, quiet, options);
-    }
+    if (*solve) return Solve(solve_args.problem, solve_args.json);
+    if (*run) return RunCommand(run_args, run_gui);
     if (*metrics) return PrintMetrics(metrics_what);
     if (*policies) return PrintPolicies(policies_what);
     if (config_command.Parsed()) return config_command.Run();

@@ -166,9 +166,90 @@ taebp::persuasion::Policy GamePolicyArgument(const std::string& name) {
 
 }  // namespace
 
-PYBIND11_MODULE(_taebp, m) {
-  m.doc() = "taebp's C++ library; use the `taebp` package, not this module";
+namespace {
 
+// The run's result for Python: the result files (name -> text, the time
+// series read from disk), the printed table, the warnings, a stall's stop
+// and what the run replaced in its folder.
+py::dict RunResultDict(const taebp::ExperimentResult& result, const std::string& replaced) {
+  py::dict files;
+  for (const auto& [name, text] : result.Files()) files[py::str(name)] = py::str(text);
+  for (const auto& [name, path] : result.sample_files) {  // the time series, on disk
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (!in.good() && !in.eof())
+      throw std::runtime_error("cannot read " + path + " (" + name + ")");
+    files[py::str(name)] = py::str(text.str());
+  }
+  py::dict r;
+  r["files"] = files;
+  r["table"] = result.Table();
+  r["warnings"] = result.warnings;
+  // A stall under stall_action: error: the files hold what ran;
+  // taebp.run raises StallError with them (the program exits 4).
+  r["stopped"] = result.stopped.reason;
+  r["error"] = result.stopped.message;
+  r["replaced"] = replaced;
+  return r;
+}
+
+// taebp.run (BindRun): the GIL released while SUMO runs.
+py::dict RunForPython(const std::string& config, const std::vector<std::string>& overrides,
+                      std::optional<std::string> out, bool progress, std::optional<double> timeout) {
+  taebp::ExperimentResult result;
+  // Checked, not a sweep's, locked before the run (as `taebp run --out`).
+  std::optional<taebp::RunFolder> folder;
+  if (out) folder.emplace(*out, "out=");
+  std::string replaced;
+  int interrupted = 0;
+  bool timed_out = false;
+  std::string interrupted_message;
+  try {
+    py::gil_scoped_release release;
+    // Ctrl-C, SIGTERM, SIGHUP: noted, the run stops at its next step
+    // with the folder as it was; Python's handlers back afterwards.
+    const taebp::InterruptGuard interrupts;
+    std::optional<Watchdog> watchdog;
+    watchdog.emplace(timeout);
+    taebp::ExperimentObserver observer;
+    if (progress) {
+      observer.policy_done = [](const taebp::PolicyRun& run, double wall) {
+        std::fprintf(stderr, "taebp: %-12s %.0f simulated s in %.2f s wall, %zu encounters\n",
+                     run.policy.c_str(), run.simulated_seconds, wall,
+                     run.encounters.size());
+      };
+    }
+    try {
+      result = taebp::RunExperiment(config, overrides, {}, observer);
+      if (folder) replaced = taebp::WriteExperiment(result, *folder);
+    } catch (const taebp::Interrupted&) {
+      timed_out = watchdog->fired();
+      throw;
+    }
+  } catch (const taebp::Interrupted& e) {
+    interrupted = e.signal();
+    interrupted_message = e.what();
+  }
+  if (timed_out) {
+    folder.reset();  // unlocked, as it was
+    PyErr_SetString(PyExc_TimeoutError,
+                    ("taebp.run(timeout=" + taebp::NumberText(*timeout, 6) +
+                     "): stopped after " + taebp::NumberText(*timeout, 6) +
+                     " s of wall time at its next simulation step; nothing written" +
+                     (out ? ", " + *out + " as it was" : std::string()))
+                        .c_str());
+    throw py::error_already_set();
+  }
+  if (interrupted) {
+    folder.reset();  // unlocked, as it was
+    RaiseInterrupted(interrupted, "taebp.run " + interrupted_message);
+  }
+  return RunResultDict(result, replaced);
+}
+
+// The library's errors as Python exceptions, and the exit codes by kind.
+void BindErrors(py::module_& m) {
   // Python exceptions for the library's errors (same messages), each with the
   // CLI's exit code as `exit_code` (base/exit_codes.h; runner/errors.h).
   using taebp::ErrorKind;
@@ -216,12 +297,18 @@ PYBIND11_MODULE(_taebp, m) {
     for (const taebp::ErrorKindInfo& k : taebp::ErrorKinds()) d[k.python_name] = k.exit_code;
     return d;
   });
+}
 
+// The version, the git revision, and config.h's file check.
+void BindVersion(py::module_& m) {
   m.def("version", [] { return taebp::TaebpVersion(); });
   m.def("git_revision", [] { return taebp::BuildGitRevision(); });
   // Why a path is not a regular file ("" when it is): config.h's NotAFile.
   m.def("not_a_file", [](const std::string& path) { return taebp::NotAFile(path); });
+}
 
+// The theory: the design, its predictions and the LP solver.
+void BindTheory(py::module_& m) {
   m.def("theory_json",
         [](double prior, double penalty, double trust, std::optional<double> assumed_trust,
            double s_max, const std::string& likelihood, double steepness, double midpoint) {
@@ -265,7 +352,10 @@ PYBIND11_MODULE(_taebp, m) {
         taebp::SolveJson(taebp::ParseProblemConfig(problem_text, origin), origin);
     return py::make_tuple(out.json.dump(), out.optimal);
   });
+}
 
+// The tables notebooks read (metrics, policies, theory defaults, columns).
+void BindTables(py::module_& m) {
   m.def("metrics_json", [] { return taebp::MetricsJson(); });
   m.def("policies_json", [] { return taebp::PoliciesJson(); });
 
@@ -280,85 +370,19 @@ PYBIND11_MODULE(_taebp, m) {
           return taebp::EncounterCsvColumns(beyond, network, ssm);
         },
         py::arg("beyond") = false, py::arg("network") = false, py::arg("ssm") = false);
+}
 
+// taebp.run.
+void BindRun(py::module_& m) {
   // One experiment; the GIL is released while SUMO runs. Returns the result
   // files (name -> text), the printed table and the warnings.
-  m.def(
-      "run",
-      [](const std::string& config, const std::vector<std::string>& overrides,
-         std::optional<std::string> out, bool progress, std::optional<double> timeout) {
-        taebp::ExperimentResult result;
-        // Checked, not a sweep's, locked before the run (as `taebp run --out`).
-        std::optional<taebp::RunFolder> folder;
-        if (out) folder.emplace(*out, "out=");
-        std::string replaced;
-        int interrupted = 0;
-        bool timed_out = false;
-        std::string interrupted_message;
-        try {
-          py::gil_scoped_release release;
-          // Ctrl-C, SIGTERM, SIGHUP: noted, the run stops at its next step
-          // with the folder as it was; Python's handlers back afterwards.
-          const taebp::InterruptGuard interrupts;
-          std::optional<Watchdog> watchdog;
-          watchdog.emplace(timeout);
-          taebp::ExperimentObserver observer;
-          if (progress) {
-            observer.policy_done = [](const taebp::PolicyRun& run, double wall) {
-              std::fprintf(stderr, "taebp: %-12s %.0f simulated s in %.2f s wall, %zu encounters\n",
-                           run.policy.c_str(), run.simulated_seconds, wall,
-                           run.encounters.size());
-            };
-          }
-          try {
-            result = taebp::RunExperiment(config, overrides, {}, observer);
-            if (folder) replaced = taebp::WriteExperiment(result, *folder);
-          } catch (const taebp::Interrupted&) {
-            timed_out = watchdog->fired();
-            throw;
-          }
-        } catch (const taebp::Interrupted& e) {
-          interrupted = e.signal();
-          interrupted_message = e.what();
-        }
-        if (timed_out) {
-          folder.reset();  // unlocked, as it was
-          PyErr_SetString(PyExc_TimeoutError,
-                          ("taebp.run(timeout=" + taebp::NumberText(*timeout, 6) +
-                           "): stopped after " + taebp::NumberText(*timeout, 6) +
-                           " s of wall time at its next simulation step; nothing written" +
-                           (out ? ", " + *out + " as it was" : std::string()))
-                              .c_str());
-          throw py::error_already_set();
-        }
-        if (interrupted) {
-          folder.reset();  // unlocked, as it was
-          RaiseInterrupted(interrupted, "taebp.run " + interrupted_message);
-        }
-        py::dict files;
-        for (const auto& [name, text] : result.Files()) files[py::str(name)] = py::str(text);
-        for (const auto& [name, path] : result.sample_files) {  // the time series, on disk
-          std::ifstream in(path, std::ios::binary);
-          std::ostringstream text;
-          text << in.rdbuf();
-          if (!in.good() && !in.eof())
-            throw std::runtime_error("cannot read " + path + " (" + name + ")");
-          files[py::str(name)] = py::str(text.str());
-        }
-        py::dict r;
-        r["files"] = files;
-        r["table"] = result.Table();
-        r["warnings"] = result.warnings;
-        // A stall under stall_action: error: the files hold what ran;
-        // taebp.run raises StallError with them (the program exits 4).
-        r["stopped"] = result.stopped.reason;
-        r["error"] = result.stopped.message;
-        r["replaced"] = replaced;
-        return r;
-      },
-      py::arg("config"), py::arg("overrides"), py::arg("out"), py::arg("progress"),
-      py::arg("timeout") = std::nullopt);
+  m.def("run", &RunForPython,
+        py::arg("config"), py::arg("overrides"), py::arg("out"), py::arg("progress"),
+        py::arg("timeout") = std::nullopt);
+}
 
+// taebp.sweep.
+void BindSweep(py::module_& m) {
   // The sweep engine, tasks in forked workers; returns its exit code (0 ok,
   // 1 a task failed, 130 Ctrl-C). The GIL is released throughout and
   // this process's simulation slot held, so no run() starts meanwhile.
@@ -388,4 +412,16 @@ PYBIND11_MODULE(_taebp, m) {
       },
       py::arg("config"), py::arg("overrides"), py::arg("out"), py::arg("jobs"),
       py::arg("quiet"), py::arg("shard"));
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_taebp, m) {
+  m.doc() = "taebp's C++ library; use the `taebp` package, not this module";
+  BindErrors(m);
+  BindVersion(m);
+  BindTheory(m);
+  BindTables(m);
+  BindRun(m);
+  BindSweep(m);
 }

@@ -118,75 +118,79 @@ std::string PairedCsv(const std::vector<PolicyRun>& runs) {
   return out;
 }
 
-nlohmann::ordered_json PairedSummary(const std::vector<PolicyRun>& runs) {
-  // The rows by policy, and by game.
+namespace {
+
+// The rows by policy, and by game.
+struct PairedRows {
   std::vector<std::string> policies;
   std::map<std::string, std::vector<const PairedRecord*>> of_policy;
   std::map<std::string, std::map<std::string, const PairedRecord*>> of_game;  // game -> policy -> row
   long failed = 0;
+};
+
+PairedRows GroupRows(const std::vector<PolicyRun>& runs) {
+  PairedRows g;
   for (const PolicyRun& run : runs)
     for (const PairedRecord& r : run.paired) {
-      if (!of_policy.count(r.policy)) policies.push_back(r.policy);
+      if (!g.of_policy.count(r.policy)) g.policies.push_back(r.policy);
       if (r.status != "ok") {  // only finished games have an outcome
-        failed += r.status == "failed";
-        of_policy[r.policy];
+        g.failed += r.status == "failed";
+        g.of_policy[r.policy];
         continue;
       }
-      of_policy[r.policy].push_back(&r);
-      of_game[r.game][r.policy] = &r;
+      g.of_policy[r.policy].push_back(&r);
+      g.of_game[r.game][r.policy] = &r;
     }
-  json j;
-  j["games"] = of_game.size();  // with at least one finished branch
-  j["branches_failed"] = failed;
-  long unfinished = 0;
-  for (const PolicyRun& run : runs)
-    for (const PairedRecord& r : run.paired) unfinished += r.status == "unfinished";
-  j["branches_unfinished"] = unfinished;
-  json by_policy = json::object();
-  for (const std::string& p : policies) {
-    const std::vector<const PairedRecord*>& rows = of_policy[p];
-    json q;
-    q["games"] = rows.size();
-    for (const char* m : {"collision", "dc"}) {
-      std::map<std::string, ClusterCount> hvs;
-      double theory = 0;
-      for (const PairedRecord* r : rows) {
-        ClusterCount& c = hvs[r->hv];
-        c.y += Measure(*r, m);
-        c.n += 1;
-        theory += std::string(m) == "dc" ? r->theory_dc : r->theory_collision;
-      }
-      std::vector<ClusterCount> clusters;
-      for (const auto& [hv, c] : hvs) clusters.push_back(c);
-      const RateInterval ci = ClusteredRate(clusters);
-      const std::string name = std::string(m) + "_rate";
-      const bool none = rows.empty();
-      q[name] = none ? json(nullptr) : json(ci.rate);
-      q[name + "_lo"] = none ? json(nullptr) : json(ci.low);
-      q[name + "_hi"] = none ? json(nullptr) : json(ci.high);
-      q[name + "_deff"] = none ? json(nullptr) : json(ci.deff);
-      q[name + "_clusters"] = ci.clusters;
-      q["theory_" + name] = none ? json(nullptr) : json(theory / static_cast<double>(rows.size()));
+  return g;
+}
+
+// A policy's rates over its finished paired games (clustered by HV) with the
+// theory's, and its mean clearances.
+json PolicyRates(const std::vector<const PairedRecord*>& rows) {
+  json q;
+  q["games"] = rows.size();
+  for (const char* m : {"collision", "dc"}) {
+    std::map<std::string, ClusterCount> hvs;
+    double theory = 0;
+    for (const PairedRecord* r : rows) {
+      ClusterCount& c = hvs[r->hv];
+      c.y += Measure(*r, m);
+      c.n += 1;
+      theory += std::string(m) == "dc" ? r->theory_dc : r->theory_collision;
     }
-    for (const char* m : {"av_clear", "hv_clear"}) {
-      double sum = 0;
-      long n = 0;
-      for (const PairedRecord* r : rows)
-        if (std::isfinite(Measure(*r, m))) sum += Measure(*r, m), ++n;
-      q[std::string(m) + "_mean"] = n ? json(sum / static_cast<double>(n)) : json(nullptr);
-    }
-    by_policy[p] = q;
+    std::vector<ClusterCount> clusters;
+    for (const auto& [hv, c] : hvs) clusters.push_back(c);
+    const RateInterval ci = ClusteredRate(clusters);
+    const std::string name = std::string(m) + "_rate";
+    const bool none = rows.empty();
+    q[name] = none ? json(nullptr) : json(ci.rate);
+    q[name + "_lo"] = none ? json(nullptr) : json(ci.low);
+    q[name + "_hi"] = none ? json(nullptr) : json(ci.high);
+    q[name + "_deff"] = none ? json(nullptr) : json(ci.deff);
+    q[name + "_clusters"] = ci.clusters;
+    q["theory_" + name] = none ? json(nullptr) : json(theory / static_cast<double>(rows.size()));
   }
-  j["policies"] = by_policy;
-  // Every two policies on the games both played: the mean difference a - b
-  // with its interval clustered by HV.
+  for (const char* m : {"av_clear", "hv_clear"}) {
+    double sum = 0;
+    long n = 0;
+    for (const PairedRecord* r : rows)
+      if (std::isfinite(Measure(*r, m))) sum += Measure(*r, m), ++n;
+    q[std::string(m) + "_mean"] = n ? json(sum / static_cast<double>(n)) : json(nullptr);
+  }
+  return q;
+}
+
+// Every two policies on the games both played: the mean difference a - b
+// with its interval clustered by HV.
+json Differences(const PairedRows& g) {
+  const std::vector<std::string>& policies = g.policies;
   json diffs = json::array();
   for (std::size_t a = 0; a < policies.size(); ++a)
     for (std::size_t b = a + 1; b < policies.size(); ++b)
       for (const std::string& m : PairedMeasures()) {
         std::vector<double> d;
         std::vector<std::string> hv;
-        for (const auto& [game, rows] : of_game) {
+        for (const auto& [game, rows] : g.of_game) {
           const auto ra = rows.find(policies[a]), rb = rows.find(policies[b]);
           if (ra == rows.end() || rb == rows.end()) continue;
           const double x = Measure(*ra->second, m) - Measure(*rb->second, m);
@@ -204,7 +208,24 @@ nlohmann::ordered_json PairedSummary(const std::vector<PolicyRun>& runs) {
                          {"hi", OptJson(mi.high)},
                          {"clusters", mi.clusters}});
       }
-  j["differences"] = diffs;
+  return diffs;
+}
+
+}  // namespace
+
+nlohmann::ordered_json PairedSummary(const std::vector<PolicyRun>& runs) {
+  PairedRows g = GroupRows(runs);
+  json j;
+  j["games"] = g.of_game.size();  // with at least one finished branch
+  j["branches_failed"] = g.failed;
+  long unfinished = 0;
+  for (const PolicyRun& run : runs)
+    for (const PairedRecord& r : run.paired) unfinished += r.status == "unfinished";
+  j["branches_unfinished"] = unfinished;
+  json by_policy = json::object();
+  for (const std::string& p : g.policies) by_policy[p] = PolicyRates(g.of_policy[p]);
+  j["policies"] = by_policy;
+  j["differences"] = Differences(g);
   return j;
 }
 

@@ -119,23 +119,14 @@ bool SsmPasses(const SsmRules& r, SsmMeasure m, double v) {
   return false;
 }
 
-SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
-                     const std::vector<SsmJunctionArea>& areas,
-                     const std::vector<SsmGame>& games,
-                     const std::vector<SsmCollision>& collisions) {
-  pugi::xml_document doc;
-  const pugi::xml_parse_result ok = doc.load_file(path.c_str());
-  if (!ok) throw std::runtime_error(path + ": cannot read SUMO's SSM output (" + ok.description() + ")");
-  const pugi::xml_node log = doc.child("SSMLog");
-  if (!log) throw std::runtime_error(path + ": not SUMO's SSM output (no <SSMLog>)");
-  SsmRun run;
-  run.on = true;
-  run.rules = rules;
-  for (const SsmJunctionArea& a : areas) run.junction[a.junction];  // every junction, 0 or more
+namespace {
 
+// The <conflict> records of SUMO's SSM log, each pair as a < b (counted in
+// run->records).
+std::vector<Record> ReadRecords(const pugi::xml_node& log, SsmRun* run) {
   std::vector<Record> records;
   for (pugi::xml_node c : log.children("conflict")) {
-    ++run.records;
+    ++run->records;
     Record r;
     r.a = c.attribute("ego").value();
     r.b = c.attribute("foe").value();
@@ -145,8 +136,12 @@ SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
     for (int k = 0; k < kSsmMeasures; ++k) r.m[k] = ReadExtreme(c.child(kElement[k]));
     records.push_back(std::move(r));
   }
-  // One conflict per pair and overlapping stretch of time (the records of
-  // both vehicles' devices merged).
+  return records;
+}
+
+// One conflict per pair and overlapping stretch of time (the records of
+// both vehicles' devices merged).
+std::vector<Record> MergeRecords(std::vector<Record> records) {
   std::sort(records.begin(), records.end(), [](const Record& p, const Record& q) {
     return std::tie(p.a, p.b, p.begin, p.end) < std::tie(q.a, q.b, q.begin, q.end);
   });
@@ -162,11 +157,17 @@ SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
     }
     conflicts.push_back(std::move(r));
   }
+  return conflicts;
+}
 
+// Each game's pair measures: the worst of its AV and HV's conflicts with
+// each other around the game.
+void GamePairs(const std::vector<Record>& conflicts, const std::vector<SsmGame>& games,
+               const SsmRules& rules, SsmRun* run) {
   // The conflicts of each pair (for the games' pair measures).
   std::map<std::pair<std::string, std::string>, std::vector<const Record*>> of_pair;
   for (const Record& c : conflicts) of_pair[{c.a, c.b}].push_back(&c);
-  run.games.reserve(games.size());
+  run->games.reserve(games.size());
   for (const SsmGame& g : games) {
     SsmPair pair;
     const auto it = of_pair.find(g.av < g.hv ? std::make_pair(g.av, g.hv) : std::make_pair(g.hv, g.av));
@@ -184,9 +185,15 @@ SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
       pair.max_drac = value(SsmMeasure::kDrac);
       pair.min_pet = value(SsmMeasure::kPet);
     }
-    run.games.push_back(pair);
+    run->games.push_back(pair);
   }
+}
 
+// The conflicts after the warm-up tallied for the network, the controlled
+// junctions and each junction; those over a collision counted apart.
+void TallyConflicts(const std::vector<Record>& conflicts, const SsmRules& rules,
+                    const std::vector<SsmJunctionArea>& areas,
+                    const std::vector<SsmCollision>& collisions, SsmRun* run) {
   // The collisions by pair: a conflict over one of them is that collision.
   std::map<std::pair<std::string, std::string>, std::vector<double>> collided;
   for (const SsmCollision& c : collisions)
@@ -203,26 +210,47 @@ SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
     if (is_collision(c)) {
       bool counted = false;
       for (int k = 0; k < kSsmMeasures; ++k) counted = counted || Passes(rules, k, c.m[k].value);
-      run.collided += counted;
+      run->collided += counted;
       continue;
     }
     int first = -1;  // the measure placing the conflict itself
     for (int k = 0; k < kSsmMeasures; ++k) {
       if (!Passes(rules, k, c.m[k].value)) continue;
       if (first < 0) first = k;
-      Add(c.m, k, &run.network);
+      Add(c.m, k, &run->network);
       if (const SsmJunctionArea* j = JunctionAt(areas, rules.junction_radius, c.m[k].x, c.m[k].y)) {
-        Add(c.m, k, &run.at_junctions);
-        Add(c.m, k, &run.junction[j->junction]);
+        Add(c.m, k, &run->at_junctions);
+        Add(c.m, k, &run->junction[j->junction]);
       }
     }
     if (first < 0) continue;
-    Add(c.m, -1, &run.network);
+    Add(c.m, -1, &run->network);
     if (const SsmJunctionArea* j = JunctionAt(areas, rules.junction_radius, c.m[first].x, c.m[first].y)) {
-      Add(c.m, -1, &run.at_junctions);
-      Add(c.m, -1, &run.junction[j->junction]);
+      Add(c.m, -1, &run->at_junctions);
+      Add(c.m, -1, &run->junction[j->junction]);
     }
   }
+}
+
+}  // namespace
+
+SsmRun ReadSsmOutput(const std::string& path, const SsmRules& rules,
+                     const std::vector<SsmJunctionArea>& areas,
+                     const std::vector<SsmGame>& games,
+                     const std::vector<SsmCollision>& collisions) {
+  pugi::xml_document doc;
+  const pugi::xml_parse_result ok = doc.load_file(path.c_str());
+  if (!ok) throw std::runtime_error(path + ": cannot read SUMO's SSM output (" + ok.description() + ")");
+  const pugi::xml_node log = doc.child("SSMLog");
+  if (!log) throw std::runtime_error(path + ": not SUMO's SSM output (no <SSMLog>)");
+  SsmRun run;
+  run.on = true;
+  run.rules = rules;
+  for (const SsmJunctionArea& a : areas) run.junction[a.junction];  // every junction, 0 or more
+
+  const std::vector<Record> conflicts = MergeRecords(ReadRecords(log, &run));
+  GamePairs(conflicts, games, rules, &run);
+  TallyConflicts(conflicts, rules, areas, collisions, &run);
   return run;
 }
 
@@ -302,10 +330,9 @@ const char* NearMissSentence() {
   return s.c_str();
 }
 
-}  // namespace
-
-std::vector<Metric> SsmMetricRows() {
-  // clang-format off
+// clang-format off
+// SUMO's SSM conflicts, all and by measure: counts, per hour, per 1,000 crossings.
+std::vector<Metric> SsmConflictMetrics() {
   return {
     {"ssm_conflicts", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr, nullptr,
      "SUMO's SSM conflicts after the warm-up, any measure past its threshold (one per vehicle "
@@ -344,6 +371,12 @@ std::vector<Metric> SsmMetricRows() {
      nullptr, "crossings_all", nullptr,
      "PET conflicts at the controlled junctions per 1,000 vehicles through them",
      ConflictsPer1000<kPet>},
+  };
+}
+
+// The games' near misses, all and by measure, and what their rates are per.
+std::vector<Metric> SsmNearMissMetrics() {
+  return {
     {"encounters_no_collision", T::kCount, "", kPJ, S::kSsm, Pool::kSum, nullptr, nullptr,
      nullptr, "encounters in which the AV and the HV did not collide (what a near-miss rate is per)",
      [](const MetricFacts& f) { return static_cast<double>(f.s.n - f.s.collisions); }},
@@ -367,6 +400,12 @@ std::vector<Metric> SsmMetricRows() {
     {"ssm_pet_near_miss_rate", T::kReal, "", kPJ, S::kSsm, Pool::kRate, "ssm_pet_near_misses",
      "encounters_no_collision", nullptr, "ssm_pet_near_misses per encounter without a collision",
      NearMissRate<kPet>},
+  };
+}
+
+// The device's collisions and warnings, and the worst TTC and DRAC.
+std::vector<Metric> SsmDeviceMetrics() {
+  return {
     {"ssm_conflicts_collided", T::kCount, "", kPolicyLevel, S::kSsm, Pool::kSum, nullptr, nullptr,
      nullptr,
      "conflicts the device logged between two vehicles SUMO's collision check found colliding "
@@ -385,7 +424,18 @@ std::vector<Metric> SsmMetricRows() {
      "without one)",
      [](const MetricFacts& f) { return Tally(f).drac_max; }},
   };
-  // clang-format on
+}
+// clang-format on
+
+}  // namespace
+
+std::vector<Metric> SsmMetricRows() {
+  std::vector<Metric> t;
+  for (const auto& part : {SsmConflictMetrics, SsmNearMissMetrics, SsmDeviceMetrics}) {
+    const std::vector<Metric> rows = part();
+    t.insert(t.end(), rows.begin(), rows.end());
+  }
+  return t;
 }
 
 }  // namespace taebp

@@ -313,11 +313,12 @@ void RefuseRunResults(const std::string& dir, const std::string& what) {
                         "beside its summary.json; choose another folder");
 }
 
-RunFolder::RunFolder(const std::string& dir, const std::string& option) : dir_(dir) {
-  const std::string what = option.empty() ? dir : option + " " + dir;
-  CheckOutputDir(dir, option);
+namespace {
+
+// A sweep's folder, or a task folder of one other than this sweep worker's
+// own, is refused: its results are the sweep's.
+void RefuseSweepFolder(const fs::path& abs, const std::string& what) {
   std::error_code ec;
-  const fs::path abs = fs::weakly_canonical(fs::absolute(fs::path(dir)), ec);
   for (const char* sweep_file : {"sweep.json", "journal.jsonl"})
     if (fs::exists(abs / sweep_file, ec))
       throw OutputError(what + " holds a sweep's results (" + sweep_file +
@@ -326,62 +327,66 @@ RunFolder::RunFolder(const std::string& dir, const std::string& option) : dir_(d
   // A sweep's task folder belongs to its sweep (load_sweep reads it as the
   // task's results); only the sweep's own worker writes it.
   if (abs.parent_path().filename() == "tasks" && HoldsSweep(abs.parent_path().parent_path())) {
-    const char* task = std::getenv(kSweepTaskVariable);
+    const char* task = std::getenv(RunFolder::kSweepTaskVariable);
     if (!task || fs::path(task) != abs)
       throw OutputError(what + " is a task folder of the sweep in " +
                         abs.parent_path().parent_path().string() +
                         ": its results are that sweep's (a run there would replace them); "
                         "choose another folder");
   }
-  // What an earlier run wrote here (its manifest) is replaced; nothing else
-  // is: a folder or a file named like a run's that no run of ours wrote
-  // (a user's) is refused before any work. An older taebp's results
-  // (summary.json, no manifest): its run files count as a run's.
+}
+
+// A folder `e` (named `name`) in the run folder: refused unless it is a
+// run's staging or a policy's folder the manifest (`ours`) lists whole.
+void RefuseUsersFolder(const fs::directory_entry& e, const std::string& name,
+                       const std::string& what, bool manifest, const std::set<std::string>& ours) {
+  const long pid = StagingPid(name, kStagingTag);
+  if (pid >= 0) return;  // a run's staging inside a mount point (below)
+  if (!IsPolicyFolder(name))
+    throw OutputError(what + " holds a folder, " + name +
+                      ", that a run would replace with its own files; choose another "
+                      "folder or move it");
+  const std::string unlisted = manifest ? FirstUnlisted(e.path(), name, ours) : name;
+  if (!unlisted.empty())
+    throw OutputError(what + " holds a folder named like a policy, " + name + ", with " +
+                      (manifest ? "files no taebp run wrote there (" + unlisted + ")"
+                                : std::string("no record that a taebp run wrote it (no ") +
+                                      RunFolder::kManifest + ")") +
+                      ": a run would replace it; move it, or choose another folder");
+}
+
+// What an earlier run wrote here (its manifest) is replaced; nothing else
+// is: a folder or a file named like a run's that no run of ours wrote
+// (a user's) is refused before any work. An older taebp's results
+// (summary.json, no manifest): its run files count as a run's.
+void RefuseUsersEntries(const fs::path& abs, const std::string& what) {
+  std::error_code ec;
   std::set<std::string> ours;
   std::string about;
   const bool manifest = ReadManifest(abs, &ours, &about);
   const bool legacy = !manifest && fs::exists(abs / "summary.json", ec);
-  if (fs::is_directory(abs, ec)) {
-    for (const fs::directory_entry& e : fs::directory_iterator(abs, ec)) {
-      const std::string name = e.path().filename().string();
-      if (e.is_directory(ec) && !e.is_symlink(ec)) {
-        const long pid = StagingPid(name, kStagingTag);
-        if (pid >= 0) continue;  // a run's staging inside a mount point (below)
-        if (!IsPolicyFolder(name))
-          throw OutputError(what + " holds a folder, " + name +
-                            ", that a run would replace with its own files; choose another "
-                            "folder or move it");
-        const std::string unlisted = manifest ? FirstUnlisted(e.path(), name, ours) : name;
-        if (!unlisted.empty())
-          throw OutputError(what + " holds a folder named like a policy, " + name + ", with " +
-                            (manifest ? "files no taebp run wrote there (" + unlisted + ")"
-                                      : std::string("no record that a taebp run wrote it (no ") +
-                                            kManifest + ")") +
-                            ": a run would replace it; move it, or choose another folder");
-        continue;
-      }
-      if (name == kManifest || !IsRunFile(name)) continue;  // a user's file: kept
-      std::string base;
-      if (IsWriterTemporary(name, &base)) continue;  // an older writer's leftover
-      if (manifest ? !ours.count(name) : !legacy)
-        throw OutputError(what + " holds " + name +
-                          ", a file named like a run's result that no taebp run wrote there: a "
-                          "run would replace it; move or rename it, or choose another folder");
+  if (!fs::is_directory(abs, ec)) return;
+  for (const fs::directory_entry& e : fs::directory_iterator(abs, ec)) {
+    const std::string name = e.path().filename().string();
+    if (e.is_directory(ec) && !e.is_symlink(ec)) {
+      RefuseUsersFolder(e, name, what, manifest, ours);
+      continue;
     }
+    if (name == RunFolder::kManifest || !IsRunFile(name)) continue;  // a user's file: kept
+    std::string base;
+    if (IsWriterTemporary(name, &base)) continue;  // an older writer's leftover
+    if (manifest ? !ours.count(name) : !legacy)
+      throw OutputError(what + " holds " + name +
+                        ", a file named like a run's result that no taebp run wrote there: a "
+                        "run would replace it; move or rename it, or choose another folder");
   }
-  made_dir_ = !fs::exists(abs, ec);
-  fs::create_directories(abs, ec);
-  if (ec) throw OutputError(what + ": cannot create it: " + ec.message());
-  made_lock_ = !fs::exists(abs / FolderLock::kFileName, ec);
-  try {
-    lock_ = std::make_unique<FolderLock>(abs.string());
-  } catch (...) {
-    if (made_dir_) fs::remove(abs, ec);  // empty unless another run got there first
-    throw;
-  }
-  // Staging folders of runs killed while replacing this folder: the old or
-  // the new set of an interrupted swap. Only the lock's holder writes them
-  // (the lock file goes with the swap), so with the lock held all are stale.
+}
+
+// Staging folders of runs killed while replacing this folder: the old or
+// the new set of an interrupted swap. Only the lock's holder writes them
+// (the lock file goes with the swap), so with the lock held all are stale.
+void RemoveStaleStaging(const fs::path& abs) {
+  std::error_code ec;
   const std::string sibling = "." + abs.filename().string() + kStagingTag;
   for (const fs::path& where : {abs.parent_path(), abs}) {
     for (const fs::directory_entry& e : fs::directory_iterator(where, ec)) {
@@ -393,6 +398,28 @@ RunFolder::RunFolder(const std::string& dir, const std::string& option) : dir_(d
       }
     }
   }
+}
+
+}  // namespace
+
+RunFolder::RunFolder(const std::string& dir, const std::string& option) : dir_(dir) {
+  const std::string what = option.empty() ? dir : option + " " + dir;
+  CheckOutputDir(dir, option);
+  std::error_code ec;
+  const fs::path abs = fs::weakly_canonical(fs::absolute(fs::path(dir)), ec);
+  RefuseSweepFolder(abs, what);
+  RefuseUsersEntries(abs, what);
+  made_dir_ = !fs::exists(abs, ec);
+  fs::create_directories(abs, ec);
+  if (ec) throw OutputError(what + ": cannot create it: " + ec.message());
+  made_lock_ = !fs::exists(abs / FolderLock::kFileName, ec);
+  try {
+    lock_ = std::make_unique<FolderLock>(abs.string());
+  } catch (...) {
+    if (made_dir_) fs::remove(abs, ec);  // empty unless another run got there first
+    throw;
+  }
+  RemoveStaleStaging(abs);
 }
 
 RunFolder::~RunFolder() {
@@ -407,34 +434,26 @@ RunFolder::~RunFolder() {
   lock_.reset();
 }
 
-std::string RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& given,
-                               const std::vector<std::pair<std::string, std::string>>& copies,
-                               const std::string& about) {
+namespace {
+
+using NamedFiles = std::vector<std::pair<std::string, std::string>>;
+
+// What the folder held: said in one line ("" when no run's results).
+std::string DescribeReplaced(const fs::path& dir, const std::string& name) {
   std::error_code ec;
-  // The real folder (a symbolic link to it stays a link).
-  const fs::path dir = fs::weakly_canonical(fs::absolute(fs::path(dir_)), ec);
-  // What the folder held: said in one line.
-  std::string replaced;
-  {
-    std::set<std::string> old_names;
-    std::string old_about;
-    const bool manifest = ReadManifest(dir, &old_names, &old_about);
-    if (manifest || fs::exists(dir / "summary.json", ec)) {
-      const std::string when = ModifiedAt(dir / (manifest ? kManifest : "summary.json"));
-      replaced = "replaced " + (old_about.empty() ? std::string("the results") : "the results of " + old_about) +
-                 (when.empty() ? "" : " from " + when) + " in " + dir_;
-    }
-  }
-  // The manifest: every name of the new set, the description first.
-  std::vector<std::pair<std::string, std::string>> files = given;
-  {
-    std::string text = about.empty() ? "" : "# " + about + "\n";
-    for (const auto& f : given) text += f.first + "\n";
-    for (const auto& f : copies) text += f.first + "\n";
-    files.emplace_back(kManifest, text);
-  }
-  // Beside the folder for a swap; inside it where the folder is a mount
-  // point or its parent cannot take the staging folder.
+  std::set<std::string> old_names;
+  std::string old_about;
+  const bool manifest = ReadManifest(dir, &old_names, &old_about);
+  if (!(manifest || fs::exists(dir / "summary.json", ec))) return "";
+  const std::string when = ModifiedAt(dir / (manifest ? RunFolder::kManifest : "summary.json"));
+  return "replaced " + (old_about.empty() ? std::string("the results") : "the results of " + old_about) +
+         (when.empty() ? "" : " from " + when) + " in " + name;
+}
+
+// Beside the folder for a swap; inside it where the folder is a mount
+// point or its parent cannot take the staging folder.
+fs::path MakeStaging(const fs::path& dir, bool* swap_out) {
+  std::error_code ec;
   fs::path staging = StagingPath(dir, ::getpid());
   bool swap = SameDevice(dir, dir.parent_path());
   fs::remove_all(staging, ec);
@@ -447,62 +466,50 @@ std::string RunFolder::Replace(const std::vector<std::pair<std::string, std::str
                                (ec ? ec.message() : std::string("it exists")));
   }
   fs::permissions(staging, fs::status(dir, ec).permissions(), ec);
-  try {
-    std::set<fs::path> subfolders;
-    auto parent = [&](const std::string& name) {
-      const fs::path sub = fs::path(name).parent_path();
-      if (!sub.empty() && subfolders.insert(sub).second) fs::create_directories(staging / sub);
-    };
-    for (const auto& [name, content] : files) {
-      parent(name);
-      WriteSynced((staging / name).string(), content);
-    }
-    for (const auto& [name, from] : copies) {
-      parent(name);
-      CopySynced(from, staging / name);
-    }
-    for (const fs::path& sub : subfolders) SyncFolder((staging / sub).string());
-    // For a swap, the folder's other files go with the new set (links).
-    if (swap) {
-      for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
-        const std::string name = e.path().filename().string();
-        // The lock file goes too, as a link to the same file: the lock this
-        // object holds stays on the folder's lock file after the swap.
-        if (IsRunFile(name) || fs::exists(staging / name)) continue;
-        if (e.is_directory(ec) && !e.is_symlink(ec))
-          throw OutputError(dir_ + " holds a folder, " + name + ", that a run would replace");
-        if (::link(e.path().c_str(), (staging / name).c_str()) != 0)
-          fs::copy(e.path(), staging / name, fs::copy_options::copy_symlinks);
-      }
-    }
-    SyncFolder(staging.string());
-  } catch (const OutputError&) {
-    fs::remove_all(staging, ec);
-    throw;
-  } catch (const std::exception& e) {
-    fs::remove_all(staging, ec);
-    // Named by the run folder (the staging folder is a detail).
-    throw std::runtime_error("cannot write the results into " + dir_ + ": " + e.what());
+  *swap_out = swap;
+  return staging;
+}
+
+// The new set into `staging`; for a swap, the folder's other files too.
+void FillStaging(const fs::path& staging, const fs::path& dir, const std::string& name_of_dir,
+                 const NamedFiles& files, const NamedFiles& copies, bool swap) {
+  std::error_code ec;
+  std::set<fs::path> subfolders;
+  auto parent = [&](const std::string& name) {
+    const fs::path sub = fs::path(name).parent_path();
+    if (!sub.empty() && subfolders.insert(sub).second) fs::create_directories(staging / sub);
+  };
+  for (const auto& [name, content] : files) {
+    parent(name);
+    WriteSynced((staging / name).string(), content);
   }
-  // One swap: the folder holds the old set until here, the new one after.
+  for (const auto& [name, from] : copies) {
+    parent(name);
+    CopySynced(from, staging / name);
+  }
+  for (const fs::path& sub : subfolders) SyncFolder((staging / sub).string());
+  // For a swap, the folder's other files go with the new set (links).
   if (swap) {
-    if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
-      replaced_ = true;
-      SyncFolder(dir.parent_path().string());
-      fs::remove_all(staging, ec);  // now the old set
-      return replaced;
-    }
-    if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP && errno != EPERM &&
-        errno != EXDEV && errno != EBUSY) {
-      const std::string why = Errno();
-      fs::remove_all(staging, ec);
-      throw std::runtime_error("cannot write " + dir_ + ": swapping in the new results: " + why);
+    for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
+      const std::string name = e.path().filename().string();
+      // The lock file goes too, as a link to the same file: the lock this
+      // object holds stays on the folder's lock file after the swap.
+      if (IsRunFile(name) || fs::exists(staging / name)) continue;
+      if (e.is_directory(ec) && !e.is_symlink(ec))
+        throw OutputError(name_of_dir + " holds a folder, " + name + ", that a run would replace");
+      if (::link(e.path().c_str(), (staging / name).c_str()) != 0)
+        fs::copy(e.path(), staging / name, fs::copy_options::copy_symlinks);
     }
   }
-  // No swap: file by file, then the stale run files (the policies' folders
-  // of the old set go first: theirs is not a set that can be mixed).
+  SyncFolder(staging.string());
+}
+
+// No swap: file by file, then the stale run files (the policies' folders
+// of the old set go first: theirs is not a set that can be mixed).
+void MoveIn(const fs::path& staging, const fs::path& dir, const NamedFiles& files,
+            const NamedFiles& copies) {
+  std::error_code ec;
   try {
-    replaced_ = true;  // from the first rename on, the folder holds this run's files
     for (const fs::directory_entry& e : fs::directory_iterator(dir, ec))
       if (IsPolicyFolder(e.path().filename().string()) && e.is_directory(ec))
         fs::remove_all(e.path(), ec);
@@ -526,6 +533,54 @@ std::string RunFolder::Replace(const std::vector<std::pair<std::string, std::str
                                   [&](const auto& f) { return f.first == name; });
     if (IsRunFile(name) && !ours && !IsPolicyFolder(name)) fs::remove(e.path(), ec);
   }
+}
+
+}  // namespace
+
+std::string RunFolder::Replace(const std::vector<std::pair<std::string, std::string>>& given,
+                               const std::vector<std::pair<std::string, std::string>>& copies,
+                               const std::string& about) {
+  std::error_code ec;
+  // The real folder (a symbolic link to it stays a link).
+  const fs::path dir = fs::weakly_canonical(fs::absolute(fs::path(dir_)), ec);
+  const std::string replaced = DescribeReplaced(dir, dir_);
+  // The manifest: every name of the new set, the description first.
+  std::vector<std::pair<std::string, std::string>> files = given;
+  {
+    std::string text = about.empty() ? "" : "# " + about + "\n";
+    for (const auto& f : given) text += f.first + "\n";
+    for (const auto& f : copies) text += f.first + "\n";
+    files.emplace_back(kManifest, text);
+  }
+  bool swap = false;
+  const fs::path staging = MakeStaging(dir, &swap);
+  try {
+    FillStaging(staging, dir, dir_, files, copies, swap);
+  } catch (const OutputError&) {
+    fs::remove_all(staging, ec);
+    throw;
+  } catch (const std::exception& e) {
+    fs::remove_all(staging, ec);
+    // Named by the run folder (the staging folder is a detail).
+    throw std::runtime_error("cannot write the results into " + dir_ + ": " + e.what());
+  }
+  // One swap: the folder holds the old set until here, the new one after.
+  if (swap) {
+    if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
+      replaced_ = true;
+      SyncFolder(dir.parent_path().string());
+      fs::remove_all(staging, ec);  // now the old set
+      return replaced;
+    }
+    if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP && errno != EPERM &&
+        errno != EXDEV && errno != EBUSY) {
+      const std::string why = Errno();
+      fs::remove_all(staging, ec);
+      throw std::runtime_error("cannot write " + dir_ + ": swapping in the new results: " + why);
+    }
+  }
+  replaced_ = true;  // from the first rename on, the folder holds this run's files
+  MoveIn(staging, dir, files, copies);
   SyncFolder(dir.string());
   fs::remove_all(staging, ec);
   return replaced;

@@ -183,6 +183,188 @@ std::string RunIdentity(const ExperimentConfig& config, const std::string& polic
   return IdentityOf(Json::parse(ToJson(config)), config.BeyondPaper(), policy);
 }
 
+namespace {
+
+// Why a sweep refuses scenario.outputs (in its config or swept into the grid).
+constexpr const char* kOutputsRefused =
+    "scenario.outputs: SUMO's outputs are kept by `taebp run` (a folder per run, "
+    "DIR/<policy>/...); a sweep keeps its tables only: run the point you want to look at "
+    "with `taebp run CONFIG --set KEY=VALUE...`";
+
+// The key names of one grid entry ("a" or "a, b"), each new to the grid (`seen`).
+std::vector<std::string> AxisKeys(const std::string& key_spec, const std::string& where,
+                                  std::set<std::string>* seen) {
+  std::vector<std::string> keys;
+  std::stringstream ss(key_spec);
+  for (std::string k; std::getline(ss, k, ',');) {
+    k = Trim(k);
+    if (k.empty()) throw ConfigError(where + " has an empty key name");
+    if (k == "sweep" || k.rfind("sweep.", 0) == 0)
+      throw ConfigError(where + " cannot sweep the sweep section");
+    if (!seen->insert(k).second)
+      throw ConfigError(where + ": key '" + k + "' appears twice in the grid");
+    keys.push_back(k);
+  }
+  if (!key_spec.empty() && key_spec.back() == ',') throw ConfigError(where + " has an empty key name");
+  if (keys.empty()) throw ConfigError(where + " has no key name");
+  return keys;
+}
+
+// Value #i+1 of a grid entry with `keys`: the text itself for one key, a flow
+// list of one entry per key for several.
+std::vector<std::string> AxisValue(const std::vector<std::string>& keys, const std::string& v,
+                                   std::size_t i, const std::string& where) {
+  if (keys.size() == 1) {
+    if (Trim(v).empty() || v == "~" || v == "null")
+      throw ConfigError(where + ": value #" + std::to_string(i + 1) + " is empty");
+    return {v};
+  }
+  std::vector<std::string> items;
+  const std::string expected = "a list of " + std::to_string(keys.size()) +
+                               " values (one per key: " + JoinKeys(keys) + ")";
+  if (!SplitFlowSequence(v, &items))
+    throw ConfigError(where + ": value #" + std::to_string(i + 1) + " " + v + " is not " +
+                      expected);
+  if (items.size() != keys.size())
+    throw ConfigError(where + ": value #" + std::to_string(i + 1) + " " + v + " has " +
+                      std::to_string(items.size()) + " entries, expected " + expected);
+  for (std::size_t k = 0; k < items.size(); ++k)
+    if (items[k].empty() || items[k] == "~" || items[k] == "null")
+      throw ConfigError(where + ": value #" + std::to_string(i + 1) + " " + v +
+                        " has an empty entry for key '" + keys[k] + "'");
+  return items;
+}
+
+// The grid's axes and columns into `plan`; returns the number of points.
+std::size_t ReadGrid(const SweepConfig& spec, const std::string& config_path, Plan* plan) {
+  std::set<std::string> seen;
+  std::size_t total = 1;
+  for (const auto& [key_spec, values] : spec.grid) {
+    const std::string where = config_path + ": sweep.grid key '" + key_spec + "'";
+    Axis axis;
+    axis.keys = AxisKeys(key_spec, where, &seen);
+    if (values.empty()) throw ConfigError(where + " has no values");
+    for (std::size_t i = 0; i < values.size(); ++i)
+      axis.values.push_back(AxisValue(axis.keys, values[i], i, where));
+    total *= axis.values.size();
+    if (total > kMaxPoints)
+      throw ConfigError(config_path + ": sweep.grid has more than " + std::to_string(kMaxPoints) +
+                        " points");
+    for (const auto& k : axis.keys) plan->columns.push_back(k);
+    plan->axes.push_back(std::move(axis));
+  }
+  return total;
+}
+
+// Grid point `idx`'s values, one per column (the last axis varies fastest).
+std::vector<std::string> PointValues(const Plan& plan, std::size_t idx) {
+  std::vector<std::string> values;
+  std::vector<std::size_t> pick(plan.axes.size());
+  std::size_t rest = idx;
+  for (std::size_t a = plan.axes.size(); a-- > 0;) {
+    pick[a] = rest % plan.axes[a].values.size();
+    rest /= plan.axes[a].values.size();
+  }
+  for (std::size_t a = 0; a < plan.axes.size(); ++a)
+    for (std::size_t k = 0; k < plan.axes[a].keys.size(); ++k)
+      values.push_back(plan.axes[a].values[pick[a]][k]);
+  return values;
+}
+
+// What a point's config says of its runs.
+struct PointRuns {
+  std::map<std::string, std::string> identities;  // policy -> RunIdentity at this point
+  bool beyond = false, beyond_by_config = false;
+  std::uint64_t seed = 0;
+};
+
+// Loads `point`'s config from the template: its policies into the point, its
+// runs' identities and seed into `runs`. Throws ConfigError if it is invalid.
+void LoadPoint(const Plan& plan, const ExperimentTemplate& config_template, Point* point,
+               PointRuns* runs) {
+  // Without its sweep: section (the same for every point, checked with
+  // the base config); the point's own values only (the rest is in the template).
+  std::vector<std::string> point_overrides;
+  for (std::size_t k = 0; k < plan.columns.size(); ++k)
+    point_overrides.push_back(plan.columns[k] + "=" + point->values[k]);
+  ExperimentConfig c = config_template.Load(point_overrides);
+  if (c.scenario.outputs.Any()) throw ConfigError(kOutputsRefused);  // swept into the grid
+  point->policies = c.policies;
+  runs->seed = c.scenario.seed;
+  const std::uint64_t seed = runs->seed;
+  if (static_cast<std::uint64_t>(plan.replicates) - 1 > kMaxSeed - seed)
+    throw ConfigError("scenario.seed = " + std::to_string(seed) + " with sweep.replicates = " +
+                      std::to_string(plan.replicates) + " would reach seed " +
+                      std::to_string(seed + plan.replicates - 1) + ", above " +
+                      std::to_string(kMaxSeed) + " (SUMO takes its seed modulo 2147483647)");
+  runs->beyond = c.BeyondPaper();
+  const Json config_json = Json::parse(ToJson(c));  // once per point
+  for (const std::string& p : c.policies)
+    runs->identities[p] = IdentityOf(config_json, runs->beyond, p);
+  c.policies.clear();  // what else makes a run beyond the paper
+  runs->beyond_by_config = c.BeyondPaper();
+}
+
+// The error naming the first invalid grid point.
+std::string InvalidPoint(const Plan& plan, const std::string& config_path, const Point& point,
+                         std::size_t idx, const char* what) {
+  std::string values;
+  for (std::size_t k = 0; k < plan.columns.size(); ++k)
+    values += (k ? ", " : "") + plan.columns[k] + "=" + point.values[k];
+  return config_path + ": sweep.grid point " + std::to_string(idx) + " (" + values +
+         ") is not a valid config: " + what;
+}
+
+// Replicate `r` of `point`: the policies it runs and those whose run it
+// reuses from an earlier task. `first_run`: each run's identity and seed ->
+// the first task that runs it.
+Task MakeTask(const Plan& plan, const Point& point, int r, const PointRuns& runs,
+              std::map<std::string, int>* first_run) {
+  Task t;
+  t.point = point.index;
+  t.replicate = r;
+  t.index = point.index * plan.replicates + r;
+  t.seed = runs.seed + static_cast<std::uint64_t>(r);
+  bool beyond_left = runs.beyond_by_config;  // the runs' subset still beyond the paper?
+  // A run: its identity and its seed.
+  auto run_key = [&t](const std::string& identity) {
+    return identity + "\nseed " + std::to_string(t.seed);
+  };
+  for (const std::string& p : point.policies) {
+    const auto id = runs.identities.find(p);
+    const auto earlier = id == runs.identities.end() || !plan.reuse
+                             ? first_run->end()
+                             : first_run->find(run_key(id->second));
+    if (earlier != first_run->end()) {
+      t.reused_from[p] = earlier->second;
+    } else {
+      t.runs.push_back(p);
+      const PolicyInfo* info = FindPolicy(p);
+      beyond_left = beyond_left || (info && info->beyond_paper);
+    }
+  }
+  // Running a subset must not change the runs' columns (BeyondPaper):
+  // then the beyond-the-paper policies run again.
+  if (runs.beyond && !beyond_left && !t.runs.empty()) {
+    for (auto it = t.reused_from.begin(); it != t.reused_from.end();) {
+      const PolicyInfo* info = FindPolicy(it->first);
+      if (info && info->beyond_paper) it = t.reused_from.erase(it);
+      else ++it;
+    }
+    t.runs.clear();
+    for (const std::string& p : point.policies)
+      if (!t.reused_from.count(p)) t.runs.push_back(p);
+  }
+  for (const std::string& p : t.runs) {
+    const auto id = runs.identities.find(p);
+    if (id != runs.identities.end())
+      first_run->emplace(run_key(id->second), t.index);
+  }
+  return t;
+}
+
+}  // namespace
+
 Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
                  const std::vector<std::string>& overrides, bool reuse) {
   Plan plan;
@@ -194,11 +376,7 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
   if (!plan.base.sweep)
     throw ConfigError(config_path +
                       ": no 'sweep:' section (taebp sweep needs sweep.grid and sweep.replicates)");
-  const std::string outputs_refused =
-      "scenario.outputs: SUMO's outputs are kept by `taebp run` (a folder per run, "
-      "DIR/<policy>/...); a sweep keeps its tables only: run the point you want to look at "
-      "with `taebp run CONFIG --set KEY=VALUE...`";
-  if (plan.base.scenario.outputs.Any()) throw ConfigError(config_path + ": " + outputs_refused);
+  if (plan.base.scenario.outputs.Any()) throw ConfigError(config_path + ": " + kOutputsRefused);
   plan.hash = ConfigHash(plan.base);
   const SweepConfig& spec = *plan.base.sweep;
   plan.replicates = spec.replicates;
@@ -206,55 +384,7 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
     throw ConfigError(config_path + ": sweep.replicates = " + std::to_string(plan.replicates) +
                       " must be >= 1");
 
-  std::set<std::string> seen;
-  std::size_t total = 1;
-  for (const auto& [key_spec, values] : spec.grid) {
-    const std::string where = config_path + ": sweep.grid key '" + key_spec + "'";
-    Axis axis;
-    std::stringstream ss(key_spec);
-    for (std::string k; std::getline(ss, k, ',');) {
-      k = Trim(k);
-      if (k.empty()) throw ConfigError(where + " has an empty key name");
-      if (k == "sweep" || k.rfind("sweep.", 0) == 0)
-        throw ConfigError(where + " cannot sweep the sweep section");
-      if (!seen.insert(k).second)
-        throw ConfigError(where + ": key '" + k + "' appears twice in the grid");
-      axis.keys.push_back(k);
-    }
-    if (!key_spec.empty() && key_spec.back() == ',') throw ConfigError(where + " has an empty key name");
-    if (axis.keys.empty()) throw ConfigError(where + " has no key name");
-    if (values.empty()) throw ConfigError(where + " has no values");
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      const std::string& v = values[i];
-      if (axis.keys.size() == 1) {
-        if (Trim(v).empty() || v == "~" || v == "null")
-          throw ConfigError(where + ": value #" + std::to_string(i + 1) + " is empty");
-        axis.values.push_back({v});
-        continue;
-      }
-      std::vector<std::string> items;
-      const std::string expected = "a list of " + std::to_string(axis.keys.size()) +
-                                   " values (one per key: " + JoinKeys(axis.keys) + ")";
-      if (!SplitFlowSequence(v, &items))
-        throw ConfigError(where + ": value #" + std::to_string(i + 1) + " " + v + " is not " +
-                          expected);
-      if (items.size() != axis.keys.size())
-        throw ConfigError(where + ": value #" + std::to_string(i + 1) + " " + v + " has " +
-                          std::to_string(items.size()) + " entries, expected " + expected);
-      for (std::size_t k = 0; k < items.size(); ++k)
-        if (items[k].empty() || items[k] == "~" || items[k] == "null")
-          throw ConfigError(where + ": value #" + std::to_string(i + 1) + " " + v +
-                            " has an empty entry for key '" + axis.keys[k] + "'");
-      axis.values.push_back(items);
-    }
-    total *= axis.values.size();
-    if (total > kMaxPoints)
-      throw ConfigError(config_path + ": sweep.grid has more than " + std::to_string(kMaxPoints) +
-                        " points");
-    for (const auto& k : axis.keys) plan.columns.push_back(k);
-    plan.axes.push_back(std::move(axis));
-  }
-
+  const std::size_t total = ReadGrid(spec, config_path, &plan);
   if (total * static_cast<std::size_t>(plan.replicates) > kMaxTasks)
     throw ConfigError(config_path + ": sweep.replicates = " + std::to_string(plan.replicates) +
                       " times " + std::to_string(total) + " grid points is more than " +
@@ -274,92 +404,18 @@ Plan ExpandSweep(const std::string& config_text, const std::string& config_path,
   for (std::size_t idx = 0; idx < total; ++idx) {
     Point point;
     point.index = static_cast<int>(idx);
-    std::vector<std::size_t> pick(plan.axes.size());
-    std::size_t rest = idx;
-    for (std::size_t a = plan.axes.size(); a-- > 0;) {
-      pick[a] = rest % plan.axes[a].values.size();
-      rest /= plan.axes[a].values.size();
-    }
-    for (std::size_t a = 0; a < plan.axes.size(); ++a)
-      for (std::size_t k = 0; k < plan.axes[a].keys.size(); ++k)
-        point.values.push_back(plan.axes[a].values[pick[a]][k]);
+    point.values = PointValues(plan, idx);
     // The point's own policies and seed (a grid may sweep either).
     point.policies = plan.base.policies;
-    std::map<std::string, std::string> identities;  // policy -> RunIdentity at this point
-    bool beyond = false, beyond_by_config = false;
-    std::uint64_t seed = plan.base.scenario.seed;
+    PointRuns runs;
+    runs.seed = plan.base.scenario.seed;
     try {
-      // Without its sweep: section (the same for every point, checked with
-      // the base config); the point's own values only (the rest is in the template).
-      std::vector<std::string> point_overrides;
-      for (std::size_t k = 0; k < plan.columns.size(); ++k)
-        point_overrides.push_back(plan.columns[k] + "=" + point.values[k]);
-      ExperimentConfig c = config_template.Load(point_overrides);
-      if (c.scenario.outputs.Any()) throw ConfigError(outputs_refused);  // swept into the grid
-      point.policies = c.policies;
-      seed = c.scenario.seed;
-      if (static_cast<std::uint64_t>(plan.replicates) - 1 > kMaxSeed - seed)
-        throw ConfigError("scenario.seed = " + std::to_string(seed) + " with sweep.replicates = " +
-                          std::to_string(plan.replicates) + " would reach seed " +
-                          std::to_string(seed + plan.replicates - 1) + ", above " +
-                          std::to_string(kMaxSeed) + " (SUMO takes its seed modulo 2147483647)");
-      beyond = c.BeyondPaper();
-      const Json config_json = Json::parse(ToJson(c));  // once per point
-      for (const std::string& p : c.policies) identities[p] = IdentityOf(config_json, beyond, p);
-      c.policies.clear();  // what else makes a run beyond the paper
-      beyond_by_config = c.BeyondPaper();
+      LoadPoint(plan, config_template, &point, &runs);
     } catch (const ConfigError& e) {
-      if (invalid++ == 0) {
-        std::string values;
-        for (std::size_t k = 0; k < plan.columns.size(); ++k)
-          values += (k ? ", " : "") + plan.columns[k] + "=" + point.values[k];
-        first_error = config_path + ": sweep.grid point " + std::to_string(idx) + " (" + values +
-                      ") is not a valid config: " + e.what();
-      }
+      if (invalid++ == 0) first_error = InvalidPoint(plan, config_path, point, idx, e.what());
     }
-    for (int r = 0; r < plan.replicates; ++r) {
-      Task t;
-      t.point = point.index;
-      t.replicate = r;
-      t.index = point.index * plan.replicates + r;
-      t.seed = seed + static_cast<std::uint64_t>(r);
-      bool beyond_left = beyond_by_config;  // the runs' subset still beyond the paper?
-      // A run: its identity and its seed.
-      auto run_key = [&t](const std::string& identity) {
-        return identity + "\nseed " + std::to_string(t.seed);
-      };
-      for (const std::string& p : point.policies) {
-        const auto id = identities.find(p);
-        const auto earlier = id == identities.end() || !reuse
-                                 ? first_run.end()
-                                 : first_run.find(run_key(id->second));
-        if (earlier != first_run.end()) {
-          t.reused_from[p] = earlier->second;
-        } else {
-          t.runs.push_back(p);
-          const PolicyInfo* info = FindPolicy(p);
-          beyond_left = beyond_left || (info && info->beyond_paper);
-        }
-      }
-      // Running a subset must not change the runs' columns (BeyondPaper):
-      // then the beyond-the-paper policies run again.
-      if (beyond && !beyond_left && !t.runs.empty()) {
-        for (auto it = t.reused_from.begin(); it != t.reused_from.end();) {
-          const PolicyInfo* info = FindPolicy(it->first);
-          if (info && info->beyond_paper) it = t.reused_from.erase(it);
-          else ++it;
-        }
-        t.runs.clear();
-        for (const std::string& p : point.policies)
-          if (!t.reused_from.count(p)) t.runs.push_back(p);
-      }
-      for (const std::string& p : t.runs) {
-        const auto id = identities.find(p);
-        if (id != identities.end())
-          first_run.emplace(run_key(id->second), t.index);
-      }
-      plan.tasks.push_back(t);
-    }
+    for (int r = 0; r < plan.replicates; ++r)
+      plan.tasks.push_back(MakeTask(plan, point, r, runs, &first_run));
     plan.points.push_back(std::move(point));
   }
   if (invalid > 0)

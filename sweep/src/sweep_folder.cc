@@ -70,40 +70,54 @@ std::string SumoVersionOf(const Journal& journal) {
   return "";
 }
 
-// encounters.csv of the sweep: every ok task's encounters.csv rows, with the
-// task's point, replicate, seed and swept values in front. Streamed (a large
-// grid's rows need not fit in memory) into a temporary file renamed into place.
 namespace {
 
-void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal& journal) {
-  auto join = [](const std::vector<std::string>& cols) {
-    std::string h;
-    for (const std::string& c : cols) h += (h.empty() ? "" : ",") + c;
-    return h;
-  };
-  // The headers a task's encounters.csv may have (report.h
-  // EncounterCsvColumns: the paper's columns, then a network's, a run beyond
-  // the paper's and the SSM device's where they apply).
-  std::map<std::string, std::vector<std::string>> known;
+using KnownHeaders = std::map<std::string, std::vector<std::string>>;
+
+std::string JoinColumns(const std::vector<std::string>& cols) {
+  std::string h;
+  for (const std::string& c : cols) h += (h.empty() ? "" : ",") + c;
+  return h;
+}
+
+// The headers a task's encounters.csv may have (report.h
+// EncounterCsvColumns: the paper's columns, then a network's, a run beyond
+// the paper's and the SSM device's where they apply).
+KnownHeaders EncounterHeaders() {
+  KnownHeaders known;
   for (bool beyond : {false, true})
     for (bool network : {false, true})
       for (bool ssm : {false, true}) {
         std::vector<std::string> cols = EncounterCsvColumns(beyond, network, ssm);
-        known[join(cols)] = cols;
+        known[JoinColumns(cols)] = cols;
       }
-  // The header line of each ok task's encounters.csv, read once. The pooled
-  // file has every group any task has, in that order; a task without a group
-  // gets empty cells there.
+  return known;
+}
+
+// What is pooled into the sweep's encounters.csv.
+struct Pooling {
+  const fs::path& out;
+  const Plan& plan;
+  const Journal& journal;
+  KnownHeaders known;
+  bool network = false;              // network tasks (not the figure-8)
+  std::vector<std::string> pooled;  // the pooled file's columns after the task's
+};
+
+// The header line of each ok task's encounters.csv, read once. The pooled
+// file has every group any task has, in that order; a task without a group
+// gets empty cells there.
+void FindColumns(Pooling* p) {
   bool network = false, beyond = false, ssm = false;
   const std::vector<std::string> paper = EncounterCsvColumns(false, false, false);
-  for (const Task& t : plan.tasks) {
-    const auto it = journal.entries.find(t.index);
-    if (it == journal.entries.end() || !IsOk(it->second) || t.runs.empty()) continue;
-    std::ifstream in(TaskDir(out, t) / "encounters.csv", std::ios::binary);
+  for (const Task& t : p->plan.tasks) {
+    const auto it = p->journal.entries.find(t.index);
+    if (it == p->journal.entries.end() || !IsOk(it->second) || t.runs.empty()) continue;
+    std::ifstream in(TaskDir(p->out, t) / "encounters.csv", std::ios::binary);
     std::string line;
     if (!(in && std::getline(in, line))) continue;
-    const auto k = known.find(line);
-    if (k == known.end()) continue;
+    const auto k = p->known.find(line);
+    if (k == p->known.end()) continue;
     auto has = [&](const std::vector<std::string>& group) {
       return std::find(k->second.begin(), k->second.end(), group.front()) != k->second.end();
     };
@@ -111,66 +125,85 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
     beyond = beyond || has(EncounterCsvColumnGroup("beyond"));
     ssm = ssm || has(EncounterCsvColumnGroup("ssm"));
   }
-  const std::vector<std::string> pooled = EncounterCsvColumns(beyond, network, ssm);
+  p->network = network;
+  p->pooled = EncounterCsvColumns(beyond, network, ssm);
+}
+
+// Task `t`'s point, replicate, seed and swept values: the front of its rows.
+std::string RowPrefix(const Plan& plan, const Task& t) {
+  std::string prefix = std::to_string(t.point) + ',' + std::to_string(t.replicate) + ',' +
+                       std::to_string(t.seed);
+  for (const std::string& v : plan.points[static_cast<std::size_t>(t.point)].values)
+    prefix += ',' + CsvCell(v);
+  return prefix;
+}
+
+// The rows of one policy of one task, from `source`'s encounters.csv (the
+// task itself or the one whose run it reuses), one task file at a time.
+void WritePolicyRows(const Pooling& p, std::ostream& f, const Task& t, const Task& source,
+                     const std::string& policy) {
+  const auto it = p.journal.entries.find(source.index);
+  if (it == p.journal.entries.end() || !IsOk(it->second) || source.runs.empty()) return;
+  const fs::path file = TaskDir(p.out, source) / "encounters.csv";
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  const bool read = in && std::getline(in, line);
+  const auto k = read ? p.known.find(line) : p.known.end();
+  // Network and figure-8 tasks do not mix in one sweep: the first says.
+  const bool fits =
+      k != p.known.end() &&
+      (std::find(k->second.begin(), k->second.end(), EncounterCsvColumnGroup("network").front()) !=
+       k->second.end()) == p.network;
+  if (!fits) {
+    std::fprintf(stderr, "taebp sweep: warning: %s %s; its encounters are not in %s\n",
+                 file.c_str(), in ? "has other columns (another taebp version?)" : "is missing",
+                 (p.out / "encounters.csv").c_str());
+    return;
+  }
+  // Where each pooled column comes from in this file's rows (-1: empty).
+  const std::vector<std::string>& cols = k->second;
+  std::vector<int> from;
+  for (const std::string& c : p.pooled) {
+    const auto at = std::find(cols.begin(), cols.end(), c);
+    from.push_back(at == cols.end() ? -1 : static_cast<int>(at - cols.begin()));
+  }
+  const std::size_t policy_at = static_cast<std::size_t>(
+      std::find(cols.begin(), cols.end(), "policy") - cols.begin());
+  const bool same = cols == p.pooled;
+  const std::string prefix = RowPrefix(p.plan, t);
+  const std::string lead = CsvCell(policy) + ',';  // the policy is the first column
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    if (policy_at == 0 ? line.compare(0, lead.size(), lead) != 0 : false) continue;
+    if (same && policy_at == 0) {
+      f << prefix << ',' << line << '\n';
+      continue;
+    }
+    const std::vector<std::string> cells = SplitCsvRow(line);
+    if (policy_at >= cells.size() || cells[policy_at] != CsvCell(policy)) continue;
+    f << prefix;
+    for (int i : from) f << ',' << (i >= 0 && i < static_cast<int>(cells.size()) ? cells[i] : "");
+    f << '\n';
+  }
+}
+
+// encounters.csv of the sweep: every ok task's encounters.csv rows, with the
+// task's point, replicate, seed and swept values in front. Streamed (a large
+// grid's rows need not fit in memory) into a temporary file renamed into place.
+void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal& journal) {
+  Pooling p{out, plan, journal, EncounterHeaders(), false, {}};
+  FindColumns(&p);
   // Streamed (a long study's rows need not fit in memory), in place once on disk.
   SyncedWriter writer((out / "encounters.csv").string());
   std::ostream& f = writer.Stream();
   f << "point,replicate,seed";
   for (const std::string& c : plan.columns) f << ',' << CsvCell(c);
-  f << ',' << join(pooled) << '\n';
+  f << ',' << JoinColumns(p.pooled) << '\n';
   // Each task's rows, policy by policy in its point's order: a policy it ran
   // from its own encounters.csv, a policy it reused from the earlier task's
   // (Task::reused_from), so that the file is the one a sweep without reuse
   // writes (docs/results-folders.md). The rows of one policy of one task
   // file at a time.
-  auto write_policy = [&](const Task& t, const Task& source, const std::string& policy) {
-    const auto it = journal.entries.find(source.index);
-    if (it == journal.entries.end() || !IsOk(it->second) || source.runs.empty()) return;
-    const fs::path file = TaskDir(out, source) / "encounters.csv";
-    std::ifstream in(file, std::ios::binary);
-    std::string line;
-    const bool read = in && std::getline(in, line);
-    const auto k = read ? known.find(line) : known.end();
-    // Network and figure-8 tasks do not mix in one sweep: the first says.
-    const bool fits =
-        k != known.end() &&
-        (std::find(k->second.begin(), k->second.end(), EncounterCsvColumnGroup("network").front()) !=
-         k->second.end()) == network;
-    if (!fits) {
-      std::fprintf(stderr, "taebp sweep: warning: %s %s; its encounters are not in %s\n",
-                   file.c_str(), in ? "has other columns (another taebp version?)" : "is missing",
-                   (out / "encounters.csv").c_str());
-      return;
-    }
-    // Where each pooled column comes from in this file's rows (-1: empty).
-    const std::vector<std::string>& cols = k->second;
-    std::vector<int> from;
-    for (const std::string& c : pooled) {
-      const auto at = std::find(cols.begin(), cols.end(), c);
-      from.push_back(at == cols.end() ? -1 : static_cast<int>(at - cols.begin()));
-    }
-    const std::size_t policy_at = static_cast<std::size_t>(
-        std::find(cols.begin(), cols.end(), "policy") - cols.begin());
-    const bool same = cols == pooled;
-    std::string prefix = std::to_string(t.point) + ',' + std::to_string(t.replicate) + ',' +
-                         std::to_string(t.seed);
-    for (const std::string& v : plan.points[static_cast<std::size_t>(t.point)].values)
-      prefix += ',' + CsvCell(v);
-    const std::string lead = CsvCell(policy) + ',';  // the policy is the first column
-    while (std::getline(in, line)) {
-      if (line.empty()) continue;
-      if (policy_at == 0 ? line.compare(0, lead.size(), lead) != 0 : false) continue;
-      if (same && policy_at == 0) {
-        f << prefix << ',' << line << '\n';
-        continue;
-      }
-      const std::vector<std::string> cells = SplitCsvRow(line);
-      if (policy_at >= cells.size() || cells[policy_at] != CsvCell(policy)) continue;
-      f << prefix;
-      for (int i : from) f << ',' << (i >= 0 && i < static_cast<int>(cells.size()) ? cells[i] : "");
-      f << '\n';
-    }
-  };
   for (const Task& t : plan.tasks) {
     if (journal.entries.find(t.index) == journal.entries.end()) continue;
     for (const std::string& policy : plan.points[static_cast<std::size_t>(t.point)].policies) {
@@ -178,7 +211,7 @@ void WritePooledEncounters(const fs::path& out, const Plan& plan, const Journal&
       const Task& source = reused == t.reused_from.end()
                                ? t
                                : plan.tasks[static_cast<std::size_t>(reused->second)];
-      write_policy(t, source, policy);
+      WritePolicyRows(p, f, t, source, policy);
     }
   }
   writer.Commit();

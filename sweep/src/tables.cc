@@ -137,12 +137,16 @@ std::string ResultsJsonl(const Plan& plan, const Journal& journal) {
   return out;
 }
 
-std::string AggregateCsv(const Plan& plan, const Journal& journal) {
-  struct Acc {
-    long ok = 0, failed = 0;
-    std::vector<Json> runs;  // the metrics of each run that finished
-  };
-  // (point, policy) in point order, then the point's policy order.
+namespace {
+
+// A (point, policy)'s runs in the journal.
+struct Acc {
+  long ok = 0, failed = 0;
+  std::vector<Json> runs;  // the metrics of each run that finished
+};
+
+// (point, policy) in point order, then the point's policy order.
+std::map<int, std::map<std::string, Acc>> Accumulate(const Plan& plan, const Journal& journal) {
   std::map<int, std::map<std::string, Acc>> acc;
   ForEachRow(plan, journal, [&](const Task& t, const Point&, const std::string& policy,
                                 const std::string& status, const std::string&,
@@ -155,86 +159,105 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
     ++a.ok;
     a.runs.push_back(m);
   });
-  auto num = [](double v) { return std::isfinite(v) ? NumberText(v) : std::string(); };
-  // One metric pooled over runs (metrics.h Pool): its aggregate cells.
-  auto pooled = [&](const Metric& metric, const std::vector<Json>& runs) {
-    std::vector<std::string> cells;
-    const std::string name = metric.name;
-    auto value = [](const Json& m, const std::string& key) {
-      return m.contains(key) ? Number(m[key]) : std::nan("");
-    };
-    std::vector<double> xs;  // the runs' defined values
-    for (const Json& m : runs)
-      if (const double x = value(m, name); std::isfinite(x)) xs.push_back(x);
-    switch (metric.pool) {
-      case Pool::kSum: {
-        if (xs.empty()) return std::vector<std::string>{""};
-        if (metric.type == MetricType::kReal) {
-          double sum = 0;
-          for (double x : xs) sum += x;
-          return std::vector<std::string>{num(sum)};
-        }
-        long long sum = 0;
-        for (double x : xs) sum += std::llround(x);
-        return std::vector<std::string>{std::to_string(sum)};
-      }
-      case Pool::kRate: {
-        // Clustered by HV within each run and by run (report/clustered.h).
-        std::vector<RunRate> rates;
-        for (const Json& m : runs) {
-          const double c = value(m, metric.count), t = value(m, metric.per);
-          if (!std::isfinite(c) || !std::isfinite(t)) continue;
-          const double deff = value(m, name + "_deff");
-          const double clusters = value(m, name + "_clusters");
-          rates.push_back({c, t, std::isfinite(deff) ? deff : 1.0,
-                           std::isfinite(clusters) ? std::lround(clusters) : 0L});
-        }
-        double trials = 0;
-        for (const RunRate& r : rates) trials += r.n;
-        if (!(trials > 0)) return std::vector<std::string>{"", "", "", "", ""};
-        const RateInterval ci = PooledRate(rates);
-        return std::vector<std::string>{num(ci.rate), num(ci.low), num(ci.high), num(ci.deff),
-                                        std::to_string(ci.clusters)};
-      }
-      case Pool::kWeighted:
-      case Pool::kPrediction: {
-        // ref + sum w (x - ref) / sum w: exact when every run has the same
-        // value (a fixed trust's prediction).
-        bool has_ref = false;
-        double ref = 0, wsum = 0, dev = 0;
-        for (const Json& m : runs) {
-          const double w = value(m, metric.per), x = value(m, name);
-          if (!std::isfinite(w) || w <= 0 || !std::isfinite(x)) continue;
-          if (!has_ref) has_ref = true, ref = x;
-          wsum += w;
-          dev += w * (x - ref);
-        }
-        if (wsum > 0) return std::vector<std::string>{num(ref + dev / wsum)};
-        if (metric.pool == Pool::kWeighted || xs.empty()) return std::vector<std::string>{""};
-        double sum = 0;  // no encounter anywhere: the prediction's plain mean
-        for (double x : xs) sum += x;
-        return std::vector<std::string>{num(sum / static_cast<double>(xs.size()))};
-      }
-      case Pool::kMean: {
-        if (xs.empty()) return std::vector<std::string>{"", ""};
-        double sum = 0;
-        for (double x : xs) sum += x;
-        const double mean = sum / static_cast<double>(xs.size());
-        if (xs.size() < 2) return std::vector<std::string>{num(mean), ""};
-        double ss = 0;
-        for (double x : xs) ss += (x - mean) * (x - mean);
-        return std::vector<std::string>{
-            num(mean), num(std::sqrt(ss / static_cast<double>(xs.size() - 1)))};
-      }
-      case Pool::kMax: {
-        if (xs.empty()) return std::vector<std::string>{""};
-        return std::vector<std::string>{num(*std::max_element(xs.begin(), xs.end()))};
-      }
-      case Pool::kNone: break;
-    }
-    return std::vector<std::string>{};
-  };
+  return acc;
+}
 
+std::string NumCell(double v) { return std::isfinite(v) ? NumberText(v) : std::string(); }
+
+double MetricValue(const Json& m, const std::string& key) {
+  return m.contains(key) ? Number(m[key]) : std::nan("");
+}
+
+std::vector<std::string> PooledSum(const Metric& metric, const std::vector<double>& xs) {
+  if (xs.empty()) return std::vector<std::string>{""};
+  if (metric.type == MetricType::kReal) {
+    double sum = 0;
+    for (double x : xs) sum += x;
+    return std::vector<std::string>{NumCell(sum)};
+  }
+  long long sum = 0;
+  for (double x : xs) sum += std::llround(x);
+  return std::vector<std::string>{std::to_string(sum)};
+}
+
+std::vector<std::string> RateCells(const Metric& metric, const std::vector<Json>& runs) {
+  const std::string name = metric.name;
+  // Clustered by HV within each run and by run (report/clustered.h).
+  std::vector<RunRate> rates;
+  for (const Json& m : runs) {
+    const double c = MetricValue(m, metric.count), t = MetricValue(m, metric.per);
+    if (!std::isfinite(c) || !std::isfinite(t)) continue;
+    const double deff = MetricValue(m, name + "_deff");
+    const double clusters = MetricValue(m, name + "_clusters");
+    rates.push_back({c, t, std::isfinite(deff) ? deff : 1.0,
+                     std::isfinite(clusters) ? std::lround(clusters) : 0L});
+  }
+  double trials = 0;
+  for (const RunRate& r : rates) trials += r.n;
+  if (!(trials > 0)) return std::vector<std::string>{"", "", "", "", ""};
+  const RateInterval ci = PooledRate(rates);
+  return std::vector<std::string>{NumCell(ci.rate), NumCell(ci.low), NumCell(ci.high),
+                                  NumCell(ci.deff), std::to_string(ci.clusters)};
+}
+
+std::vector<std::string> PooledWeighted(const Metric& metric, const std::vector<Json>& runs,
+                                        const std::vector<double>& xs) {
+  const std::string name = metric.name;
+  // ref + sum w (x - ref) / sum w: exact when every run has the same
+  // value (a fixed trust's prediction).
+  bool has_ref = false;
+  double ref = 0, wsum = 0, dev = 0;
+  for (const Json& m : runs) {
+    const double w = MetricValue(m, metric.per), x = MetricValue(m, name);
+    if (!std::isfinite(w) || w <= 0 || !std::isfinite(x)) continue;
+    if (!has_ref) has_ref = true, ref = x;
+    wsum += w;
+    dev += w * (x - ref);
+  }
+  if (wsum > 0) return std::vector<std::string>{NumCell(ref + dev / wsum)};
+  if (metric.pool == Pool::kWeighted || xs.empty()) return std::vector<std::string>{""};
+  double sum = 0;  // no encounter anywhere: the prediction's plain mean
+  for (double x : xs) sum += x;
+  return std::vector<std::string>{NumCell(sum / static_cast<double>(xs.size()))};
+}
+
+std::vector<std::string> PooledMean(const std::vector<double>& xs) {
+  if (xs.empty()) return std::vector<std::string>{"", ""};
+  double sum = 0;
+  for (double x : xs) sum += x;
+  const double mean = sum / static_cast<double>(xs.size());
+  if (xs.size() < 2) return std::vector<std::string>{NumCell(mean), ""};
+  double ss = 0;
+  for (double x : xs) ss += (x - mean) * (x - mean);
+  return std::vector<std::string>{
+      NumCell(mean), NumCell(std::sqrt(ss / static_cast<double>(xs.size() - 1)))};
+}
+
+// One metric pooled over runs (metrics.h Pool): its aggregate cells.
+std::vector<std::string> Pooled(const Metric& metric, const std::vector<Json>& runs) {
+  const std::string name = metric.name;
+  std::vector<double> xs;  // the runs' defined values
+  for (const Json& m : runs)
+    if (const double x = MetricValue(m, name); std::isfinite(x)) xs.push_back(x);
+  switch (metric.pool) {
+    case Pool::kSum: return PooledSum(metric, xs);
+    case Pool::kRate: return RateCells(metric, runs);
+    case Pool::kWeighted:
+    case Pool::kPrediction: return PooledWeighted(metric, runs, xs);
+    case Pool::kMean: return PooledMean(xs);
+    case Pool::kMax: {
+      if (xs.empty()) return std::vector<std::string>{""};
+      return std::vector<std::string>{NumCell(*std::max_element(xs.begin(), xs.end()))};
+    }
+    case Pool::kNone: break;
+  }
+  return std::vector<std::string>{};
+}
+
+}  // namespace
+
+std::string AggregateCsv(const Plan& plan, const Journal& journal) {
+  const std::map<int, std::map<std::string, Acc>> acc = Accumulate(plan, journal);
   std::ostringstream out;
   out << "point";
   for (const auto& c : plan.columns) out << ',' << CsvCell(c);
@@ -252,7 +275,7 @@ std::string AggregateCsv(const Plan& plan, const Journal& journal) {
       out << ',' << CsvCell(policy) << ',' << a.ok << ',' << a.failed;
       for (const Metric& metric : RunMetrics()) {
         if (!(metric.levels & kPolicyLevel)) continue;
-        const std::vector<std::string> cells = pooled(metric, a.runs);
+        const std::vector<std::string> cells = Pooled(metric, a.runs);
         for (const std::string& c : cells) out << ',' << c;
       }
       out << '\n';
