@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 namespace taebp::junction {
@@ -233,6 +234,50 @@ TEST(PassedWay, EveryStandIsPassedWayAtEachStand) {
   Mover b = Straight(0, 1);
   EXPECT_TRUE(PassedWayOfEveryStand(a, b, {25.0}));   // b short of a's band (y <= -0.9)
   EXPECT_FALSE(PassedWayOfEveryStand(a, b, {25.0, 30.0}));  // b's body in a's way
+}
+
+
+// PassedWay builds only the bodies that can meet; PassedWayReference builds
+// them all. The same answer on random curved paths through one junction box
+// (arcs, kinks, zero-length segments, fronts beyond the path's end, every
+// reach), both answers many times over.
+Mover RandomMover(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0, 1);
+  Mover m;
+  const double a0 = 2 * M_PI * u(rng), bend = (u(rng) - 0.5) * 2.0;
+  Point2 p{-25 * std::cos(a0) + (u(rng) - 0.5) * 6, -25 * std::sin(a0) + (u(rng) - 0.5) * 6};
+  double heading = a0;
+  const int n = 2 + static_cast<int>(u(rng) * 14);
+  for (int i = 0; i < n; ++i) {
+    m.path.push_back(p);
+    if (u(rng) < 0.1) m.path.push_back(p);  // a zero-length segment
+    const double seg = 50.0 / n;
+    heading += bend / n;
+    p = {p.x + seg * std::cos(heading), p.y + seg * std::sin(heading)};
+  }
+  m.path.push_back(p);
+  m.entry = 20 + u(rng) * 5;
+  m.exit = m.entry + 5 + u(rng) * 15;
+  m.front = u(rng) * 60;  // before the line to beyond the path's end
+  m.length = 2 + u(rng) * 10;
+  m.width = 0.6 + u(rng) * 2.0;
+  return m;
+}
+
+TEST(PassedWay, PrunedIsTheReferenceOnRandomPaths) {
+  std::mt19937 rng(20261207);
+  std::uniform_int_distribution<int> pick(0, 3);
+  const double reaches[] = {-1.0, 0.0, 2.5, 40.0};
+  int passed = 0, blocked = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const Mover a = RandomMover(rng), b = RandomMover(rng);
+    const double ra = reaches[pick(rng)], rb = reaches[pick(rng)];
+    const bool want = PassedWayReference(a, b, ra, rb);
+    ASSERT_EQ(PassedWay(a, b, ra, rb), want) << "trial " << trial;
+    ++(want ? passed : blocked);
+  }
+  EXPECT_GT(passed, 400);
+  EXPECT_GT(blocked, 400);
 }
 
 }  // namespace
