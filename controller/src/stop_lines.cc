@@ -67,11 +67,10 @@ void Observe(RunState& s, JunctionState& j) {
     if (s.step < ap.next_look) continue;
     ap.next_look = s.step + 1;
     int h = -1;
-    const bool empty = s.sumo.LaneVehicleNumber(info.lane) == 0;
-    if (!empty) {
-      const std::vector<std::string> ids = s.sumo.LaneVehicleIDs(info.lane);
-      if (!ids.empty()) h = s.vehicles.Find(ids.back());
-    }
+    // One read of the lane (its ids: none when empty), not a count and then the ids.
+    const std::vector<std::string> ids = s.sumo.LaneVehicleIDs(info.lane);
+    const bool empty = ids.empty();
+    if (!empty) h = s.vehicles.Find(ids.back());
     // Only lanes no vehicle can change into ahead of their front.
     if (empty && info.only_lane) ap.next_look = s.step + StepsAway(s, info, info.length - reach);
     if (ap.front >= 0 && ap.front != h) LeftLine(s, ap.front, a);
@@ -163,8 +162,8 @@ void ObserveMajor(RunState& s, JunctionState& j) {
     bool upstream = false;  // it is on a feeder, not the approach lane
     std::string on_lane;
     for (const auto& [feeder, offset] : feeds->feeders) {
-      if (s.sumo.LaneVehicleNumber(feeder) == 0) continue;
       const std::vector<std::string> ids = s.sumo.LaneVehicleIDs(feeder);
+      if (ids.empty()) continue;
       const net::Lane* fl = s.net.FindLane(feeder);
       // Front first: the first vehicle on this lane whose route goes on
       // through `lane` (on the approach lane itself, its front vehicle).
@@ -258,7 +257,6 @@ bool StopLineEnvironment::ExitHasRoom(int movement, int vehicle) {
   for (const MovementInfo& k : info_.movements) {
     if (k.exit != m.exit) continue;
     for (const std::string& in : k.internal) {
-      if (s_.sumo.LaneVehicleNumber(in) == 0) continue;
       for (const std::string& id : s_.sumo.LaneVehicleIDs(in)) inflight += id != v.id;  // a nudged AV
     }
   }
@@ -306,7 +304,6 @@ bool StopLineEnvironment::MajorClear(int movement) {
   for (int k : info_.movements[movement].major_foes) {
     const MovementInfo& mk = info_.movements[k];
     for (const std::string& in : mk.internal) {
-      if (s_.sumo.LaneVehicleNumber(in) == 0) continue;
       for (const std::string& id : s_.sumo.LaneVehicleIDs(in))
         if (moving(id) || !NudgedAvInConflictWith(k)) return false;
     }
@@ -343,7 +340,6 @@ bool StopLineEnvironment::MajorClearBut(int movement, int hv, int hv_movement, d
   for (int k : info_.movements[movement].major_foes) {
     const MovementInfo& mk = info_.movements[k];
     for (const std::string& in : mk.internal) {
-      if (s_.sumo.LaneVehicleNumber(in) == 0) continue;
       for (const std::string& id : s_.sumo.LaneVehicleIDs(in))
         if (id != h.id && moving(id)) return false;
     }
@@ -390,12 +386,12 @@ bool StopLineEnvironment::Passed(int first, int second) {
   return junction::PassedWay(MoverNow(first), MoverNow(second));
 }
 
-std::vector<StopLineEnvironment::Inside> StopLineEnvironment::VehiclesInside() {
-  std::vector<Inside> out;
+const std::vector<StopLineEnvironment::Inside>& StopLineEnvironment::VehiclesInside() {
+  if (inside_) return *inside_;
+  std::vector<Inside>& out = inside_.emplace();
   for (std::size_t k = 0; k < info_.movements.size(); ++k) {
     const MovementInfo& mk = info_.movements[k];
     for (const std::string& in : mk.internal) {
-      if (s_.sumo.LaneVehicleNumber(in) == 0) continue;
       for (const std::string& id : s_.sumo.LaneVehicleIDs(in)) {
         Inside x;
         x.vehicle = s_.vehicles.Find(id);
@@ -422,7 +418,7 @@ std::vector<StopLineEnvironment::Inside> StopLineEnvironment::VehiclesInside() {
 std::vector<int> StopLineEnvironment::Unblockable(int vehicle, int partner) {
   std::vector<int> out;
   const int movement = s_.vehicles[vehicle].movement;
-  const std::vector<Inside> inside = VehiclesInside();
+  const std::vector<Inside>& inside = VehiclesInside();
   std::optional<junction::Mover> mine;
   for (const Inside& b : inside) {
     if (!b.still || b.vehicle < 0 || b.vehicle == vehicle || b.vehicle == partner) continue;

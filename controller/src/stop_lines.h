@@ -60,8 +60,9 @@ class StopLineEnvironment : public junction::Environment {
     junction::Mover mover;  // its front where it is now
     bool still = false;
   };
-  // Every vehicle on an internal lane of this junction.
-  std::vector<Inside> VehiclesInside();
+  // Every vehicle on an internal lane of this junction (read once: the
+  // environment lives for one junction's step, in which SUMO does not move).
+  const std::vector<Inside>& VehiclesInside();
   // The vehicle's path through the junction with its front where it is now.
   junction::Mover MoverNow(int vehicle);
   // An AV nudged past its line stands here on a movement in conflict with
@@ -70,6 +71,7 @@ class StopLineEnvironment : public junction::Environment {
 
   RunState& s_;
   const JunctionInfo& info_;
+  std::optional<std::vector<Inside>> inside_;
 };
 
 }  // namespace taebp::control

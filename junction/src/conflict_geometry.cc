@@ -142,6 +142,10 @@ struct Bounds {
       x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
     }
   }
+  void Add(const Bounds& o) {
+    x0 = std::min(x0, o.x0), y0 = std::min(y0, o.y0);
+    x1 = std::max(x1, o.x1), y1 = std::max(y1, o.y1);
+  }
   bool Meets(const Bounds& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
 };
 
@@ -247,10 +251,87 @@ Bounds SweptBounds(const Arcs& arcs, const Mover& m, double lo, double hi) {
   return b;
 }
 
+// PointAt for arcs that never decrease (a mover's bodies, front to back):
+// the segment found by walking on from the last, not by a search; the same
+// segment and the same arithmetic as PointAt, so the same point.
+class ArcWalker {
+ public:
+  explicit ArcWalker(const Arcs& arcs) : arcs_(arcs) {}
+  Point2 At(double s) {
+    const std::vector<Point2>& p = *arcs_.path;
+    const std::vector<double>& at = arcs_.at;
+    if (p.size() < 2 || s <= 0 || s >= arcs_.Total()) return arcs_.PointAt(s);
+    while (i_ < at.size() && at[i_] <= s) ++i_;  // upper_bound: the first arc beyond s
+    const double seg = at[i_] - at[i_ - 1];
+    const double k = seg > 0 ? (s - at[i_ - 1]) / seg : 0;
+    return {p[i_ - 1].x + k * (p[i_].x - p[i_ - 1].x), p[i_ - 1].y + k * (p[i_].y - p[i_ - 1].y)};
+  }
+
+ private:
+  const Arcs& arcs_;
+  std::size_t i_ = 1;
+};
+
+// A mover's bodies as BodiesOf samples them (fronts `at`), in runs of
+// kChunk: each run's swept box, and for the runs that can meet the other
+// mover, their exact boxes and the box of the run.
+constexpr std::size_t kChunk = 8;
+struct Runs {
+  std::vector<Box> boxes;          // of the runs built, in order
+  std::vector<Bounds> bounds;
+  std::vector<std::size_t> begin;  // each built run's first body in boxes
+  std::vector<Bounds> run_bounds;
+  Bounds all;
+};
+std::vector<double> Fronts(const Mover& m, double end, double step) {
+  std::vector<double> at;
+  for (double x = m.front;; x = std::min(x + step, end)) {
+    at.push_back(x);
+    if (x >= end) break;
+  }
+  return at;
+}
+// Walks a mover's bodies as BodiesOf samples them, in runs of kChunk
+// fronts: Next() builds the next run whose swept box meets `other` (the
+// other mover's region, or the box of its bodies) and skips the rest.
+class RunBuilder {
+ public:
+  RunBuilder(const Arcs& arcs, const Mover& m, double end, double step)
+      : arcs_(arcs), m_(m), at_(Fronts(m, end, step)), rear_(arcs), front_(arcs) {}
+  // The next run that can meet `other`, appended to `r`; false: none left.
+  bool Next(const Bounds& other, Runs* r) {
+    for (; c_ < at_.size(); c_ += kChunk) {
+      const std::size_t e = std::min(at_.size(), c_ + kChunk);
+      if (!other.Meets(SweptBounds(arcs_, m_, at_[c_], at_[e - 1]))) continue;
+      r->begin.push_back(r->boxes.size());
+      Bounds run;
+      for (std::size_t i = c_; i < e; ++i) {
+        r->boxes.push_back(BoxOf(rear_.At(at_[i] - m_.length), front_.At(at_[i]), m_.width));
+        r->bounds.emplace_back().Add(r->boxes.back());
+        run.Add(r->bounds.back());
+      }
+      r->run_bounds.push_back(run);
+      r->all.Add(run);
+      c_ = e;
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  const Arcs& arcs_;
+  const Mover& m_;
+  std::vector<double> at_;
+  ArcWalker rear_, front_;
+  std::size_t c_ = 0;
+};
+
 // Touch(BodiesOf(a, ra, step), BodiesOf(b, rb, step)), building only the
-// bodies that can meet: a body whose swept box misses every body of the
-// other is skipped before its exact box is made (the result is the same:
-// Touch skips it on its own bounds, which the swept box holds).
+// bodies that can meet and comparing runs of them before bodies: b's runs
+// whose swept box meets a's region, then a's runs one at a time, each
+// compared as soon as it is built (the first touch ends the search). Two
+// bodies are compared exactly when their boxes meet, as Touch compares them:
+// the same answer (PassedWayReference, and the test that says so).
 bool TouchPruned(const Mover& a, double ra, const Mover& b, double rb, double step) {
   if (a.path.size() < 2 || b.path.size() < 2) return Touch(BodiesOf(a, ra, step), BodiesOf(b, rb, step));
   const Arcs arcs_a(a.path), arcs_b(b.path);
@@ -258,29 +339,28 @@ bool TouchPruned(const Mover& a, double ra, const Mover& b, double rb, double st
   const double end_b = rb >= 0 ? b.front + rb : std::max(b.front, b.exit + b.length);
   const Bounds region_a = SweptBounds(arcs_a, a, a.front, end_a);
   if (!region_a.Meets(SweptBounds(arcs_b, b, b.front, end_b))) return false;
-  // b's bodies that can meet some body of a, exactly as BodiesOf makes them.
-  Bodies bb;
-  for (double x = b.front;; x = std::min(x + step, end_b)) {
-    if (region_a.Meets(SweptBounds(arcs_b, b, x, x))) {
-      bb.boxes.push_back(BoxOf(arcs_b.PointAt(x - b.length), arcs_b.PointAt(x), b.width));
-      bb.bounds.emplace_back().Add(bb.boxes.back());
-      bb.all.Add(bb.boxes.back());
-    }
-    if (x >= end_b) break;
+  Runs runs_b;
+  RunBuilder builder_b(arcs_b, b, end_b, step);
+  while (builder_b.Next(region_a, &runs_b)) {
   }
-  if (bb.boxes.empty()) return false;
-  for (double x = a.front;; x = std::min(x + step, end_a)) {
-    if (bb.all.Meets(SweptBounds(arcs_a, a, x, x))) {
-      const Box box = BoxOf(arcs_a.PointAt(x - a.length), arcs_a.PointAt(x), a.width);
-      Bounds bounds;
-      bounds.Add(box);
-      if (bounds.Meets(bb.all))
-        for (std::size_t k = 0; k < bb.boxes.size(); ++k)
-          if (bounds.Meets(bb.bounds[k]) && Overlap(box, bb.boxes[k])) return true;
+  runs_b.begin.push_back(runs_b.boxes.size());
+  if (runs_b.boxes.empty()) return false;
+  Runs run_a;  // one run of a at a time
+  RunBuilder builder_a(arcs_a, a, end_a, step);
+  while (true) {
+    run_a.boxes.clear(), run_a.bounds.clear(), run_a.begin.clear(), run_a.run_bounds.clear();
+    if (!builder_a.Next(runs_b.all, &run_a)) return false;
+    const Bounds& ra_bounds = run_a.run_bounds.front();
+    for (std::size_t q = 0; q + 1 < runs_b.begin.size(); ++q) {
+      if (!ra_bounds.Meets(runs_b.run_bounds[q])) continue;
+      for (std::size_t i = 0; i < run_a.boxes.size(); ++i) {
+        if (!run_a.bounds[i].Meets(runs_b.run_bounds[q])) continue;
+        for (std::size_t k = runs_b.begin[q]; k < runs_b.begin[q + 1]; ++k)
+          if (run_a.bounds[i].Meets(runs_b.bounds[k]) && Overlap(run_a.boxes[i], runs_b.boxes[k]))
+            return true;
+      }
     }
-    if (x >= end_a) break;
   }
-  return false;
 }
 
 }  // namespace
