@@ -72,8 +72,7 @@ def sweep(result_or_dir, out=None, x=None, y=None, by=None, name=None, preset=No
             raise view.cannot(s, "no swept key to draw against")
         ys = [m.strip() for m in (y.split(",") if isinstance(y, str) else y)] if y \
             else view.standard_metrics(s)
-        v = view.SweepView(s, x, [m for m in ys if m], by=by, name=name)
-        for fig in v.figures():
+        for fig in view.asked(s, x, [m for m in ys if m], by=by, name=name):
             written.append(fig.save(plt, out_dir))
             described.append(fig.description)
     else:

@@ -430,6 +430,11 @@ def cannot(sweep, why):
         why, ", ".join(keys) or "(no swept key)", ", ".join(metrics) or "(no metric with data)"))
 
 
+def asked(sweep, x, ys, by=None, name=None):
+    """The figures of the view --x, --y, --by ask for."""
+    return SweepView(sweep, x, ys, by=by, name=name).figures()
+
+
 def default_views(sweep, keys):
     """The standard panels against each key in `keys`: a SweepView each."""
     metrics = standard_metrics(sweep)
