@@ -8,10 +8,10 @@ a declaration of what to draw:
 
     Lines   metrics against a swept key (view.SweepView): x, y, by, select,
             variants, theory, the study's marks (Ref), the title
-    Heat    one metric over two swept keys, a cell each (view_heat.HeatView)
+    Heat    one metric over two swept keys, a cell each (view_heat)
     Pairs   one metric against another, a point per policy (view_pairs)
-    Series  the time series of runs (view_runs.SeriesView): panels (Axes)
-            and how each role of the data's rows is drawn (Role)
+    Series  the time series of runs (view_runs): panels (Axes) and how
+            each role of the data's long rows is drawn (Role)
 
 Any field may be `From("name")`: the entry `name` of what the data function
 returned (a swept key, a select function, a number). Titles, captions and
@@ -34,8 +34,8 @@ class From:
 
 
 def resolve(value, data):
-    """A field's value: From(key) looked up in `data`, lists and dicts resolved
-    item by item, anything else as it is."""
+    """A field's value: From(key) looked up in `data`, a list resolved item by
+    item, anything else as it is."""
     if isinstance(value, From):
         return data.get(value.key)
     if isinstance(value, list):
@@ -43,21 +43,21 @@ def resolve(value, data):
     return value
 
 
-def text(template, data, *args):
-    """A title, caption or file name: a template filled from `data` (or
-    called with it); None stays None."""
+def text(template, data):
+    """A title, caption or file name: a template filled from `data` (or a
+    function called with it); None stays None."""
     if template is None:
         return None
     if callable(template):
-        return template(data, *args)
-    return template.format(*args, **data) if ("{" in template and "}" in template) \
-        else template
+        return template(data)
+    return template.format(**data) if ("{" in template and "}" in template) else template
 
 
 class Ref:
     """A mark a study adds to every panel (or to those of `metrics`): kind
     "vline" / "hline" (lines at the values `at`), "shade" (an x span),
-    "special" (one point), "diagonal" (y = x across a heat map), "curve".
+    "special" (one point (x, y)), "diagonal" (y = x across a heat map),
+    "curve" ((xs, ys)).
     `at`: a value, From(key), or a dict {metric: value}; None draws nothing.
     `legend` and `note` are text or a function of the value; the rest is
     the mark's look (colour, ls, lw, ...)."""
@@ -85,6 +85,8 @@ class Ref:
             return [(self.kind, list(v["xs"]), list(v.get("ys", [])), opts)]
         if self.kind == "special":
             return [(self.kind, [v[0]], [v[1]], opts)]
+        if self.kind == "curve":
+            return [(self.kind, list(v[0]), list(v[1]), opts)]
         xs = list(v) if isinstance(v, (list, tuple)) else ([] if v is None else [v])
         return [(self.kind, xs, [], opts)]
 
@@ -116,7 +118,7 @@ class RunPreset:
         self.applies, self.figures, self.groups = applies, list(figures), groups
 
 
-class Figure_:
+class Declared:
     """What every figure declaration has: its file, title, caption, columns,
     and when it is drawn (From a data entry, or always)."""
 
@@ -129,7 +131,7 @@ class Figure_:
         return self.when is None or bool(resolve(self.when, data))
 
 
-class Lines(Figure_):
+class Lines(Declared):
     """Metrics against a swept key (view.SweepView's arguments: x, y, by,
     select, x_of, x_title, theory, zero, metric_titles, facet_title,
     pair_labels; `variants` a Variants; `marks` Refs; `zoom` a Zoom panel
@@ -152,7 +154,7 @@ class Zoom:
         self.ylim, self.group, self.when = ylim, group, when
 
 
-class Heat(Figure_):
+class Heat(Declared):
     """`metric` of one policy over two swept keys x and y: a cell each with
     its rate and interval, the cells of `region` outlined, `marks` Refs."""
 
@@ -165,7 +167,7 @@ class Heat(Figure_):
         self.marks, self.panel_height = list(marks), panel_height
 
 
-class Pairs(Figure_):
+class Pairs(Declared):
     """`y` against `x` (two metrics), a point per policy and panel (one
     panel per value of `facet`, in `facet_order`); the policies of
     `variant_policies` once per value of `variant` (by marker), the others
@@ -206,7 +208,7 @@ class Role:
         self.kind, self.policy, self.dodge, self.look = kind, policy, dodge, look
 
 
-class Series(Figure_):
+class Series(Declared):
     """The time series of runs: `data(runs, name, idx)` -> {"rows": [...],
     name: value, ...} or None (no figure for this group); each row a dict
     with panel, role, x, y and optionally policy, series (a run), variant,
