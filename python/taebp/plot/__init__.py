@@ -16,7 +16,8 @@ view_pairs, view_runs: a metric over two keys, a metric against another,
 runs' time series), figure (panels of marks at the printed width), presets
 (the shipped figures, declared in declare's vocabulary over the data
 functions of sweep_data and run_data), style (colours, labels, titles and
-units from the program's tables), netmap (a network run's map)."""
+units from the program's tables), netmap and figure_map (a network run's
+map: its data, its layout)."""
 
 import argparse
 import json
@@ -26,7 +27,7 @@ import textwrap
 
 from . import presets, style, tidy, view
 from .common import PlotError, Theory, ensure_dir, find_taebp, import_matplotlib, warn
-from .netmap import plot_map, queueing_delay, read_net  # noqa: F401 (tools/plot's API)
+from .netmap import queueing_delay, read_net  # noqa: F401 (tools/plot's API)
 
 __all__ = ["sweep", "run", "main", "PlotError", "tidy", "view", "presets", "style"]
 
@@ -133,7 +134,7 @@ def run(result_or_dir, out=None, preset=None, table=None, describe=None):
     runs = tidy.Runs(dirs)
     written = []
     if preset is None and len(dirs) == 1 and os.path.isfile(os.path.join(dirs[0], "summary.json")):
-        path = plot_map(plt, dirs[0], out_dir)
+        path = presets.draw_map(plt, dirs[0], out_dir)
         if path:
             written.append(path)
     if runs:

@@ -12,6 +12,7 @@ a declaration of what to draw:
     Pairs   one metric against another, a point per policy (view_pairs)
     Series  the time series of runs (view_runs): panels (Axes) and how
             each role of the data's long rows is drawn (Role)
+    Map     a network run's junctions on its lanes (figure_map)
 
 Any field may be `From("name")`: the entry `name` of what the data function
 returned (a swept key, a select function, a number). Titles, captions and
@@ -225,6 +226,17 @@ class Series(Declared):
         self.panel_height = panel_height
 
 
+class Map(Declared):
+    """A network run's map (figure_map.py): `data(run_dir)` -> netmap.map_data's
+    dict or None; `panel_title(label, encounters, junctions)`; `cmap` and
+    `colourbar` (the label): (against sumo_native, without it)."""
+
+    def __init__(self, file, data, panel_title, cmap, colourbar, **rest):
+        super().__init__(file, **rest)
+        self.data, self.panel_title = data, panel_title
+        self.cmap, self.colourbar = cmap, colourbar
+
+
 # ------------------------------------------------------------------ drawing
 def sweep_data(preset, sweep, theory):
     """The data a sweep preset's declarations read: ctx and its data function's."""
@@ -265,3 +277,10 @@ def draw_runs(preset, plt, runs, out):
             except PlotError as e:
                 warn("%s (skipped)" % e)
     return paths
+
+
+def draw_map(decl, plt, run_dir, out):
+    """A declare.Map of one run, or None when the run has no map."""
+    from . import figure_map
+    data = decl.data(run_dir)
+    return figure_map.map_figure(decl, plt, data, out) if data is not None else None

@@ -2,9 +2,10 @@
 the tidy core (declare.py's vocabulary) naming what to draw (x, y, by, which
 rows, the title) and the few marks a study adds (theta*, the bound delta *
 lambda, the theory's region), with a data function for the study's own
-numbers (sweep_data.py, run_data.py). The views (view.py, view_heat.py,
-view_pairs.py, view_runs.py) turn every declaration into panels of marks,
-and figure.py draws them all the same way: nothing here draws.
+numbers (sweep_data.py, run_data.py, netmap.py). The views (view.py,
+view_heat.py, view_pairs.py, view_runs.py) turn every declaration into
+panels of marks, and figure.py draws them all the same way (a network run's
+map, MAP, in figure.py's map layout, figure_map.py): nothing here draws.
 
 Sweep presets are chosen by the swept keys (PRESETS: the keys each covers,
 when it applies, its data and figures); the keys no applying preset covers
@@ -13,11 +14,11 @@ from their time series, pooling only runs of one config (a sweep's point,
 or run folders that differ only in their seed). Titles and units come from
 the metric table, colours and labels from the policy table (style.py)."""
 
-from . import run_data, sweep_data
+from . import netmap, run_data, sweep_data
 from .common import number
-from .declare import (Axes, From, Heat, Lines, Pairs, Preset, Ref, Role, RunPreset, Series,
+from .declare import (Axes, From, Heat, Lines, Map, Pairs, Preset, Ref, Role, RunPreset, Series,
                       Variants, Zoom)
-from .declare import draw as _draw, draw_runs as _draw_runs
+from .declare import draw as _draw, draw_map as _draw_map, draw_runs as _draw_runs
 from .run_data import _experienced, influence_data, influence_table  # noqa: F401 (the API)
 
 
@@ -239,6 +240,19 @@ RUN_PRESETS = {
 }
 
 
+# A network run's map (a run folder of a network: served_flow among its results).
+MAP = Map("network_map.png", data=netmap.map_data,
+          panel_title=lambda label, n, junctions: "%s: %d AV-HV encounter%s\nat %d controlled "
+          "junctions" % (label, n, "" if n == 1 else "s", junctions),
+          cmap=("RdBu_r", "viridis"),
+          colourbar=("queueing delay against SUMO native (s per crossing vehicle)\n"
+                     "red: slower, blue: faster",
+                     "queueing delay (s per crossing vehicle; no sumo_native in this run)"),
+          title="Controlled junctions of {net}: marker area by AV-HV encounters, colour by the "
+                "queueing delay on the approaches (Little's law: summed mean queue / crossing "
+                "rate), seed {seed}")
+
+
 # ------------------------------------------------------------------ the registry's API
 def applying(sweep):
     """The presets whose keys match the sweep's, in PRESETS order."""
@@ -263,3 +277,7 @@ def run_applies(name, runs):
 
 def draw_runs(name, plt, runs, out):
     return _draw_runs(RUN_PRESETS[name], plt, runs, out)
+
+
+def draw_map(plt, run_dir, out):
+    return _draw_map(MAP, plt, run_dir, out)
