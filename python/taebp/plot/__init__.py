@@ -11,10 +11,13 @@ notebook (pure Python and matplotlib; no compiled module needed).
 
 `tools/plot` is these two on the command line (`tools/plot --help`): the same
 calls draw the same files. Modules: tidy (results as long tables; also
-SweepResult.tidy()), view (any swept key against any metrics), figure
-(panels of marks at the printed width), presets (the shipped figures:
-sweep_presets, beyond_presets, run_presets), style (colours, labels, titles
-and units from the program's tables), netmap (a network run's map)."""
+SweepResult.tidy()), view (any swept key against any metrics; view_heat,
+view_pairs, view_runs: a metric over two keys, a metric against another,
+runs' time series), figure (panels of marks at the printed width), presets
+(the shipped figures, declared in declare's vocabulary over the data
+functions of sweep_data and run_data), style (colours, labels, titles and
+units from the program's tables), netmap and figure_map (a network run's
+map: its data, its layout)."""
 
 import argparse
 import json
@@ -24,7 +27,7 @@ import textwrap
 
 from . import presets, style, tidy, view
 from .common import PlotError, Theory, ensure_dir, find_taebp, import_matplotlib, warn
-from .netmap import plot_map, queueing_delay, read_net  # noqa: F401 (tools/plot's API)
+from .netmap import queueing_delay, read_net  # noqa: F401 (tools/plot's API)
 
 __all__ = ["sweep", "run", "main", "PlotError", "tidy", "view", "presets", "style"]
 
@@ -70,8 +73,7 @@ def sweep(result_or_dir, out=None, x=None, y=None, by=None, name=None, preset=No
             raise view.cannot(s, "no swept key to draw against")
         ys = [m.strip() for m in (y.split(",") if isinstance(y, str) else y)] if y \
             else view.standard_metrics(s)
-        v = view.SweepView(s, x, [m for m in ys if m], by=by, name=name)
-        for fig in v.figures():
+        for fig in view.asked(s, x, [m for m in ys if m], by=by, name=name):
             written.append(fig.save(plt, out_dir))
             described.append(fig.description)
     else:
@@ -101,9 +103,9 @@ def sweep(result_or_dir, out=None, x=None, y=None, by=None, name=None, preset=No
 
 def _draw_runs(plt, runs, out_dir, only=None):
     written = []
-    for n, (applies, draw) in presets.RUN_PRESETS.items():
-        if (only is None or n == only) and applies(runs):
-            written += draw(plt, runs, out_dir)
+    for n in presets.RUN_PRESETS:
+        if (only is None or n == only) and presets.run_applies(n, runs):
+            written += presets.draw_runs(n, plt, runs, out_dir)
     return written
 
 
@@ -132,7 +134,7 @@ def run(result_or_dir, out=None, preset=None, table=None, describe=None):
     runs = tidy.Runs(dirs)
     written = []
     if preset is None and len(dirs) == 1 and os.path.isfile(os.path.join(dirs[0], "summary.json")):
-        path = plot_map(plt, dirs[0], out_dir)
+        path = presets.draw_map(plt, dirs[0], out_dir)
         if path:
             written.append(path)
     if runs:
@@ -141,7 +143,7 @@ def run(result_or_dir, out=None, preset=None, table=None, describe=None):
                             % (preset, ", ".join(presets.RUN_PRESETS)), 2)
         written += _draw_runs(plt, runs, out_dir, preset)
     if table:
-        if not runs or not presets.RUN_PRESETS["influence"][0](runs):
+        if not runs or not presets.run_applies("influence", runs):
             raise PlotError("--table: only runs with model.experience have the influence table", 2)
         try:
             with open(table, "w", encoding="utf-8") as f:

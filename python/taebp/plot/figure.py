@@ -48,7 +48,9 @@ class Mark:
     whether it is data), "bar" (theory: a bar across the point), "theory"
     (a theory line), "step", "special" (one marked point), "stalled" and
     "failed" (rings / crosses, with a note), "hline" / "vline" (reference
-    lines), "heat" (a heat map: opts edges, values, texts, cmap, norm).
+    lines), "shade" (an x span), "heat" (a heat map: opts edges_x, edges_y,
+    values, texts, the colour map's name cmap, bad (no value), vmin, vmax,
+    colourbar, outline, outline_label).
     policy: colours and labels the mark (style.py); else `colour`.
     variant: index of its line style and marker; legend: its entry's text."""
 
@@ -304,11 +306,15 @@ class Figure:
             ax.grid(alpha=0.3, which="both" if "log" in (panel.xscale, panel.yscale) else "major")
 
     def _heat(self, fig, ax, m):
+        import matplotlib
+        import matplotlib.colors as mcolors
         import matplotlib.patheffects as pe
         import numpy as np
         ex, ey, z = m.opts["edges_x"], m.opts["edges_y"], np.asarray(m.opts["values"], dtype=float)
-        mesh = ax.pcolormesh(ex, ey, np.ma.masked_invalid(z), cmap=m.opts["cmap"],
-                             norm=m.opts["norm"], shading="flat")
+        cmap = matplotlib.colormaps[m.opts["cmap"]].copy()
+        cmap.set_bad(m.opts.get("bad", "white"))
+        mesh = ax.pcolormesh(ex, ey, np.ma.masked_invalid(z), cmap=cmap, shading="flat",
+                             norm=mcolors.Normalize(vmin=m.opts["vmin"], vmax=m.opts["vmax"]))
         mesh.set_gid(SIMULATED)
         fig.colorbar(mesh, ax=ax, label=m.opts.get("colourbar", ""), fraction=0.05, pad=0.02)
         def is_dark(v):  # the cell's colour, by its luminance

@@ -1,11 +1,13 @@
-"""network_map.png: a network run's controlled junctions on its map."""
+"""The data of network_map.png (presets.MAP): a network run's lanes, its
+controlled junctions' places, AV-HV encounters and queueing delay (against
+sumo_native's), the colour scale's limit and the scale bar's length.
+Nothing here draws: figure_map.py does."""
 
 import json
 import math
 import os
 
-from . import style
-from .common import SIMULATED, die, save
+from .common import die
 
 
 def run_network_file(run_dir, summary):
@@ -83,11 +85,12 @@ def nice_length(span):
     return base
 
 
-def plot_map(plt, run_dir, out_dir):
-    """network_map.png: the net's lanes as thin lines, each controlled junction a
-    marker sized by its AV-HV encounters and coloured by its queueing delay
-    against sumo_native's (one panel per controller policy), north up, a scale."""
-    import matplotlib.colors as mcolors
+def map_data(run_dir):
+    """What the map of a run draws, or None (not a network run, or no
+    controller policy): lanes, panels [(policy, rows)], native (sumo_native
+    ran: colours are changes against it), limit (the colour scale's end: the
+    95th percentile of the changes), max_enc, bounds (x0, x1, y0, y1), bar
+    (the scale bar, m), net (the network file's name), seed."""
     with open(os.path.join(run_dir, "summary.json")) as f:
         summary = json.load(f)
     pols = summary.get("policies", {})
@@ -108,38 +111,14 @@ def plot_map(plt, run_dir, out_dir):
     changes = sorted(abs(c) for _, rows in panels for _, _, c in rows if c is not None)
     limit = changes[min(len(changes) - 1, int(0.95 * len(changes)))] if changes else 0.0
     limit = float("%.2g" % limit) if limit > 0 else 1.0
-    norm = (mcolors.TwoSlopeNorm(vcenter=0.0, vmin=-limit, vmax=limit) if native
-            else mcolors.Normalize(vmin=0.0, vmax=limit))
-    cmap = plt.get_cmap("RdBu_r" if native else "viridis")
-    max_enc = max([e for _, rows in panels for _, e, _ in rows] + [1])
-
-    def size(e):  # marker area (pt^2) by encounters; a junction without any: a small dot
-        return 14 + 110 * math.sqrt(e / max_enc) if e > 0 else 8
-
     xs = [x for line in lanes for x, _ in line] or [x for x, _ in nodes.values()]
     ys = [y for line in lanes for _, y in line] or [y for _, y in nodes.values()]
-    x0, x1, y0, y1 = min(xs), max(xs), min(ys), max(ys)
-    w, h = max(x1 - x0, 1.0), max(y1 - y0, 1.0)
-    n = len(panels)
-    panel_w = (style.PRINT_WIDTH - 0.9) / n  # at the printed width, the colour bar beside
-    fig, axes = plt.subplots(1, n, figsize=(style.PRINT_WIDTH, panel_w * 1.11 * h / w + 1.6),
-                             squeeze=False)
-    colour = (cmap, norm, limit)
-    for ax, (p, rows) in zip(axes[0], panels):
-        _draw_panel(ax, p, rows, lanes, colour, size, (x0, x1, y0, y1))
-    # Panels first, then the colour bar beside the last one at its height.
-    fig.subplots_adjust(left=0.02, right=0.86, wspace=0.06)
-    fig.canvas.draw()  # the panels' places, their aspect applied
-    cax = _colour_bar(plt, fig, axes, norm, cmap, native)
-    handles = _legend_handles(size, max_enc, cmap, norm)
-    _title(fig, axes, cax, net, summary.get("provenance", {}))
-    # The legend hugs the panels (their aspect is the net's, so the figure's
-    # height is not theirs); savefig's tight box keeps what is drawn.
-    bottom = min(ax.get_position().y0 for ax in axes[0])
-    fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, bottom - 0.01),
-               ncol=3, frameon=False, fontsize=style.FONT)
-    path = os.path.join(out_dir, "network_map.png")
-    return save(fig, path, bbox_inches="tight")
+    x0, x1 = min(xs), max(xs)
+    return {"lanes": lanes, "panels": panels, "native": bool(native), "limit": limit,
+            "max_enc": max([e for _, rows in panels for _, e, _ in rows] + [1]),
+            "bounds": (x0, x1, min(ys), max(ys)), "bar": nice_length(max(x1 - x0, 1.0)),
+            "net": os.path.basename(net),
+            "seed": summary.get("provenance", {}).get("seed")}
 
 
 def _junction_rows(pols, nodes, native):
@@ -160,98 +139,3 @@ def _junction_rows(pols, nodes, native):
             rows.append((nodes[j["junction"]], j.get("encounters", 0) or 0, change))
         panels.append((p, rows))
     return panels
-
-
-def _draw_panel(ax, p, rows, lanes, colour, size, bounds):
-    """One policy's panel: the lanes, its junctions (those without an
-    encounter first, small), its title, north and a scale bar."""
-    from matplotlib.collections import LineCollection
-    cmap, norm, limit = colour
-    x0, x1, y0, y1 = bounds
-    w, h = max(x1 - x0, 1.0), max(y1 - y0, 1.0)
-    ax.add_collection(LineCollection(lanes, colors="0.6", linewidths=0.4, zorder=1))
-    none = [r for r in rows if r[1] == 0]
-    some = sorted([r for r in rows if r[1] > 0], key=lambda r: -r[1])
-    for group, edge in ((none, "0.45"), (some, "black")):
-        if not group:
-            continue
-        cols = [cmap(norm(max(-limit, min(limit, c)))) if c is not None else (0.6, 0.6, 0.6, 1)
-                for _, _, c in group]
-        ax.scatter([q[0][0] for q in group], [q[0][1] for q in group],
-                   s=[size(e) for _, e, _ in group], c=cols, edgecolors=edge,
-                   linewidths=0.4 if group is none else 0.7, zorder=3 if group is none else 4,
-                   gid=SIMULATED)
-    label = style.policy_label(p)
-    total = sum(e for _, e, _ in rows)
-    ax.set_title("%s: %d AV-HV encounter%s\nat %d controlled junctions"
-                 % (label, total, "" if total == 1 else "s", len(rows)),
-                 fontsize=style.TITLE_FONT)
-    ax.grid(False)
-    ax.set_xlim(x0 - 0.03 * w, x1 + 0.03 * w)
-    ax.set_ylim(y0 - 0.08 * h, y1 + 0.03 * h)
-    ax.set_aspect("equal")
-    ax.set_xticks([])
-    ax.set_yticks([])
-    # North up (SUMO's net coordinates: +y is north) and a scale bar.
-    ax.annotate("N", xy=(0.97, 0.97), xytext=(0.97, 0.86), xycoords="axes fraction",
-                ha="center", va="bottom", fontsize=style.TITLE_FONT, fontweight="bold",
-                arrowprops=dict(arrowstyle="-|>", color="black", lw=1.2))
-    bar = nice_length(w)
-    bx, by = x0, y0 - 0.05 * h
-    ax.plot([bx, bx + bar], [by, by], color="black", lw=2.5, solid_capstyle="butt", zorder=4)
-    ax.text(bx + bar / 2, by + 0.012 * h, ("%g km" % (bar / 1000)) if bar >= 1000 else "%g m" % bar,
-            ha="center", va="bottom", fontsize=style.FONT)
-
-
-def _colour_bar(plt, fig, axes, norm, cmap, native):
-    """The colour bar beside the last panel, at its height; its axes."""
-    last = axes[0][-1].get_position()
-    # Each panel's place with its aspect applied (get_position applies it).
-    min(ax.get_position().y0 for ax in axes[0])
-    cax = fig.add_axes([last.x1 + 0.015, last.y0, 0.02, last.height])
-    sm = plt.cm.ScalarMappable(norm=norm, cmap=cmap)
-    sm.set_array([])
-    cbar = fig.colorbar(sm, cax=cax, extend="both" if native else "max")
-    cbar.set_label(("queueing delay against SUMO native (s per crossing vehicle)\n"
-                    "red: slower, blue: faster") if native else
-                   "queueing delay (s per crossing vehicle; no sumo_native in this run)",
-                   fontsize=style.FONT)
-    return cax
-
-
-def _legend_handles(size, max_enc, cmap, norm):
-    """The legend's markers: encounters by area, no encounter, no vehicle crossed."""
-    from matplotlib.lines import Line2D
-    ticks = sorted({1, nice_length(max_enc * 2.5) if max_enc >= 10 else 1, max_enc})
-    handles = [Line2D([], [], ls="", marker="o", markersize=math.sqrt(size(t)), markerfacecolor="0.8",
-                      markeredgecolor="black", label="%d encounter%s" % (t, "" if t == 1 else "s"))
-               for t in ticks]
-    handles.append(Line2D([], [], ls="", marker="o", markersize=math.sqrt(size(0)),
-                          markerfacecolor=cmap(norm(0.0)), markeredgecolor="0.45",
-                          label="no encounter"))
-    handles.append(Line2D([], [], ls="", marker="o", markersize=math.sqrt(size(0)),
-                          markerfacecolor=(0.6, 0.6, 0.6, 1), markeredgecolor="0.45",
-                          label="no vehicle crossed"))
-    return handles
-
-
-def _title(fig, axes, cax, net, prov):
-    """The figure's title above the panels' titles, inside the figure: the
-    figure grows by the title's height."""
-    from .figure import wrap_to
-    title = wrap_to(fig, "Controlled junctions of %s: marker area by AV-HV encounters, colour by "
-                    "the queueing delay on the approaches (Little's law: summed mean queue / "
-                    "crossing rate), seed %s" % (os.path.basename(net), prov.get("seed")),
-                    style.TITLE_FONT, style.PRINT_WIDTH - 0.2)
-    lines = title.count("\n") + 1
-    title_in = lines * style.TITLE_FONT * 1.35 / 72 + 0.1
-    above = max(ax.get_tightbbox(fig.canvas.get_renderer()).y1 for ax in axes[0]) / fig.dpi
-    height = fig.get_figheight()
-    grow = max(0.0, above + title_in - height)
-    if grow:
-        fig.set_figheight(height + grow)
-        for ax in list(axes[0]) + [cax]:
-            box = ax.get_position()
-            scale = height / (height + grow)
-            ax.set_position([box.x0, box.y0 * scale, box.width, box.height * scale])
-    fig.suptitle(title, fontsize=style.TITLE_FONT, y=1 - 0.05 / fig.get_figheight(), va="top")

@@ -8,6 +8,7 @@ import os
 
 from . import style, tidy
 from .common import SIMULATED, PlotError, save  # noqa: F401 (as before the split)
+from .declare import resolve, text
 from .figure import FAILED_MARK, STALL_RING, Figure, Mark, Panel, wrap_to  # noqa: F401 (the API)
 
 
@@ -25,13 +26,14 @@ class SweepView:
     x: a swept key, or a derived one (`x_of(row)` -> number, `x_title`).
     select(row): the aggregate rows drawn. styles: the keys told apart by
     line style (default: every other swept key that varies at one x).
-    theory: "bar", None, or f(metric, policy, facet) -> (xs, ys) curves.
-    extra(panel, metric, facet): the preset's own marks (reference lines)."""
+    theory: "bar", None, or f(metric, policy, facet, variant) -> (xs, ys) curves.
+    marks: the preset's own marks (declare.Ref: theta*, reference lines),
+    their values looked up in `data` (what the preset's data function gave)."""
 
     def __init__(self, sweep, x, ys, by=None, name=None, select=None, x_of=None, x_title=None,
-                 styles=None, variant_of=None, variant_labels=None, theory="bar", extra=None,
+                 styles=None, variant_of=None, variant_labels=None, theory="bar", marks=(),
                  title=None, caption="", metric_titles=None, zero=None, facet_title=None,
-                 ncols=None, pair_labels=None, connect=None):
+                 ncols=None, pair_labels=None, connect=None, data=None):
         self.sweep = tidy.load(sweep)
         # Simulated points joined by a line, unless theory draws the lines.
         self.connect = (not callable(theory)) if connect is None else connect
@@ -82,7 +84,7 @@ class SweepView:
             self.styles = []
             self.variant_of, self.variant_labels = variant_of, list(variant_labels or [""])
         self.name = name or "sweep_%s.png" % x
-        self.theory, self.extra = theory, extra
+        self.theory, self.marks, self.data = theory, list(marks), data or {}
         self.title = title
         self.caption = caption
         self.metric_titles = metric_titles or {}
@@ -213,8 +215,7 @@ class SweepView:
         # `metric`: the last series' (a pair's last metric), as the loop left it.
         if metric == "served_flow":
             self._offered(p, facet)
-        if self.extra:
-            self.extra(p, item, facet)
+        add_refs(p, self.marks, self.data, item)
         return p
 
     def _new_panel(self, item, facet, metrics):
@@ -339,6 +340,56 @@ class SweepView:
                        simulated=False, ls=":", lw=1.0))
 
 
+def add_refs(panel, refs, data, metric):
+    """The study's own marks (declare.Ref) on a panel of `metric`."""
+    for ref in refs:
+        for kind, xs, ys, opts in ref.marks(data, metric):
+            panel.add(Mark(kind, xs, ys, **opts))
+
+
+# ------------------------------------------------------------------ a preset's lines
+def _variants(decl, rows, data):
+    """(variant_of, labels) of a declare.Variants over the rows."""
+    of = resolve(decl.of, data)
+    values = []
+    for r in rows:
+        v = of(r)
+        if v is not None and v not in values:
+            values.append(v)
+    values.sort(key=decl.order)
+    labels = [decl.labels.get(v, v) if isinstance(decl.labels, dict) else decl.labels.format(v)
+              for v in values]
+    return (lambda r: values.index(of(r))), labels
+
+
+def lines_figure(decl, sweep, data):
+    """A declare.Lines: its SweepView's figures (one file, or split by metric)."""
+    kw = {k: resolve(v, data) for k, v in decl.rest.items()}
+    if isinstance(kw.get("facet_title"), str):
+        kw["facet_title"] = kw["facet_title"].format
+    if decl.variants is not None:
+        kw["variant_of"], kw["variant_labels"] = _variants(decl.variants, sweep.rows, data)
+    v = SweepView(sweep, resolve(decl.x, data), resolve(decl.y, data), name=decl.file,
+                  title=text(decl.title, data), caption=text(decl.caption, data),
+                  ncols=decl.ncols, marks=decl.marks, data=data, **kw)
+    if decl.split:
+        return v.figures()
+    panels = v.panels()
+    z = decl.zoom
+    if z is not None and (z.when is None or resolve(z.when, data)):
+        common = {k: kw[k] for k in ("x_title", "theory") if k in kw}
+        zoom = SweepView(sweep, resolve(decl.x, data), [z.y], select=resolve(z.select, data),
+                         metric_titles={z.y: z.title}, variant_of=lambda r: 0,
+                         variant_labels=[z.label], marks=decl.marks, data=data, **common)
+        zp = zoom.panels()[0]
+        zp.group, zp.ylim = z.group, resolve(z.ylim, data)
+        panels.append(zp)
+    xlim = resolve(decl.xlim, data)
+    for p in panels:
+        p.xlim = xlim if xlim is not None else p.xlim
+    return [v.figure(decl.file, panels, decl.ncols)]
+
+
 def _metrics_of(item):
     """A panel's metrics: one name, or a tuple drawn in one panel."""
     return list(item) if isinstance(item, tuple) else [item]
@@ -377,6 +428,11 @@ def cannot(sweep, why):
     keys, metrics = drawable(sweep)
     return PlotError("%s. Drawable: --x one of %s; --y any of %s" % (
         why, ", ".join(keys) or "(no swept key)", ", ".join(metrics) or "(no metric with data)"))
+
+
+def asked(sweep, x, ys, by=None, name=None):
+    """The figures of the view --x, --y, --by ask for."""
+    return SweepView(sweep, x, ys, by=by, name=name).figures()
 
 
 def default_views(sweep, keys):
