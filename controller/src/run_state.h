@@ -18,6 +18,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -89,6 +90,9 @@ struct RunState {
   // this times a lane's speed limit.
   double max_speed_factor = 0;
   double stall_limit = 120;
+  // Lanes' halting numbers read at this sample (HaltingNow): each lane once.
+  std::unordered_map<std::string, int> halting;
+  long halting_step = -1;
 
   Topology topo;
   VehicleRegistry vehicles;

@@ -39,13 +39,23 @@ std::string StallDetail(RunState& s, JunctionState& j) {
 
 }  // namespace
 
+int HaltingNow(RunState& s, const std::string& lane) {
+  if (s.halting_step != s.step) {
+    s.halting.clear();
+    s.halting_step = s.step;
+  }
+  const auto [it, added] = s.halting.try_emplace(lane, 0);
+  if (added) it->second = s.sumo.LaneHaltingNumber(lane);
+  return it->second;
+}
+
 void SampleWaiting(RunState& s) {
   for (std::size_t i = 0; i < s.junctions.size(); ++i) {
     JunctionState& j = s.junctions[i];
     const bool was_waiting = j.waiting;
     j.waiting = false;
     for (const std::string& lane : s.topo.junctions()[i].incoming)
-      if (s.sumo.LaneHaltingNumber(lane) > 0) {
+      if (HaltingNow(s, lane) > 0) {
         j.waiting = true;
         break;
       }
