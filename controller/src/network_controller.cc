@@ -190,7 +190,7 @@ struct NetworkController::Impl {
     if (s.measuring()) {
       for (std::size_t a = 0; a < s.approaches.size(); ++a) {
         ApproachStats& st = s.approaches[a].stats;
-        const double q = control::HaltingNow(s, s.topo.approaches()[a].lane);
+        const double q = control::ApproachHalting(s, static_cast<int>(a));
         st.queue_max = std::max(st.queue_max, q);
         st.queue_sum += q;
         ++st.samples;

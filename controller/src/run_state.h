@@ -18,7 +18,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -90,8 +89,8 @@ struct RunState {
   // this times a lane's speed limit.
   double max_speed_factor = 0;
   double stall_limit = 120;
-  // Lanes' halting numbers read at this sample (HaltingNow): each lane once.
-  std::unordered_map<std::string, int> halting;
+  // Approach lanes' halting numbers read at this step (ApproachHalting): each once.
+  std::vector<int> halting;  // as approaches; -1: not read
   long halting_step = -1;
 
   Topology topo;

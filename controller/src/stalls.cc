@@ -39,14 +39,14 @@ std::string StallDetail(RunState& s, JunctionState& j) {
 
 }  // namespace
 
-int HaltingNow(RunState& s, const std::string& lane) {
+int ApproachHalting(RunState& s, int a) {
   if (s.halting_step != s.step) {
-    s.halting.clear();
+    s.halting.assign(s.approaches.size(), -1);
     s.halting_step = s.step;
   }
-  const auto [it, added] = s.halting.try_emplace(lane, 0);
-  if (added) it->second = s.sumo.LaneHaltingNumber(lane);
-  return it->second;
+  int& n = s.halting[a];
+  if (n < 0) n = s.sumo.LaneHaltingNumber(s.topo.approaches()[a].lane);
+  return n;
 }
 
 void SampleWaiting(RunState& s) {
@@ -54,8 +54,10 @@ void SampleWaiting(RunState& s) {
     JunctionState& j = s.junctions[i];
     const bool was_waiting = j.waiting;
     j.waiting = false;
-    for (const std::string& lane : s.topo.junctions()[i].incoming)
-      if (HaltingNow(s, lane) > 0) {
+    const JunctionInfo& info = s.topo.junctions()[i];
+    for (std::size_t k = 0; k < info.incoming.size(); ++k)
+      if ((info.incoming_approach[k] >= 0 ? ApproachHalting(s, info.incoming_approach[k])
+                                          : s.sumo.LaneHaltingNumber(info.incoming[k])) > 0) {
         j.waiting = true;
         break;
       }

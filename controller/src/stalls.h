@@ -17,9 +17,9 @@ namespace taebp::control {
 // Once a second: which junctions have vehicles halted on their incoming lanes
 // (an idle junction is not stalled: the clock starts when vehicles begin to wait).
 void SampleWaiting(RunState& s);
-// A lane's halting vehicles at this step, read from SUMO once per step
+// Approach `a`'s halting vehicles at this step, read from SUMO once per step
 // however often asked (SampleWaiting and the queue samples share it).
-int HaltingNow(RunState& s, const std::string& lane);
+int ApproachHalting(RunState& s, int a);
 // Throws StallError (stall_action: error, a controller policy).
 void CheckStalls(RunState& s);
 

@@ -132,8 +132,9 @@ void Topology::AddApproaches(JunctionInfo* junction, int jx) {
   // Approaches with a stop link: where heads wait.
   std::map<std::string, bool> stop_lane;
   for (const MovementInfo& m : rt.movements) stop_lane[m.from_lane] |= m.controlled;
-  for (const auto& [lane, has_stop] : stop_lane) rt.incoming.push_back(lane);
   for (const auto& [lane, has_stop] : stop_lane) {
+    rt.incoming.push_back(lane);
+    rt.incoming_approach.push_back(has_stop ? static_cast<int>(approaches_.size()) : -1);
     if (!has_stop) continue;
     ApproachInfo ap;
     ap.lane = lane;

@@ -86,6 +86,7 @@ struct JunctionInfo {
   std::vector<MovementInfo> movements;
   std::vector<int> approaches;        // Topology::approaches() indices
   std::vector<std::string> incoming;  // every lane into it (the stall check)
+  std::vector<int> incoming_approach;  // as incoming: its approach (a stop line), or -1
   // Two-way stops: the lanes of its major (not stop-controlled) movements.
   std::vector<std::string> major_lanes;
 };

@@ -1,5 +1,7 @@
 #include "taebp/encounter/hv_population.h"
 
+#include "trust_inside.h"
+
 #include "taebp/report/sample_spool.h"
 
 #include "taebp/config/model.h"
@@ -24,10 +26,6 @@ using namespace streams;  // StreamSeed, IdUniform and the salts
 bool TaebpFamily(Policy p) {
   return p == Policy::kTaEbp || p == Policy::kPopulationMean || p == Policy::kTaEbpLearned;
 }
-
-// A drawn trust 0 or 1 (a quantile at the very end of a distribution) as the
-// mean of a proper Beta state.
-double Inside01(double theta) { return std::clamp(theta, 1e-9, 1.0 - 1e-9); }
 
 }  // namespace
 

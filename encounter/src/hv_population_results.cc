@@ -3,6 +3,8 @@
 // trust), what the fleet learned, the design under noise.
 #include "taebp/encounter/hv_population.h"
 
+#include "trust_inside.h"
+
 #include "taebp/config/model.h"
 #include "taebp/encounter/design.h"
 #include "taebp/base/number_text.h"
@@ -18,10 +20,6 @@ namespace {
 
 namespace per = persuasion;
 using per::Policy;
-
-// A drawn trust 0 or 1 (a quantile at the very end of a distribution) as the
-// mean of a proper Beta state.
-double Inside01(double theta) { return std::clamp(theta, 1e-9, 1.0 - 1e-9); }
 
 }  // namespace
 

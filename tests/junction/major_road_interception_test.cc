@@ -12,6 +12,8 @@
 #include "taebp/junction/conflict_geometry.h"
 #include "taebp/junction/interception.h"
 
+#include "interception_fixture.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,34 +25,18 @@
 namespace taebp::junction {
 namespace {
 
-using Kind = Command::Kind;
-constexpr VehicleKind kAV = VehicleKind::kAV;
+using fixture::Cmd;
+using fixture::Kind;
+using fixture::kAV;
+using fixture::Simple;
+using namespace fixture;  // B1's movements: kNr .. kWl
 
-// B1 of a netgenerate grid (as interception_test.cc), with the west and east
+// B1 of a netgenerate grid (interception_fixture.h), with the west and east
 // approaches as the major road of a two-way stop.
-enum Mv { kNr = 0, kNs = 1, kNl = 2, kEr = 3, kEs = 4, kEl = 5,
-          kSr = 6, kSs = 7, kSl = 8, kWr = 9, kWs = 10, kWl = 11 };
-const char* const kB1Foes[12] = {
-    "000100010000", "111100110000", "110111110000", "100010000000",
-    "100110000111", "111110000110", "010000000100", "110000111100",
-    "110000110111", "000000100010", "000111100110", "000110111110"};
-const char kDirs[12] = {'r', 's', 'l', 'r', 's', 'l', 'r', 's', 'l', 'r', 's', 'l'};
-
 JunctionSpec TwoWay(Rule rule = Rule::kTwoWay) {
-  JunctionSpec s;
-  s.id = "B1";
-  s.rule = rule;
-  s.approaches = 4;
-  for (int m = 0; m < 12; ++m) {
-    Movement mv;
-    mv.approach = m / 3;
-    mv.dir = kDirs[m];
+  JunctionSpec s = fixture::B1(rule);
+  for (Movement& mv : s.movements)
     mv.controlled = rule == Rule::kAllWay || (mv.approach != 1 && mv.approach != 3);
-    s.movements.push_back(mv);
-  }
-  s.conflict.assign(12, std::vector<bool>(12, false));
-  for (int i = 0; i < 12; ++i)
-    for (int k = 0; k < 12; ++k) s.conflict[i][k] = kB1Foes[i][11 - k] == '1';
   return s;
 }
 
@@ -84,7 +70,6 @@ struct Model : EncounterModel {
   }
 };
 
-constexpr int kAv = 1, kHv = 2;
 const std::vector<AtLine> kAtLine = {{kAv, kAV, kNs, true, 0.0}};
 const std::vector<MajorAt> kMajor = {{kHv, kWs, 60.0, 12.0}};
 
@@ -97,12 +82,6 @@ Timing On() {
   return t;
 }
 
-using Cmd = std::pair<Kind, int>;
-std::vector<Cmd> Simple(const std::vector<Command>& cs) {
-  std::vector<Cmd> out;
-  for (const Command& c : cs) out.emplace_back(c.kind, c.vehicle);
-  return out;
-}
 
 // Which junctions can host a game at all (junctions.csv game_pairs), counted
 // by hand from B1's foe matrix: N's right conflicts with S's left and E's
