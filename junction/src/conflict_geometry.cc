@@ -136,11 +136,12 @@ namespace {
 
 struct Bounds {
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  void Add(Point2 p) {
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y);
+    x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  }
   void Add(const Box& box) {
-    for (const Point2& p : box.c) {
-      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y);
-      x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
-    }
+    for (const Point2& p : box.c) Add(p);
   }
   void Add(const Bounds& o) {
     x0 = std::min(x0, o.x0), y0 = std::min(y0, o.y0);
@@ -158,16 +159,28 @@ struct Bodies {
   std::vector<Bounds> bounds;
   Bounds all;
 };
+// Where a mover's bodies end: `reach` ahead of its front (>= 0), or with its
+// rear off the junction.
+double EndOf(const Mover& m, double reach) {
+  return reach >= 0 ? m.front + reach : std::max(m.front, m.exit + m.length);
+}
+// Its fronts from m.front every `step` m until `end` (end included).
+std::vector<double> Fronts(const Mover& m, double end, double step) {
+  std::vector<double> at;
+  for (double x = m.front;; x = std::min(x + step, end)) {
+    at.push_back(x);
+    if (x >= end) break;
+  }
+  return at;
+}
 Bodies BodiesOf(const Mover& m, double reach, double step) {
   const Arcs arcs(m.path);
   Bodies out;
-  const double end = reach >= 0 ? m.front + reach : std::max(m.front, m.exit + m.length);
-  for (double x = m.front;; x = std::min(x + step, end)) {
-    out.at.push_back(x);
+  out.at = Fronts(m, EndOf(m, reach), step);
+  for (double x : out.at) {
     out.boxes.push_back(BoxOf(arcs.PointAt(x - m.length), arcs.PointAt(x), m.width));
     out.bounds.emplace_back().Add(out.boxes.back());
     out.all.Add(out.boxes.back());
-    if (x >= end) break;
   }
   return out;
 }
@@ -232,10 +245,6 @@ namespace {
 Bounds SweptBounds(const Arcs& arcs, const Mover& m, double lo, double hi) {
   const std::vector<Point2>& p = *arcs.path;
   Bounds b;
-  auto add = [&b](Point2 q) {
-    b.x0 = std::min(b.x0, q.x), b.y0 = std::min(b.y0, q.y);
-    b.x1 = std::max(b.x1, q.x), b.y1 = std::max(b.y1, q.y);
-  };
   const double from = lo - m.length;
   // The vertices of the segments holding arcs from..hi (PointAt's upper_bound).
   const std::size_t n = p.size();
@@ -244,8 +253,8 @@ Bounds SweptBounds(const Arcs& arcs, const Mover& m, double lo, double hi) {
   const std::size_t last =
       hi >= arcs.Total() ? n - 1
                          : std::upper_bound(arcs.at.begin(), arcs.at.end(), hi) - arcs.at.begin();
-  for (std::size_t i = std::min(first, n - 1); i <= std::min(last, n - 1); ++i) add(p[i]);
-  if (hi >= arcs.Total()) add(arcs.PointAt(hi));  // the extension is a straight line
+  for (std::size_t i = std::min(first, n - 1); i <= std::min(last, n - 1); ++i) b.Add(p[i]);
+  if (hi >= arcs.Total()) b.Add(arcs.PointAt(hi));  // the extension is a straight line
   const double margin = 0.5 * m.width + 1e-6;
   b.x0 -= margin, b.y0 -= margin, b.x1 += margin, b.y1 += margin;
   return b;
@@ -283,14 +292,6 @@ struct Runs {
   std::vector<Bounds> run_bounds;
   Bounds all;
 };
-std::vector<double> Fronts(const Mover& m, double end, double step) {
-  std::vector<double> at;
-  for (double x = m.front;; x = std::min(x + step, end)) {
-    at.push_back(x);
-    if (x >= end) break;
-  }
-  return at;
-}
 // Walks a mover's bodies as BodiesOf samples them, in runs of kChunk
 // fronts: Next() builds the next run whose swept box meets `other` (the
 // other mover's region, or the box of its bodies) and skips the rest.
@@ -335,8 +336,7 @@ class RunBuilder {
 bool TouchPruned(const Mover& a, double ra, const Mover& b, double rb, double step) {
   if (a.path.size() < 2 || b.path.size() < 2) return Touch(BodiesOf(a, ra, step), BodiesOf(b, rb, step));
   const Arcs arcs_a(a.path), arcs_b(b.path);
-  const double end_a = ra >= 0 ? a.front + ra : std::max(a.front, a.exit + a.length);
-  const double end_b = rb >= 0 ? b.front + rb : std::max(b.front, b.exit + b.length);
+  const double end_a = EndOf(a, ra), end_b = EndOf(b, rb);
   const Bounds region_a = SweptBounds(arcs_a, a, a.front, end_a);
   if (!region_a.Meets(SweptBounds(arcs_b, b, b.front, end_b))) return false;
   Runs runs_b;
