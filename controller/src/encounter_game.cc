@@ -12,12 +12,12 @@ EncounterGame::EncounterGame(RunState& s)
 
 AvDraw EncounterGame::Draw(int av, int hv) {
   // Paired games: branches fork here, before anything of the policy is used.
-  if (pairing_) pairing_->GameForms(av, hv, major_.count({av, hv}) > 0, *this);
+  if (pairing_) pairing_->GameForms(av, hv, *this);
   ++s_.vehicles[av].open_encounters;
   ++s_.vehicles[hv].open_encounters;
   HvPopulation& population = PopulationOf(av, hv);
   const persuasion::CommittedScheme& scheme =
-      population.Commit(s_.vehicles[av].id, s_.vehicles[hv].id);
+      population.Commit(s_.vehicles[av].id, s_.vehicles[hv].id, KindOf(av, hv));
   AvDraw d = DrawAv(scheme, params_.prior_go, rng_);
   // random_nudge: the magnitude from the population's own stream (the
   // encounter stream's two draws stay every policy's).
@@ -152,8 +152,8 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
   ap.hv_distance = g.hv_zone.first - front_decision;
   if (ap.hv_distance < 0) return {Kind::kNever, 0};
   ap.hv_speed = v;
-  ap.comfortable_deceleration = s_.sc.major_road->comfortable_decel;
-  ap.reaction_time = s_.sc.major_road->reaction_time;
+  ap.comfortable_deceleration = s_.sc.major_road.comfortable_decel;
+  ap.reaction_time = s_.sc.major_road.reaction_time;
   ap.hv_occupancy_length = g.hv_zone.last - g.hv_zone.first;
   // Every policy's AV (LargestNudge): it enters the zone at the earliest
   // from the largest nudge, and leaves it at the latest from its line.

@@ -50,13 +50,16 @@ class EncounterGame : public junction::EncounterModel {
   std::map<std::pair<int, int>, Premise> verdicts_;
   // The nudge the game's rules assume for every policy (the likelihood's s_max).
   double LargestNudge() const;  // (AV, HV) met: does the game's premise hold
-  // Major-road encounters running, (AV, HV): their game is the major population's.
+  // Major-road encounters running, (AV, HV): their game is the major road's.
   std::set<std::pair<int, int>> major_;
+  GameKind KindOf(int av, int hv) const {
+    return major_.count({av, hv}) ? GameKind::kMajorRoad : GameKind::kStopLines;
+  }
   std::pair<int, int> branch_pair_{-1, -1};
   HvPopulation* branch_population_ = nullptr;
   HvPopulation& PopulationOf(int av, int hv) const {
     if (branch_population_ && branch_pair_ == std::make_pair(av, hv)) return *branch_population_;
-    return major_.count({av, hv}) ? *s_.major_population : *s_.population;
+    return *s_.population;
   }
   // The (AV, HV) movers of a major-road approach and their conflict zones,
   // per pair (the geometry does not change while the AV waits).

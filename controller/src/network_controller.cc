@@ -31,25 +31,18 @@
 namespace taebp {
 namespace control {
 
-std::unique_ptr<HvPopulation> MakePopulation(const RunState& s, persuasion::Policy policy,
-                                             bool major) {
-  if (!major) return std::make_unique<HvPopulation>(s.cfg, policy);
-  // The same HVs in the major-road game: the paper's game at r_eff.
-  ExperimentConfig c = s.cfg;
-  c.model.collision_penalty =
-      persuasion::MajorRoadEffectivePenalty(ToModel(s.cfg.model, *s.sc.major_road));
-  return std::make_unique<HvPopulation>(c, policy);
+std::unique_ptr<HvPopulation> MakePopulation(const RunState& s, persuasion::Policy policy) {
+  return std::make_unique<HvPopulation>(s.cfg, policy);
 }
 
 void MakePopulations(RunState& s, persuasion::Policy policy) {
   // Each HV's trust, the AV's design for it, its reading (hv_population.h).
-  s.population = MakePopulation(s, policy, false);
+  s.population = MakePopulation(s, policy);
   // Its time series go to disk as sampled (report/sample_spool.h), beside
   // SUMO's outputs in the scenario's scratch folder.
   if (s.population->Beyond())
     s.population->SampleInto(std::make_shared<SampleSpool>(
         PolicyName(policy), s.scenario.scratch ? s.scenario.scratch->path() : std::string()));
-  if (s.sc.major_road) s.major_population = MakePopulation(s, policy, true);
 }
 
 RunState::RunState(const ExperimentConfig& config, std::optional<persuasion::Policy> policy,
@@ -79,17 +72,17 @@ RunState::RunState(const ExperimentConfig& config, std::optional<persuasion::Pol
     JunctionState j;
     junction::Timing timing;
     timing.confirm_delay = sc.confirm_delay;
-    if (sc.major_road && policy) {
+    if (sc.MajorRoadGame() && policy) {
       timing.major_road = true;
-      timing.yield_decel = sc.major_road->comfortable_decel;
-      timing.reaction_time = sc.major_road->reaction_time;
+      timing.yield_decel = sc.major_road.comfortable_decel;
+      timing.reaction_time = sc.major_road.reaction_time;
     }
     j.logic = std::make_unique<junction::Interception>(info.spec, timing);
     j.run.id = info.info.id;
     j.run.type = info.info.type;
     j.run.original_type = info.info.original_type;
     j.run.rule = junction::ToString(info.spec.rule);
-    j.run.game_pairs = junction::GamePairs(info.spec, sc.major_road.has_value());
+    j.run.game_pairs = junction::GamePairs(info.spec, sc.MajorRoadGame());
     for (int a : info.approaches) j.run.approaches.push_back(approaches[a].stats);
     junctions.push_back(std::move(j));
   }
@@ -124,7 +117,6 @@ struct NetworkController::Impl {
     if (!av) {
       v.trust = control::HvTrust(s.cfg, id);
       if (s.policy) s.population->Add(id, v.trust);
-      if (s.major_population) s.major_population->Add(id, v.trust);
       if (s.out.hv_trust.size() < kTrustListMax) s.out.hv_trust.push_back(v.trust);
     }
     v.length = s.sumo.Length(id);
@@ -155,7 +147,6 @@ struct NetworkController::Impl {
     control::CountProgress(s, h, static_cast<int>(v.route.size()) - 1);
     v.alive = false;
     if (s.population && v.kind == VehicleKind::kHV) s.population->Remove(id);
-    if (s.major_population && v.kind == VehicleKind::kHV) s.major_population->Remove(id);
     if (v.state == control::State::kCrossing) commands.Clear(h);  // left inside a junction
     pairing.Left(h);
     control::SetNear(s, h, {});
@@ -167,7 +158,7 @@ struct NetworkController::Impl {
   // interception's commands, then the encounters that finished.
   void Decide(control::JunctionState& j) {
     control::Observe(s, j);
-    if (s.major_population) control::ObserveMajor(s, j);
+    if (s.policy && s.sc.MajorRoadGame()) control::ObserveMajor(s, j);
     control::StopLineEnvironment env(s, j);
     const long abandoned = j.logic->AbandonedMeetings();
     const std::vector<junction::Command> todo =
@@ -291,14 +282,8 @@ PolicyRun NetworkController::Finish() {
   s.out.measured_seconds = std::max(0.0, s.now - s.sc.warmup);
   if (s.population) {
     s.out.beyond = s.population->Results(s.now);
+    // Each kind's theory weighted by its encounters (each record has its own).
     s.out.theory = s.population->Theory();
-    // Every encounter the major-road kind: its theory is the game at r_eff
-    // (a run mixing both kinds keeps the paper game's; each record has its own).
-    const bool all_major =
-        !s.out.encounters.empty() &&
-        std::all_of(s.out.encounters.begin(), s.out.encounters.end(),
-                    [](const EncounterRecord& e) { return e.major_road; });
-    if (s.major_population && all_major) s.out.theory = s.major_population->Theory();
   } else {
     s.out.beyond.on = s.cfg.BeyondPaper();  // sumo_native: the same columns as the others
   }

@@ -96,7 +96,7 @@ Pairing::Pairing(RunState& s) : s_(s) {
   }
 }
 
-void Pairing::GameForms(int av, int hv, bool major, EncounterGame& game_model) {
+void Pairing::GameForms(int av, int hv, EncounterGame& game_model) {
   if (branch_ || !s_.sc.paired || !s_.policy || !s_.measuring() || policies_.empty()) return;
   const std::string game = PolicyName(*s_.policy) + std::string("-") + std::to_string(++games_);
   for (persuasion::Policy q : policies_) {
@@ -126,7 +126,7 @@ void Pairing::GameForms(int av, int hv, bool major, EncounterGame& game_model) {
       av_ = av;
       hv_ = hv;
       game_ = game;
-      StartBranch(q, major, game_model, p[1]);
+      StartBranch(q, game_model, p[1]);
       return;
     }
     ::close(p[1]);
@@ -163,7 +163,7 @@ void Pairing::GameForms(int av, int hv, bool major, EncounterGame& game_model) {
   }
 }
 
-void Pairing::StartBranch(persuasion::Policy policy, bool major, EncounterGame& game, int fd) {
+void Pairing::StartBranch(persuasion::Policy policy, EncounterGame& game, int fd) {
   branch_ = true;
   fd_ = fd;
   policy_ = policy;
@@ -175,7 +175,7 @@ void Pairing::StartBranch(persuasion::Policy policy, bool major, EncounterGame& 
   // This game is played under `policy`, by the same HV with the trust it was
   // drawn (the paper's model: an HV's trust does not depend on what it met;
   // config.cc refuses the rest); every other game stays the run's own.
-  population_ = MakePopulation(s_, policy, major);
+  population_ = MakePopulation(s_, policy);
   population_->Add(s_.vehicles[hv_].id, s_.vehicles[hv_].trust);
   game.PlayPairWith(av_, hv_, population_.get());
   formed_ = s_.now;

@@ -33,7 +33,7 @@ class Pairing {
   // a branch per paired policy and keeps their rows (returns after the last
   // one). In a branch: returns at once (its own games are not paired).
   // Returns in each branch too, which then follows the game.
-  void GameForms(int av, int hv, bool major, EncounterGame& game);
+  void GameForms(int av, int hv, EncounterGame& game);
   // The AV of a game drew its intent and signal (a branch keeps its game's).
   void Drawn(int av, int hv, const AvDraw& draw);
   // A game finished (its record, as encounters.csv has it).
@@ -50,7 +50,7 @@ class Pairing {
   [[noreturn]] void EndBranch(const std::string& status, const std::string& error = "");
 
  private:
-  void StartBranch(persuasion::Policy policy, bool major, EncounterGame& game, int fd);
+  void StartBranch(persuasion::Policy policy, EncounterGame& game, int fd);
   PairedRecord Row(const std::string& status, const std::string& error) const;
 
   RunState& s_;

@@ -100,21 +100,18 @@ struct RunState {
   std::vector<int> crossing, nudging;      // vehicles released and not out / creeping
   std::vector<int> unblocked;              // let past a nudged AV, still in the junction
   std::vector<int> yielding;               // major-road HVs braking for an AV (DC)
-  std::unique_ptr<HvPopulation> population;  // policy runs only
+  // Policy runs only: both kinds of game (the major road's, scenario.major_road:
+  // the paper's game at r_eff = 2 (r - c) / (2 + c), persuasion/major_road.h).
+  std::unique_ptr<HvPopulation> population;
   std::unordered_set<std::string> avs;       // every vehicle that departed as an AV
-  // The major-road encounter's game (scenario.major_road): the paper's game at
-  // r_eff = 2 (r - c) / (2 + c) (persuasion/major_road.h), the same HVs.
-  std::unique_ptr<HvPopulation> major_population;
   PolicyRun out;
 };
 
-// The HV populations of game policy `policy` (s.population, and
-// s.major_population with scenario.major_road): each HV's trust, the AV's
-// design for it, its reading (hv_population.h); no HV added yet.
+// The HV population of game policy `policy` (s.population): each HV's trust,
+// the AV's design for it in each kind of game, its reading
+// (hv_population.h); no HV added yet.
 void MakePopulations(RunState& s, persuasion::Policy policy);
-// One of them: the paper's game, or the major road's (`major`).
-std::unique_ptr<HvPopulation> MakePopulation(const RunState& s, persuasion::Policy policy,
-                                             bool major);
+std::unique_ptr<HvPopulation> MakePopulation(const RunState& s, persuasion::Policy policy);
 
 
 }  // namespace taebp::control

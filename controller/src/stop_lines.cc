@@ -137,7 +137,7 @@ bool GoesThrough(const RunState& s, const Vehicle& cv, const net::Lane* fl, doub
 
 void ObserveMajor(RunState& s, JunctionState& j) {
   j.major.clear();
-  if (!s.sc.major_road) return;
+  if (!s.sc.MajorRoadGame()) return;
   const bool av_waits = std::any_of(j.at_line.begin(), j.at_line.end(), [](const junction::AtLine& a) {
     return a.kind == VehicleKind::kAV && a.waiting;
   });

@@ -38,6 +38,10 @@ HvPopulation::HvPopulation(const ExperimentConfig& config, Policy policy)
       magnitude_rng_(StreamSeed(config.scenario.seed, kSaltMagnitude)) {
   const ModelConfig& m = config.model;
   params_ = ToModel(m);
+  kinds_[Index(GameKind::kStopLines)].params = params_;
+  major_ = config.scenario.MajorRoadGame();
+  kinds_[Index(GameKind::kMajorRoad)].params =
+      major_ ? ToModel(m, config.scenario.major_road).EquivalentPaperParams() : params_;
   beyond_ = config.BeyondPaper();
   dynamic_ = m.trust_dynamics.has_value();
   learned_ = policy == Policy::kTaEbpLearned;
@@ -76,24 +80,52 @@ HvPopulation::HvPopulation(const ExperimentConfig& config, Policy policy)
     schedule_ = ToModel(l);
     schedule_.Validate();
     fleet_ = std::make_unique<per::FleetTrustBeliefs>(ToModel(l.prior.value_or(m.trust)));
+  }
+  SetUpKind(GameKind::kStopLines);
+  if (major_) SetUpKind(GameKind::kMajorRoad);
+}
+
+void HvPopulation::SetUpKind(GameKind kind) {
+  const ModelConfig& m = config_.model;
+  Kind& k = kinds_[Index(kind)];
+  if (learned_) {
     const per::TrustBelief fresh(std::make_shared<per::TrustPrior>(fleet_->Population()));
     // The design for an HV never met, without a probe.
     const per::LearnedDesign ld =
-        per::ChooseLearnedDesign(fresh, params_, *model_, schedule_, std::nextafter(1.0, 0.0));
-    population_scheme_ = ld.mode == per::LearnedDesign::Mode::kDesign
-                             ? (noise_aware_ ? SchemeAt(ld.design_trust) : ld.scheme)
-                             : ld.scheme;
-  } else {
-    population_scheme_ = SchemeAt(DesignTrustFor(m.trust.Mean()));
-    if (!dynamic_) {
-      // The a-priori expectation over the trust distribution (and the noise).
-      theory_ = noise_ ? ExpectedOver(m.trust,
-                                      [&](double theta) {
-                                        return Predict(SchemeAt(DesignTrustFor(theta)), theta);
-                                      })
-                       : ExpectedOutcome(m, policy);
-    }
+        per::ChooseLearnedDesign(fresh, k.params, *model_, schedule_, std::nextafter(1.0, 0.0));
+    k.population_scheme = ld.mode == per::LearnedDesign::Mode::kDesign
+                              ? (noise_aware_ ? SchemeAt(ld.design_trust, kind) : ld.scheme)
+                              : ld.scheme;
+    return;
   }
+  k.population_scheme = SchemeAt(DesignTrustFor(m.trust.Mean()), kind);
+  if (dynamic_) return;
+  // The a-priori expectation over the trust distribution (and the noise).
+  if (noise_) {
+    k.theory = ExpectedOver(m.trust, [&](double theta) {
+      return Predict(SchemeAt(DesignTrustFor(theta), kind), theta, kind);
+    });
+  } else {
+    ModelConfig game = m;  // the paper's game at this kind's penalty
+    game.collision_penalty = k.params.collision_penalty;
+    k.theory = ExpectedOutcome(game, policy_);
+  }
+}
+
+per::PredictedOutcome HvPopulation::Theory() const {
+  if (encounter_theory_) return EncounterTheory();
+  const long stop = totals_.of_kind[0], major = totals_.of_kind[1];
+  if (major == 0) return kinds_[0].theory;
+  if (stop == 0) return kinds_[1].theory;
+  const double w = static_cast<double>(major) / static_cast<double>(stop + major);
+  const per::PredictedOutcome& a = kinds_[0].theory;
+  const per::PredictedOutcome& b = kinds_[1].theory;
+  per::PredictedOutcome o;
+  o.dc_rate = (1 - w) * a.dc_rate + w * b.dc_rate;
+  o.collision_rate = (1 - w) * a.collision_rate + w * b.collision_rate;
+  o.nudge_rate = (1 - w) * a.nudge_rate + w * b.nudge_rate;
+  o.av_first_rate = (1 - w) * a.av_first_rate + w * b.av_first_rate;
+  return o;
 }
 
 HvPopulation::~HvPopulation() = default;
@@ -102,31 +134,43 @@ double HvPopulation::DesignTrustFor(double theta) const {
   return DesignTrust(config_.model, policy_, theta);
 }
 
-per::CommittedScheme HvPopulation::SchemeAt(double theta_hat) const {
-  if (robust_margin_) return per::DesignRobust(params_, theta_hat, *model_, *robust_margin_).scheme;
+per::CommittedScheme HvPopulation::SchemeAt(double theta_hat, GameKind kind) const {
+  const per::AvHvParams& params = Params(kind);
+  if (robust_margin_) return per::DesignRobust(params, theta_hat, *model_, *robust_margin_).scheme;
   if (noise_ && noise_aware_ && TaebpFamily(policy_))
-    return per::DesignUnderNoise(params_, theta_hat, *model_, *noise_, noise_delta_).scheme;
-  return per::CommitScheme(policy_, params_, theta_hat, *model_);
+    return per::DesignUnderNoise(params, theta_hat, *model_, *noise_, noise_delta_).scheme;
+  return per::CommitScheme(policy_, params, theta_hat, *model_);
 }
 
-per::CommittedScheme HvPopulation::OracleScheme(double theta) const {
+per::CommittedScheme HvPopulation::OracleScheme(double theta, GameKind kind) const {
+  const per::AvHvParams& params = Params(kind);
   if (noise_ && noise_aware_)
-    return per::DesignUnderNoise(params_, theta, *model_, *noise_, noise_delta_).scheme;
-  return per::CommitScheme(Policy::kTaEbp, params_, theta, *model_);
+    return per::DesignUnderNoise(params, theta, *model_, *noise_, noise_delta_).scheme;
+  return per::CommitScheme(Policy::kTaEbp, params, theta, *model_);
 }
 
-per::PredictedOutcome HvPopulation::Predict(const per::CommittedScheme& scheme,
-                                            double theta) const {
-  if (noise_) return per::PredictOutcomeUnderNoise(scheme, params_, theta, *model_, *noise_);
-  return per::PredictOutcome(scheme, params_, theta, *model_);
+per::PredictedOutcome HvPopulation::Predict(const per::CommittedScheme& scheme, double theta,
+                                            GameKind kind) const {
+  if (noise_) return per::PredictOutcomeUnderNoise(scheme, Params(kind), theta, *model_, *noise_);
+  return per::PredictOutcome(scheme, Params(kind), theta, *model_);
 }
 
-per::ExperiencePath& HvPopulation::PathFor(double theta_hat, double theta, double strength) {
-  auto& slot = paths_[{theta_hat, theta, strength}];
+HvPopulation::KindDesign HvPopulation::DesignFor(double trust, GameKind kind) const {
+  KindDesign d;
+  d.design_trust = DesignTrustFor(trust);
+  d.scheme = SchemeAt(d.design_trust, kind);
+  d.theory = Predict(d.scheme, trust, kind);
+  if (beyond_) d.oracle = Predict(OracleScheme(trust, kind), trust, kind);
+  return d;
+}
+
+per::ExperiencePath& HvPopulation::PathFor(double theta_hat, double theta, double strength,
+                                           GameKind kind) {
+  auto& slot = paths_[{theta_hat, theta, strength, Index(kind)}];
   if (!slot)
-    slot = std::make_unique<per::ExperiencePath>(SchemeAt(theta_hat), params_, theta, *model_,
-                                                 strength, guarded_, experience_->forgetting,
-                                                 experience_->bin_width, experience_->strength);
+    slot = std::make_unique<per::ExperiencePath>(
+        SchemeAt(theta_hat, kind), Params(kind), theta, *model_, strength, guarded_,
+        experience_->forgetting, experience_->bin_width, experience_->strength);
   return *slot;
 }
 
@@ -146,12 +190,10 @@ void HvPopulation::Add(const std::string& hv, double trust) {
     h.state = per::BetaTrust::FromMean(Inside01(trust), strength);
     h.mean_field = h.state;
   } else if (!learned_) {
-    // Static trust: one design per HV, as the paper's controller had it.
+    // Static trust: one design per HV and kind, as the paper's controller had it.
     h.cached = true;
-    h.design_trust = DesignTrustFor(trust);
-    h.scheme = SchemeAt(h.design_trust);
-    h.theory = Predict(h.scheme, trust);
-    if (beyond_) h.oracle = Predict(OracleScheme(trust), trust);
+    h.design[Index(GameKind::kStopLines)] = DesignFor(trust, GameKind::kStopLines);
+    if (major_) h.design[Index(GameKind::kMajorRoad)] = DesignFor(trust, GameKind::kMajorRoad);
   }
   if (learned_) met_trust_[hv] = trust;
   hvs_[hv] = std::move(h);
@@ -161,13 +203,13 @@ void HvPopulation::Add(const std::string& hv, double trust) {
 
 void HvPopulation::Remove(const std::string& hv) { hvs_.erase(hv); }
 
-double HvPopulation::GoSignal(const std::string& hv) const {
+double HvPopulation::GoSignal(const std::string& hv, GameKind kind) const {
   const auto go = [](const per::CommittedScheme& sc) { return sc.a > 0 ? sc.nudge : 0.0; };
   const auto it = hvs_.find(hv);
-  if (it == hvs_.end() || learned_) return go(population_scheme_);
+  if (it == hvs_.end() || learned_) return go(PopulationScheme(kind));
   const Hv& h = it->second;
-  if (h.cached) return go(h.scheme);
-  return go(SchemeAt(DesignTrustFor(h.state ? h.state->Mean() : h.trust0)));
+  if (h.cached) return go(h.design[Index(kind)].scheme);
+  return go(SchemeAt(DesignTrustFor(h.state ? h.state->Mean() : h.trust0), kind));
 }
 
 double HvPopulation::Trust(const std::string& hv) const {
@@ -176,38 +218,47 @@ double HvPopulation::Trust(const std::string& hv) const {
   return it->second.state ? it->second.state->Mean() : it->second.trust0;
 }
 
-const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const std::string& hv) {
+const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const std::string& hv,
+                                                 GameKind kind) {
   const auto it = hvs_.find(hv);
   if (it == hvs_.end()) throw std::logic_error("HvPopulation: HV '" + hv + "' is not in the network");
+  if (kind == GameKind::kMajorRoad && !major_)
+    throw std::logic_error("HvPopulation: a major-road game without scenario.major_road");
   Hv& h = it->second;
+  const per::AvHvParams& params = Params(kind);
   Pending p;
+  p.kind = kind;
   p.trust = h.state ? h.state->Mean() : h.trust0;
   if (learned_) {
     const double u = per::Uniform01(probe_rng_);  // one per encounter, whatever the mode
     const per::TrustBelief& belief = fleet_->For(hv);
     p.belief_lower = belief.Lower();
     p.belief_upper = belief.Upper();
-    const per::LearnedDesign ld = per::ChooseLearnedDesign(belief, params_, *model_, schedule_, u);
+    const per::LearnedDesign ld = per::ChooseLearnedDesign(belief, params, *model_, schedule_, u);
     p.scheme = ld.scheme;
     p.design_trust = ld.design_trust;
     if (noise_ && noise_aware_ && ld.mode != per::LearnedDesign::Mode::kFallback)
-      p.scheme = SchemeAt(ld.design_trust);
+      p.scheme = SchemeAt(ld.design_trust, kind);
     if (ld.mode == per::LearnedDesign::Mode::kProbe) ++probes_;
     p.learned = ld;
   } else if (h.cached) {
-    p.scheme = h.scheme;
-    p.design_trust = h.design_trust;
-    p.theory = h.theory;
-    p.oracle = h.oracle;
+    const KindDesign& d = h.design[Index(kind)];
+    p.scheme = d.scheme;
+    p.design_trust = d.design_trust;
+    p.theory = d.theory;
+    p.oracle = d.oracle;
     if (experience_) {
       // The expected outcome of this HV's encounter number h.encounters over
       // its learning path; ta_ebp guarded: the design for what it learned.
-      // Where it is not modelled (NoTheory) the theory cells stay empty.
-      p.theory = NoTheory() ? Unmodelled()
-                            : PathFor(h.design_trust, h.trust0, h.strength).At(h.encounters);
+      // Where it is not modelled (NoTheory, or an HV that has met both kinds
+      // of game: its path mixes two schemes) the theory cells stay empty.
+      const bool other_kind = (h.kinds_met & ~(1 << Index(kind))) != 0;
+      p.theory = NoTheory() || other_kind
+                     ? Unmodelled()
+                     : PathFor(d.design_trust, h.trust0, h.strength, kind).At(h.encounters);
       if (guarded_) {
         const per::SignalExperience& e = h.history ? *h.history : *h.experience;
-        p.scheme = per::DesignForExperience(h.scheme, params_, h.design_trust, *model_,
+        p.scheme = per::DesignForExperience(d.scheme, params, d.design_trust, *model_,
                                             experience_->strength,
                                             [&](double s) { return e.At(s); })
                        .scheme;
@@ -215,11 +266,11 @@ const per::CommittedScheme& HvPopulation::Commit(const std::string& av, const st
     }
   } else {
     p.design_trust = DesignTrustFor(p.trust);
-    p.scheme = SchemeAt(p.design_trust);
+    p.scheme = SchemeAt(p.design_trust, kind);
   }
   if (!h.cached) {
-    p.theory = Predict(p.scheme, p.trust);
-    if (beyond_) p.oracle = Predict(OracleScheme(p.trust), p.trust);
+    p.theory = Predict(p.scheme, p.trust, kind);
+    if (beyond_) p.oracle = Predict(OracleScheme(p.trust, kind), p.trust, kind);
   }
   if (policy_ == Policy::kNoEbp || policy_ == Policy::kFullReveal ||
       policy_ == Policy::kRandomNudge)
@@ -262,6 +313,7 @@ HvReading HvPopulation::Read(const std::string& av, const std::string& hv, doubl
   if (it == pending_.end())
     throw std::logic_error("HvPopulation: no encounter of " + av + " and " + hv + " to read");
   Pending& p = it->second;
+  const per::AvHvParams& params = Params(p.kind);
   if (experience_) {
     // What this HV learned of the level it read (SUMO's displacement).
     const auto h = hvs_.find(hv);
@@ -272,13 +324,13 @@ HvReading HvPopulation::Read(const std::string& av, const std::string& hv, doubl
     // model.noise: what it perceived (one draw of the noise stream).
     p.reading = noise_ ? per::NoisyReading(*noise_, observed, model_->SMax(), per::Uniform01(noise_rng_))
                        : std::clamp(observed, 0.0, model_->SMax());
-    r.posterior = per::ExperiencedBelief(p.scheme, params_, p.trust, *model_, p.reading,
+    r.posterior = per::ExperiencedBelief(p.scheme, params, p.trust, *model_, p.reading,
                                          h->second.experience->At(p.reading), h->second.strength);
-    r.drives_if_clear = per::HvDrivesIfClear(params_, r.posterior);
+    r.drives_if_clear = per::HvDrivesIfClear(params, r.posterior);
     return r;
   }
   if (!noise_) {
-    const HvReading r = ReadNudge(p.scheme, params_, p.trust, *model_, observed);
+    const HvReading r = ReadNudge(p.scheme, params, p.trust, *model_, observed);
     p.reading = std::clamp(observed, 0.0, model_->SMax());
     return r;
   }
@@ -287,8 +339,8 @@ HvReading HvPopulation::Read(const std::string& av, const std::string& hv, doubl
   p.reading = per::NoisyReading(*noise_, observed, model_->SMax(), u);
   HvReading r;
   r.observed = observed;
-  r.posterior = per::HvPosteriorGo(p.scheme, params_, p.trust, *model_, p.reading);
-  r.drives_if_clear = per::HvDrivesIfClear(params_, r.posterior);
+  r.posterior = per::HvPosteriorGo(p.scheme, params, p.trust, *model_, p.reading);
+  r.drives_if_clear = per::HvDrivesIfClear(params, r.posterior);
   return r;
 }
 
@@ -328,7 +380,7 @@ void HvPopulation::Finish(const std::string& av, const std::string& hv, const Av
     // Without a signalling scheme the HV reads the prior: nothing to learn.
     per::ObservationEffect effect = per::ObservationEffect::kUninformative;
     if (p.scheme.Signals())
-      effect = fleet_->For(hv).Observe(params_, *model_,
+      effect = fleet_->For(hv).Observe(Params(p.kind), *model_,
                                        std::clamp(reading.observed, 0.0, model_->SMax()),
                                        reading.drives_if_clear);
     b.observation = per::ToString(effect);
@@ -337,6 +389,7 @@ void HvPopulation::Finish(const std::string& av, const std::string& hv, const Av
   if (hit != hvs_.end()) {
     Hv& h = hit->second;
     ++h.encounters;
+    h.kinds_met |= 1 << Index(p.kind);
     // It saw what SUMO showed it: the displacement it read, then whether the
     // AV took the right of way.
     // The HV files it under the level it perceived (p.reading: SUMO's
@@ -349,7 +402,7 @@ void HvPopulation::Finish(const std::string& av, const std::string& hv, const Av
       h.state->Update(outcome, rule_);
       b.trust_after = h.state->Mean();
       if (design_rule_)
-        h.mean_field->Update(per::ExpectedQuality(*design_rule_, params_, h.mean_field->Mean(),
+        h.mean_field->Update(per::ExpectedQuality(*design_rule_, Params(p.kind), h.mean_field->Mean(),
                                                   *model_, rule_.quality),
                              rule_);
     }
@@ -357,6 +410,7 @@ void HvPopulation::Finish(const std::string& av, const std::string& hv, const Av
   if (!counted) return;
   Totals& t = totals_;
   ++t.encounters;
+  ++t.of_kind[Index(p.kind)];
   t.dc += reading.drives_if_clear;
   t.collisions += collision;
   t.nudges += nudged;

@@ -40,9 +40,9 @@ BeyondRun HvPopulation::Results(double end) {
   for (const auto& [id, h] : hvs_) sum += h.state ? h.state->Mean() : h.trust0;
   out.final_mean_trust = hvs_.empty() ? kNoValue : sum / static_cast<double>(hvs_.size());
   out.oracle = ExpectedOver(m.trust, [&](double theta) {
-    return Predict(OracleScheme(theta), theta);
+    return Predict(OracleScheme(theta, PlayedKind()), theta, PlayedKind());
   });
-  if (dynamic_ || learned_ || experience_) theory_ = EncounterTheory();
+  encounter_theory_ = dynamic_ || learned_ || experience_.has_value();
   if (experience_) ExperienceLongRun(&out);
   if (design_rule_) DynamicsLongRun(&out);
   if (learned_) LearningResults(&out);
@@ -56,30 +56,34 @@ void HvPopulation::ExperienceLongRun(BeyondRun* result) const {
   // The long run of the learned beliefs (LongRunUnderExperience): guarded
   // ta_ebp recovers the paper's rates (the guard binds on a vanishing share).
   // A learner that forgets never settles: its stationary normal
-  // approximation (ExperiencePath, rho < 1).
+  // approximation (ExperiencePath, rho < 1). Of the one kind of game the run
+  // played: a run of both kinds mixes two schemes in each HV's experience,
+  // which these long runs do not model (the cells stay empty).
   out.experience = true;
+  const GameKind kind = PlayedKind();
+  const per::AvHvParams& params = Params(kind);
   double dc = 0, coll = 0;
   const bool forgets = experience_->forgetting < 1.0;
   // Each HV's k, equally likely (only a forgetting learner's long run needs it).
   const std::vector<double> ks = m.experience->strengths.empty()
                                      ? std::vector<double>{experience_->strength}
                                      : m.experience->strengths;
-  if (NoTheory()) dc = coll = kNoValue;
+  if (NoTheory() || MixedKinds()) dc = coll = kNoValue;
   else for (const auto& [theta, w] : TrustNodes(m.trust, 64)) {
-    const per::CommittedScheme sc = SchemeAt(DesignTrustFor(theta));
+    const per::CommittedScheme sc = SchemeAt(DesignTrustFor(theta), kind);
     per::PredictedOutcome o;
     if (forgets) {
       for (const double k : ks) {
         const per::PredictedOutcome at_k =
-            per::ExperiencePath(sc, params_, theta, *model_, k, false, experience_->forgetting,
+            per::ExperiencePath(sc, params, theta, *model_, k, false, experience_->forgetting,
                                 experience_->bin_width)
                 .At(1000000);
         o.dc_rate += at_k.dc_rate / static_cast<double>(ks.size());
         o.collision_rate += at_k.collision_rate / static_cast<double>(ks.size());
       }
     } else {
-      o = guarded_ ? per::PredictOutcome(sc, params_, theta, *model_)
-                   : per::LongRunUnderExperience(sc, params_, theta, *model_).outcome;
+      o = guarded_ ? per::PredictOutcome(sc, params, theta, *model_)
+                   : per::LongRunUnderExperience(sc, params, theta, *model_).outcome;
     }
     dc += w * o.dc_rate;
     coll += w * o.collision_rate;
@@ -94,21 +98,31 @@ void HvPopulation::DynamicsLongRun(BeyondRun* result) const {
   // The long run: where the mean-field drift G of each HV's trust changes
   // sign (FindLongRunTrust), for the population's mean initial state, and
   // each HV's attractor from its own initial trust, averaged over the
-  // trust distribution.
+  // trust distribution. Of the one kind of game the run played (a run of both
+  // kinds drifts by their mix, which this does not model: the cells stay
+  // empty; the mean-field twin follows the kinds as played).
   out.long_run = true;
   const per::DesignRule& rule = *design_rule_;
+  const per::AvHvParams& params = Params(PlayedKind());
+  double mf = 0;
+  for (const auto& [id, h] : hvs_) mf += h.mean_field->Mean();
+  out.final_mean_field = hvs_.empty() ? kNoValue : mf / static_cast<double>(hvs_.size());
   const double strength = m.trust_dynamics->strength;
   out.design_rule = PolicyName(rule.policy);
   if (rule.policy == Policy::kTaEbp)
     out.design_rule += rule.assumed_trust ? " for theta_hat = " + NumberText(*rule.assumed_trust, 6)
                                           : " tracking the HV's trust";
+  if (MixedKinds()) {
+    out.expected_long_run_mean = out.long_run_dc = out.long_run_collision = kNoValue;
+    return;
+  }
   auto initial = [&](double theta) {
     const double mean = Inside01(theta);
     return std::pair<double, double>(mean * strength, (1.0 - mean) * strength);
   };
   const auto [a_bar, b_bar] = initial(m.trust.Mean());
   const per::LongRunTrust lr =
-      per::FindLongRunTrust(rule, params_, *model_, rule_, a_bar, b_bar);
+      per::FindLongRunTrust(rule, params, *model_, rule_, a_bar, b_bar);
   for (const per::TrustEquilibrium& e : lr.equilibria)
     out.equilibria.push_back({e.theta, per::ToString(e.kind), e.stable});
   // Without forgetting G does not depend on (alpha0, beta0): one scan serves
@@ -119,9 +133,9 @@ void HvPopulation::DynamicsLongRun(BeyondRun* result) const {
     if (cached != attractor_of.end()) return cached->second;
     const auto [a0, b0] = initial(theta0);
     const per::LongRunTrust own =
-        rule_.forgetting > 0 ? per::FindLongRunTrust(rule, params_, *model_, rule_, a0, b0) : lr;
+        rule_.forgetting > 0 ? per::FindLongRunTrust(rule, params, *model_, rule_, a0, b0) : lr;
     const double x = Inside01(theta0);
-    const double g = per::MeanDrift(x, rule, params_, *model_, rule_, a0, b0);
+    const double g = per::MeanDrift(x, rule, params, *model_, rule_, a0, b0);
     double to = x;
     if (g > 0) {
       to = 1.0;
@@ -146,16 +160,13 @@ void HvPopulation::DynamicsLongRun(BeyondRun* result) const {
     const double to = attractor(theta0);
     mean += w * to;
     const per::PredictedOutcome o =
-        per::PredictOutcome(per::SchemeFor(rule, params_, to, *model_), params_, to, *model_);
+        per::PredictOutcome(per::SchemeFor(rule, params, to, *model_), params, to, *model_);
     dc += w * o.dc_rate;
     coll += w * o.collision_rate;
   }
   out.expected_long_run_mean = mean;
   out.long_run_dc = dc;
   out.long_run_collision = coll;
-  double mf = 0;
-  for (const auto& [id, h] : hvs_) mf += h.mean_field->Mean();
-  out.final_mean_field = hvs_.empty() ? kNoValue : mf / static_cast<double>(hvs_.size());
 }
 
 void HvPopulation::LearningResults(BeyondRun* result) const {
@@ -189,7 +200,7 @@ void HvPopulation::NoiseResults(BeyondRun* result) const {
   out.noise_delta = n.delta;
   // The population's design (TA-EBP for the mean trust) under this noise.
   const per::NoiseAwareDesign nd =
-      per::DesignUnderNoise(params_, m.trust.Mean(), *model_, *noise_, n.delta);
+      per::DesignUnderNoise(Params(PlayedKind()), m.trust.Mean(), *model_, *noise_, n.delta);
   out.noise_status = per::ToString(nd.status);
   out.noise_nudge = nd.nudge;
   out.noise_b = nd.b;

@@ -180,9 +180,9 @@ void WarnOfGamelessJunctions(const ExperimentConfig& config, ExperimentResult* r
                   " controlled junctions can host no game under these settings (" + list +
                   "; junctions.csv game_pairs 0): no two conflicting movements there both "
                   "have a stop line";
-  if (two_way && !config.scenario.major_road)
-    w += "; at a two-way stop with one stop-controlled approach, scenario.major_road: {} "
-         "lets an AV at its line play against a major-road HV";
+  if (two_way && !config.scenario.major_road.enabled)
+    w += "; at a two-way stop with one stop-controlled approach, scenario.major_road.enabled: "
+         "true lets an AV at its line play against a major-road HV";
   Warn(w, result, observer);
 }
 

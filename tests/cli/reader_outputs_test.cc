@@ -163,7 +163,8 @@ TEST(ReaderOutputs, JunctionsThatCanHostNoGameAreNamed) {
                          "], av_share: 0.5, duration: 120, warmup: 0, seed: 1}\n"
                          "policies: [ta_ebp]\n");
   const fs::path out = dir.path() / "out";
-  CliResult r = taebp::test::RunProgram(kCli, {"run", cfg, "--out", out.string()});
+  CliResult r = taebp::test::RunProgram(
+      kCli, {"run", cfg, "--set", "scenario.major_road.enabled=false", "--out", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.Describe();
   std::vector<std::string> none;
   int junctions = 0;
@@ -181,12 +182,11 @@ TEST(ReaderOutputs, JunctionsThatCanHostNoGameAreNamed) {
   EXPECT_THAT(r.err, HasSubstr("5 of 15 controlled junctions can host no game under these "
                                "settings (D1, D2, D3, D4, D5;"))
       << r.Describe();
-  EXPECT_THAT(r.err, HasSubstr("scenario.major_road: {}")) << r.Describe();
+  EXPECT_THAT(r.err, HasSubstr("scenario.major_road.enabled: true")) << r.Describe();
   const auto summary = nlohmann::json::parse(ReadText(out / "summary.json"));
   EXPECT_EQ(summary["policies"]["ta_ebp"]["junctions"][0]["game_pairs"].is_number(), true);
-  // With the major-road game on, every junction can host one: no warning.
-  r = taebp::test::RunProgram(kCli, {"run", cfg, "--set", "scenario.major_road={}", "--out",
-                                     (dir.path() / "major").string()});
+  // With the major-road game on (the default), every junction can host one: no warning.
+  r = taebp::test::RunProgram(kCli, {"run", cfg, "--out", (dir.path() / "major").string()});
   ASSERT_EQ(r.exit_code, 0) << r.Describe();
   EXPECT_THAT(r.err, ::testing::Not(HasSubstr("can host no game"))) << r.Describe();
 }

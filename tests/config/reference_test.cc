@@ -139,7 +139,7 @@ TEST(ConfigReference, DefaultsAreTheLoadersDefaults) {
   EXPECT_EQ(by_key["scenario.grid.speed"], "13.89");
   EXPECT_EQ(by_key["scenario.junctions.types"], "[allway_stop, priority_stop]");
   EXPECT_EQ(by_key["model.trust"], "0.6");
-  EXPECT_EQ(by_key["scenario.major_road"], "unset");
+  EXPECT_EQ(by_key["scenario.major_road.enabled"], "true");
   EXPECT_EQ(by_key["scenario.major_road.comfortable_decel"], "3");
   EXPECT_EQ(by_key["policies"], "[no_ebp, no_trust, ta_ebp]");
 }

@@ -122,7 +122,7 @@ per::MajorRoadParams Params() {
   return p;
 }
 
-// (a) Off (the default), no AV-HV pair meets at this junction (AVs and HVs
+// (a) Off (enabled: false; on is the default), no AV-HV pair meets at this junction (AVs and HVs
 // never both wait at stop lines): every controller policy gives
 // sumo_native's tripinfo byte for byte and forms nothing. On, the same
 // demand forms major-road encounters, all of that kind, and the option
@@ -132,9 +132,11 @@ TEST(MajorRoad, FormsOnlyWhenTheOptionIsOnAndOffEveryTripIsSumoNatives) {
   const std::string net = MajorRoadNet(dir);
   const std::string routes = MajorRoadRoutes(dir, 900);
   const std::string yaml = MajorRoadYaml(net, routes, 900);
-  const ExperimentConfig off =
-      ParseExperimentConfig(yaml, "major_road_test off", {"scenario.tripinfo_output=true"});
-  ASSERT_FALSE(off.scenario.major_road.has_value()) << "the option is off by default";
+  ASSERT_TRUE(ParseExperimentConfig(yaml, "major_road_test").scenario.major_road.enabled)
+      << "the major-road game is on by default";
+  const ExperimentConfig off = ParseExperimentConfig(
+      yaml, "major_road_test off", {"scenario.tripinfo_output=true", "scenario.major_road.enabled=false"});
+  ASSERT_FALSE(off.scenario.major_road.enabled);
   const Scenario sc = BuildScenario(off, "");
   const PolicyRun native = RunPolicy(off, "sumo_native", sc);
   ASSERT_NE(native.sumo_tripinfo_xml.find("<tripinfo "), std::string::npos);
@@ -509,12 +511,12 @@ TEST(MajorRoad, TheLoaderRejectsBadValuesNamingKeyValueAndFile) {
   };
   const std::string bad_path = (dir.path() / "bad.yaml").string();
   const ExperimentConfig ok = LoadExperimentConfig(path, {kOn});
-  ASSERT_TRUE(ok.scenario.major_road.has_value());
-  EXPECT_EQ(ok.scenario.major_road->yield_cost, 0.5);
-  EXPECT_EQ(ok.scenario.major_road->comfortable_decel, 3.0);
-  EXPECT_EQ(ok.scenario.major_road->reaction_time, 0.0);
+  ASSERT_TRUE(ok.scenario.major_road.enabled);
+  EXPECT_EQ(ok.scenario.major_road.yield_cost, 0.5);
+  EXPECT_EQ(ok.scenario.major_road.comfortable_decel, 3.0);
+  EXPECT_EQ(ok.scenario.major_road.reaction_time, 0.0);
   EXPECT_THAT(ToYaml(ok), HasSubstr("major_road"));
-  EXPECT_THAT(ToYaml(LoadExperimentConfig(path, {})), HasSubstr("major_road: ~"));
+  EXPECT_FALSE(LoadExperimentConfig(path, {"scenario.major_road.enabled=false"}).scenario.major_road.enabled);
   std::string e = error("{yield_cost: 3}");
   EXPECT_THAT(e, HasSubstr("scenario.major_road.yield_cost = 3"));
   EXPECT_THAT(e, HasSubstr(bad_path));
@@ -531,22 +533,29 @@ TEST(MajorRoad, TheLoaderRejectsBadValuesNamingKeyValueAndFile) {
   EXPECT_THAT(e, HasSubstr("--set scenario.major_road={comfortable_decel: 9}"));
   e = error("{reaction_time: -1}");
   EXPECT_THAT(e, HasSubstr("scenario.major_road.reaction_time = -1"));
+  e = error("{reaction_time: 11}");
+  EXPECT_THAT(e, HasSubstr("scenario.major_road.reaction_time = 11"));
+  EXPECT_THAT(e, HasSubstr(bad_path));
+  e = error("{enabled: maybe}");
+  EXPECT_THAT(e, HasSubstr("scenario.major_road.enabled"));
+  EXPECT_THAT(e, HasSubstr(bad_path));
   e = error("{yield: 1}");
   EXPECT_THAT(e, HasSubstr("yield"));
   EXPECT_THAT(e, HasSubstr(bad_path));
   e = error("{reaction_time: soon}");
   EXPECT_THAT(e, HasSubstr("scenario.major_road.reaction_time"));
   EXPECT_THAT(e, HasSubstr("soon"));
-  e = test::ErrorOf<ConfigError>([&] {
-    LoadExperimentConfig(path, {kOn, "model.noise={kind: gaussian, scale: 0.05}"});
-  });
-  EXPECT_THAT(e, HasSubstr("scenario.major_road is modelled in the paper's setting only"));
-  e = test::ErrorOf<ConfigError>(
-      [&] { LoadExperimentConfig(path, {kOn, "policies=[population_mean]"}); });
-  EXPECT_THAT(e, HasSubstr("scenario.major_road is modelled in the paper's setting only"));
+  // Every model and policy beyond the paper plays it too (issue 43).
+  EXPECT_TRUE(LoadExperimentConfig(path, {kOn, "model.noise={kind: gaussian, scale: 0.05}"})
+                  .scenario.major_road.enabled);
+  EXPECT_TRUE(LoadExperimentConfig(path, {kOn, "policies=[population_mean, ta_ebp_learned]"})
+                  .scenario.major_road.enabled);
+  EXPECT_TRUE(LoadExperimentConfig(path, {kOn, "model.trust_dynamics={strength: 10}"})
+                  .scenario.major_road.enabled);
   const std::string fig8 = dir.Write("fig8.yaml", std::string("scenario:\n  kind: figure8\n") + kModel);
+  EXPECT_TRUE(LoadExperimentConfig(fig8, {}).scenario.major_road.enabled) << "inert on the figure-8";
   e = test::ErrorOf<ConfigError>([&] { LoadExperimentConfig(fig8, {kOn}); });
-  EXPECT_THAT(e, HasSubstr("scenario.major_road applies to scenario.kind = 'network' only"));
+  EXPECT_THAT(e, HasSubstr("scenario.major_road.yield_cost applies to scenario.kind = 'network' only"));
 }
 
 // The shipped city study (configs/city_drt.yaml, README "A city study"):
@@ -557,7 +566,7 @@ TEST(MajorRoad, TheLoaderRejectsBadValuesNamingKeyValueAndFile) {
 TEST(MajorRoad, TheShippedCityStudyStartsItsTripsOnTheSideStreets) {
   const ExperimentConfig cfg =
       LoadExperimentConfig(std::string(TAEBP_SOURCE_DIR) + "/configs/city_drt.yaml");
-  ASSERT_TRUE(cfg.scenario.major_road.has_value());
+  ASSERT_TRUE(cfg.scenario.major_road.enabled);
   const Scenario sc = BuildScenario(cfg, std::string(TAEBP_SOURCE_DIR) + "/configs");
   EXPECT_EQ(sc.junctions.size(), 294u);
   std::vector<std::string> ids;

@@ -171,8 +171,9 @@ struct OutputsConfig {
   bool Any() const { return fcd || edgedata || lanedata || queue; }
 };
 
-// scenario.major_road (network scenarios; unset: off): the major-road
-// encounter of docs/beyond/major-road.md at two-way stops (priority_stop). An
+// scenario.major_road (network scenarios; on by default, `enabled: false`
+// turns it off): the major-road encounter of docs/beyond/major-road.md at
+// two-way stops (priority_stop). An
 // AV waiting at a minor road's stop line and an HV approaching on a
 // conflicting major movement (right of way, not stopping) play the paper's
 // game at the effective penalty r_eff = 2 (r - c) / (2 + c), when
@@ -181,16 +182,17 @@ struct OutputsConfig {
 // still yield braking at `comfortable_decel` after `reaction_time`. The AV
 // nudges, the HV reads SUMO's displacement and yields (DC: brakes so the AV
 // goes first) or keeps its speed (DR). Pairs where both wait at stop lines
-// stay as they are. Written `scenario.major_road: {}` for the defaults. In the
-// paper's setting only (not with trust dynamics, noise, learning,
-// population_mean or ta_ebp_learned).
+// stay as they are. With every policy and model: one HV population plays both
+// kinds of game (encounter/hv_population.h), its trust carried over.
 struct MajorRoadConfig {
+  bool enabled = true;             // false: only pairs that both stop at lines meet
   double yield_cost = 0.0;         // c in [0, model.collision_penalty): the cost of yielding
   double comfortable_decel = 3.0;  // m/s^2 a > 0, at most the HV's SUMO decel: how a DC HV brakes
   double reaction_time = 0.0;      // s t_r >= 0: from the HV's decision until it brakes
 
   template <typename Archive>
   void Serialize(Archive* a) {
+    a->Visit("enabled", &enabled);
     a->Visit("yield_cost", &yield_cost);
     a->Visit("comfortable_decel", &comfortable_decel);
     a->Visit("reaction_time", &reaction_time);
@@ -255,9 +257,9 @@ struct ScenarioConfig {
   // produce). The figure-8's crossing is always the game.
   EncounterPairs encounter_pairs = EncounterPairs::kColliding;
   // Network scenarios: the major-road encounter at two-way stops (an AV at
-  // the minor stop line, an HV approaching on the major road); unset: off,
-  // only pairs that both stop at lines meet (see MajorRoadConfig).
-  std::optional<MajorRoadConfig> major_road;
+  // the minor stop line, an HV approaching on the major road); on unless
+  // `enabled: false` (see MajorRoadConfig). The figure-8 has no major road.
+  MajorRoadConfig major_road;
   // Paired games (docs/paired.md): where a game forms, the run forks and
   // plays it from that same state (SUMO's and the controller's, random
   // number generators included) under each game policy of the run for the
@@ -307,6 +309,8 @@ struct ScenarioConfig {
     a->Visit("paired", &paired);
   }
   bool IsNetwork() const { return kind == ScenarioKind::kNetwork; }
+  // The major-road game is played (a network, scenario.major_road.enabled).
+  bool MajorRoadGame() const { return IsNetwork() && major_road.enabled; }
 };
 
 }  // namespace taebp

@@ -15,6 +15,12 @@ namespace taebp {
 
 enum class VehicleKind { kAV, kHV };
 
+// The two games an AV and an HV play (docs/beyond/major-road.md): both at
+// stop lines (the paper's), or the AV at a minor road's line against an HV on
+// the major road (the paper's game at the effective penalty r_eff).
+enum class GameKind { kStopLines = 0, kMajorRoad = 1 };
+constexpr int kGameKinds = 2;
+
 // ---------------------------------------------------------------- randomness
 // A portable uniform draw in [0, 1) from a 64-bit Mersenne twister (the
 // standard distributions are implementation-defined; this is not).

@@ -11,6 +11,13 @@
 // scheme per HV, the same reading (ReadNudge), the same theory, and it draws
 // no random number; the encounter stream (DrawAv) stays the controller's.
 //
+// The two kinds of game (GameKind): one population plays both, each with its
+// own payoffs (the major-road game at r_eff when scenario.major_road is on),
+// so an HV's trust state, its experience and the fleet's belief about it carry
+// over from one kind to the other (docs/beyond/major-road.md, "One HV, two
+// games"): trust and experience are about what the AVs' nudges mean, the same
+// in both; each reading and each design uses its own game's p*.
+//
 // Randomness: three streams of its own, seeded from scenario.seed and a salt
 // per purpose: the noise of the HVs' readings (one uniform per reading, when
 // model.noise is set), the probes of ta_ebp_learned (one uniform per
@@ -52,8 +59,14 @@ class HvPopulation {
   // What the AV commits to for an HV of the population's mean trust (an HV
   // never met, for ta_ebp_learned), and the theory over the trust
   // distribution (exact over the noise) where one exists a priori.
-  const persuasion::CommittedScheme& PopulationScheme() const { return population_scheme_; }
-  const persuasion::PredictedOutcome& Theory() const { return theory_; }
+  const persuasion::CommittedScheme& PopulationScheme(GameKind kind = GameKind::kStopLines) const {
+    return kinds_[Index(kind)].population_scheme;
+  }
+  // The a-priori theory of the run's encounters: each kind's, weighted by how
+  // many counted encounters it had (the stop lines' before any).
+  persuasion::PredictedOutcome Theory() const;
+  // True when the run plays the major-road game (scenario.major_road on a network).
+  bool MajorRoad() const { return major_; }
   // True when the outputs gain the columns and sections of BeyondRun.
   bool Beyond() const { return beyond_; }
 
@@ -68,9 +81,10 @@ class HvPopulation {
   // of its id and scenario.seed; `strength` when they are not given).
   double Strength(const std::string& hv) const;
 
-  // The AV `av` meets `hv`: the scheme it commits to for this encounter
-  // (draw the intent and signal from it).
-  const persuasion::CommittedScheme& Commit(const std::string& av, const std::string& hv);
+  // The AV `av` meets `hv` in a game of `kind`: the scheme it commits to for
+  // this encounter (draw the intent and signal from it).
+  const persuasion::CommittedScheme& Commit(const std::string& av, const std::string& hv,
+                                            GameKind kind = GameKind::kStopLines);
   // The magnitude of the nudge the AV drew under `scheme` (Commit's): for a
   // random magnitude (random_nudge) one draw of the magnitude stream, else
   // scheme.nudge without a draw.
@@ -79,12 +93,14 @@ class HvPopulation {
   // scheme it would commit to for `hv` now: the Go signal's nudge (s*) when
   // the scheme nudges on Go, else 0. No side effects (Commit's probe draw is
   // not made: ta_ebp_learned answers for the population's scheme).
-  double GoSignal(const std::string& hv) const;
+  double GoSignal(const std::string& hv, GameKind kind = GameKind::kStopLines) const;
   // The HV reads the displacement SUMO reported (plus noise) under the
   // committed scheme with its current trust.
   HvReading Read(const std::string& av, const std::string& hv, double observed);
   // The encounter finished: fills the record's hv_trust (before), theory and
   // `beyond` fields, then updates the HV's trust and the fleet's belief.
+  // Regret charges the collision penalty r in both kinds (a collision costs
+  // the same wherever it happens; r_eff only prices the HV's choice).
   // `counted`: after the warm-up (totals and time series count it); the
   // updates happen either way.
   void Finish(const std::string& av, const std::string& hv, const AvDraw& draw,
@@ -108,16 +124,23 @@ class HvPopulation {
   void DynamicsLongRun(BeyondRun* out) const;
   void LearningResults(BeyondRun* out) const;
   void NoiseResults(BeyondRun* out) const;
+  static int Index(GameKind kind) { return static_cast<int>(kind); }
+  // What the AVs commit to for an HV of static trust in one kind of game.
+  struct KindDesign {
+    persuasion::CommittedScheme scheme;
+    double design_trust = 0;
+    persuasion::PredictedOutcome theory, oracle;
+  };
   struct Hv {
     double trust0 = 0;
     std::optional<persuasion::BetaTrust> state;       // trust dynamics
     std::optional<persuasion::BetaTrust> mean_field;  // its mean-field twin
     long encounters = 0;
-    // Static trust, not learned: the design and predictions, fixed per HV.
+    // Static trust, not learned: the design and predictions, fixed per HV
+    // and kind of game.
     bool cached = false;
-    persuasion::CommittedScheme scheme;
-    double design_trust = 0;
-    persuasion::PredictedOutcome theory, oracle;
+    KindDesign design[kGameKinds];
+    int kinds_met = 0;  // bit per GameKind of the games it finished
     // model.experience: what this HV learned per signal level.
     std::optional<persuasion::SignalExperience> experience;
     double strength = 0;  // its prior strength k (model.experience.strengths)
@@ -127,6 +150,7 @@ class HvPopulation {
     std::optional<persuasion::SignalExperience> history;
   };
   struct Pending {
+    GameKind kind = GameKind::kStopLines;
     persuasion::CommittedScheme scheme;
     double trust = 0;
     double design_trust = kNoValue;
@@ -137,18 +161,33 @@ class HvPopulation {
   };
   struct Totals {
     long encounters = 0, dc = 0, collisions = 0, nudges = 0, failures = 0;
+    long of_kind[kGameKinds] = {0, 0};
     double theory_dc = 0, theory_collisions = 0, oracle_dc = 0, oracle_collisions = 0;
     double regret = 0, expected_failures = 0;
   };
 
   double DesignTrustFor(double theta) const;
-  persuasion::CommittedScheme SchemeAt(double theta_hat) const;
-  persuasion::CommittedScheme OracleScheme(double theta) const;
-  persuasion::PredictedOutcome Predict(const persuasion::CommittedScheme& scheme,
-                                       double theta) const;
+  const persuasion::AvHvParams& Params(GameKind kind) const { return kinds_[Index(kind)].params; }
+  persuasion::CommittedScheme SchemeAt(double theta_hat, GameKind kind = GameKind::kStopLines) const;
+  persuasion::CommittedScheme OracleScheme(double theta, GameKind kind = GameKind::kStopLines) const;
+  persuasion::PredictedOutcome Predict(const persuasion::CommittedScheme& scheme, double theta,
+                                       GameKind kind = GameKind::kStopLines) const;
+  KindDesign DesignFor(double trust, GameKind kind) const;  // static trust's (Hv::design)
+  // The population's scheme and a-priori theory for one kind (constructor).
+  void SetUpKind(GameKind kind);
   // model.experience: the expected learning path of an HV of trust theta and
-  // prior strength k whose AVs design for theta_hat (one per triple).
-  persuasion::ExperiencePath& PathFor(double theta_hat, double theta, double strength);
+  // prior strength k whose AVs design for theta_hat in games of `kind` (one
+  // per quadruple).
+  persuasion::ExperiencePath& PathFor(double theta_hat, double theta, double strength,
+                                      GameKind kind);
+  // Both kinds played: the long-run results of a single game do not apply.
+  bool MixedKinds() const { return totals_.of_kind[0] > 0 && totals_.of_kind[1] > 0; }
+  // The one kind played (the stop lines' when none or both were).
+  GameKind PlayedKind() const {
+    return totals_.of_kind[0] == 0 && totals_.of_kind[1] > 0 ? GameKind::kMajorRoad
+                                                             : GameKind::kStopLines;
+  }
+  bool encounter_theory_ = false;  // Results: the theory is the encounters' mean
   // model.experience: the prior strength k of HV `hv` (strengths' draw).
   double StrengthOf(const std::string& hv) const;
   // model.experience without a theory: the guarded design against HVs that
@@ -157,11 +196,17 @@ class HvPopulation {
   // reading is filed under is random).
   bool NoTheory() const;
   static persuasion::PredictedOutcome Unmodelled();  // every rate kNoValue
-  void Design(Hv& h, double theta, Pending* p) const;
 
   const ExperimentConfig config_;  // a copy: callers may pass a temporary
   persuasion::Policy policy_;
-  persuasion::AvHvParams params_;
+  persuasion::AvHvParams params_;  // the stop lines' game (the paper's)
+  struct Kind {
+    persuasion::AvHvParams params;  // the major road's: the paper's game at r_eff
+    persuasion::CommittedScheme population_scheme;
+    persuasion::PredictedOutcome theory;
+  };
+  Kind kinds_[kGameKinds];
+  bool major_ = false;
   std::unique_ptr<persuasion::LikelihoodModel> model_;
   bool beyond_ = false;
   bool dynamic_ = false, learned_ = false;
@@ -169,7 +214,8 @@ class HvPopulation {
   bool guarded_ = false;  // ta_ebp designs for each HV's experience
   // ta_ebp commits to DesignRobust (model.experience.design: robust): margin.
   std::optional<double> robust_margin_;
-  std::map<std::tuple<double, double, double>, std::unique_ptr<persuasion::ExperiencePath>> paths_;
+  std::map<std::tuple<double, double, double, int>, std::unique_ptr<persuasion::ExperiencePath>>
+      paths_;
   std::optional<persuasion::PerceptionNoise> noise_;  // model.noise set
   bool noise_aware_ = false;
   double noise_delta_ = 0.01;
@@ -178,8 +224,6 @@ class HvPopulation {
   std::unique_ptr<persuasion::FleetTrustBeliefs> fleet_;
   persuasion::ExplorationSchedule schedule_;
   std::mt19937_64 noise_rng_, probe_rng_, magnitude_rng_;
-  persuasion::CommittedScheme population_scheme_;
-  persuasion::PredictedOutcome theory_;
 
   std::map<std::string, Hv> hvs_;                 // the HVs in the network, by id
   std::map<std::string, double> met_trust_;       // ta_ebp_learned: each HV met's drawn trust
