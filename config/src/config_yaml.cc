@@ -42,6 +42,12 @@ using config_text::ReadFileText;
 namespace {
 
 
+// T::ReadNull(): what `~` means for a section that used to be optional.
+template <typename T, typename = void>
+struct HasReadNull : std::false_type {};
+template <typename T>
+struct HasReadNull<T, std::void_t<decltype(std::declval<T&>().ReadNull())>> : std::true_type {};
+
 class YamlReader {
  public:
   YamlReader(const YAML::Node& node, std::string prefix, const Origins* origins,
@@ -300,6 +306,14 @@ class YamlReader {
   template <typename T, typename = decltype(std::declval<T&>().Serialize(
                             static_cast<YamlReader*>(nullptr)))>
   void Read(const YAML::Node& node, const std::string& key, T* value) {
+    // A section that was once optional reads `~` (unset) as it meant then
+    // (ReadNull: e.g. scenario.major_road, off), so old result folders rerun.
+    if constexpr (HasReadNull<T>::value) {
+      if (node.IsNull()) {
+        value->ReadNull();
+        return;
+      }
+    }
     if (!node.IsMap()) Fail(key, node, "key '" + key + "' expects a map, got " + Show(node));
     YamlReader sub(node, key, origins_, require_all_);
     value->Serialize(&sub);

@@ -190,6 +190,10 @@ struct MajorRoadConfig {
   double comfortable_decel = 3.0;  // m/s^2 a > 0, at most the HV's SUMO decel: how a DC HV brakes
   double reaction_time = 0.0;      // s t_r >= 0: from the HV's decision until it brakes
 
+  // `major_road: ~` is how result folders written while the section was
+  // optional (unset: off) say it was off: they rerun as they ran.
+  void ReadNull() { enabled = false; }
+
   template <typename Archive>
   void Serialize(Archive* a) {
     a->Visit("enabled", &enabled);
