@@ -54,6 +54,12 @@ std::vector<PredictedOutcome> PerReceiver(const CommittedScheme& scheme, const A
   return outcomes;
 }
 
+// True if an HV of trust theta drives if clear after the scheme's nudge.
+bool DrivesIfClearAfterNudge(const CommittedScheme& scheme, const AvHvParams& params, double theta,
+                             const LikelihoodModel& model) {
+  return HvDrivesIfClear(params, HvPosteriorGo(scheme, params, theta, model, scheme.nudge));
+}
+
 // The candidate thresholds: the distinct design trusts the model's strongest
 // nudge persuades (theta >= theta*, AvHvPersuadable), highest first.
 std::vector<double> Candidates(const MultiReceiverProblem& problem, const LikelihoodModel& model) {
@@ -72,8 +78,8 @@ std::string Why(const MultiReceiverDesign& design, int n, int persuadable) {
            ": no nudge, the AV always yields";
   }
   std::string why = "addresses " + std::to_string(design.addressed_count) + " of " +
-                    std::to_string(n) + " HVs (design trust >= tau = " +
-                    NumberText(design.threshold_trust) + ", b = " + NumberText(design.design.b) + ")";
+                    std::to_string(n) + " HVs (designed for trust tau = " +
+                    NumberText(design.designed_for) + ", b = " + NumberText(design.design.b) + ")";
   if (persuadable > design.addressed_count) {
     why += "; gives up " + std::to_string(persuadable - design.addressed_count) +
            " persuadable HV(s) for a larger b";
@@ -122,9 +128,11 @@ void MultiReceiverProblem::Validate() const {
 }
 
 // Every candidate tau is scored by what the common scheme DesignTaebp(tau)
-// does to every HV at its design trust (PredictOutcome: the HVs at or above
-// tau drive if clear after the nudge, the rest never do); the best score wins,
-// ties to the lower tau (more HVs addressed).
+// does to every HV at its design trust (PredictOutcome). For lambda < p* the
+// HVs at or above tau drive if clear after the nudge and the rest never do;
+// for lambda >= p* the highest trust's design persuades everyone (the
+// doc's section 5). The best score wins, ties to the lower tau (more HVs
+// addressed). An HV is addressed when it drives if clear after the nudge.
 MultiReceiverDesign DesignMultiReceiver(const MultiReceiverProblem& problem,
                                         const LikelihoodModel& model) {
   problem.Validate();
@@ -140,21 +148,21 @@ MultiReceiverDesign DesignMultiReceiver(const MultiReceiverProblem& problem,
     result.candidate_values.push_back(value);
     if (result.candidate_values.size() == 1 || value >= best_value) {
       best_value = value;
-      result.threshold_trust = tau;
+      result.designed_for = tau;
     }
   }
   // No candidate: the design for the lowest trust, which is not persuadable
   // (the paper's fallback), keeps theta* and p* in the result.
   const double design_for = result.candidates.empty()
                                 ? *std::min_element(trusts.begin(), trusts.end())
-                                : result.threshold_trust;
+                                : result.designed_for;
   result.design = DesignTaebp(params, design_for, model);
   result.scheme = SchemeOf(result.design);
   result.addressed.assign(n, false);
   int persuadable = 0;
   if (!result.candidates.empty()) {
     for (int i = 0; i < n; ++i) {
-      result.addressed[i] = trusts[i] >= result.threshold_trust;
+      result.addressed[i] = DrivesIfClearAfterNudge(result.scheme, params, trusts[i], model);
       result.addressed_count += result.addressed[i] ? 1 : 0;
       persuadable += trusts[i] >= result.candidates.back() ? 1 : 0;
     }

@@ -107,7 +107,7 @@ TEST(MultiReceiver, WorkedExampleGivesUpTheLowestTrust) {
   EXPECT_NEAR(d.candidate_values[1], -1.5, 1e-12);
   EXPECT_NEAR(d.candidate_values[2], -21.0 / 13.0, 1e-12);
   EXPECT_EQ(d.status, MultiReceiverStatus::kAddressesSome);
-  EXPECT_EQ(d.threshold_trust, 0.6);
+  EXPECT_EQ(d.designed_for, 0.6);
   EXPECT_EQ(d.addressed, (std::vector<bool>{false, true, true}));
   EXPECT_EQ(d.addressed_count, 2);
   EXPECT_NEAR(d.design.b, 7.0 / 32.0, 1e-15);
@@ -129,7 +129,7 @@ TEST(MultiReceiver, AddressesAllWhenTheLowestTrustPaysAndNeverBelowThetaStar) {
   const LinearLikelihood linear(2.0);
   const MultiReceiverDesign all = Design(kPaper, {0.9, 0.6, 0.5}, linear);
   EXPECT_EQ(all.status, MultiReceiverStatus::kAddressesAll);
-  EXPECT_EQ(all.threshold_trust, 0.5);
+  EXPECT_EQ(all.designed_for, 0.5);
   EXPECT_NEAR(all.design.b, 1.0 / 6.0, 1e-15);  // P = 1/3 = 0.2 + 0.8 b
   EXPECT_TRUE(all.scheme.av_may_go);
   EXPECT_NEAR(all.sender_value, 3.0 * (2.0 / 3.0 - 1.0), 1e-12);
@@ -148,12 +148,13 @@ TEST(MultiReceiver, AddressesAllWhenTheLowestTrustPaysAndNeverBelowThetaStar) {
   EXPECT_EQ(none.sender_value, -2.0);
 }
 
-// The closed form of the doc (section 3), written from scratch: for lambda < p*,
+// The closed form of the doc (section 3), written from scratch: n for lambda >= p*, else
 // max(-n, max over trusts theta_(k) >= theta* of 2 k lambda theta_(k) /
 // (lambda theta_(k) + p* - lambda) - n), k = #{i: theta_i >= theta_(k)}.
 double ClosedFormValue(double lambda, double r, const std::vector<double>& trusts) {
   const double p_star = 2.0 / (2.0 + r), theta_star = (p_star - lambda) / (1.0 - lambda);
   const double n = static_cast<double>(trusts.size());
+  if (lambda >= p_star) return n;  // every HV drives if clear (section 5)
   double best = -n;
   for (double t : trusts) {
     if (t < theta_star) continue;
@@ -164,7 +165,7 @@ double ClosedFormValue(double lambda, double r, const std::vector<double>& trust
   return best;
 }
 
-// Random meetings (1-4 HVs, lambda < p*): the design's value equals the closed
+// Random meetings (1-4 HVs, lambda on both sides of p*): the design's value equals the closed
 // form and the optimum of the general public-signal LP on the AV-HV game; each
 // HV's DC rate equals the LP's P(DC_i) when the best threshold is unique.
 TEST(MultiReceiver, DesignEqualsClosedFormAndThePublicLp) {
@@ -175,7 +176,7 @@ TEST(MultiReceiver, DesignEqualsClosedFormAndThePublicLp) {
     AvHvParams params;
     params.collision_penalty = 0.3 + 6.0 * Uniform01(rng);
     params.prior_go = 0.02 + 0.9 * Uniform01(rng);
-    if (params.prior_go >= AvHvPStar(params.collision_penalty) - 1e-3) continue;
+    if (std::abs(params.prior_go - AvHvPStar(params.collision_penalty)) < 1e-3) continue;
     const int n = 1 + static_cast<int>(4 * Uniform01(rng));
     std::vector<double> trusts(n);
     for (double& t : trusts) t = Uniform01(rng);
@@ -196,12 +197,20 @@ TEST(MultiReceiver, DesignEqualsClosedFormAndThePublicLp) {
 }
 
 // The AV-HV game with lambda >= p*: every HV drives if clear at the prior, the
-// LP's value is n, and so is the closed form's P = 1.
+// LP's value is n, and so is the design's: always nudge (b = 1) the magnitude
+// the HIGHEST trust needs (its intuitive reading of a small nudge is "Stop").
 TEST(MultiReceiver, PublicLpNeedsNoPersuasionAbovePStar) {
   const AvHvParams params{0.5, 3.0};
   const PublicLpResult lp = SolvePublicPersuasion(std::vector<Game>(3, AvHvGame(params)), {0.1, 0.5, 0.9});
   ASSERT_EQ(lp.status, LpResult::Status::kOptimal);
   EXPECT_NEAR(lp.sender_value, 3.0, 1e-9);
+  const MultiReceiverDesign d = Design(params, {0.1, 0.5, 0.9}, LinearLikelihood(2.0));
+  EXPECT_EQ(d.status, MultiReceiverStatus::kAddressesAll);
+  EXPECT_NEAR(d.sender_value, 3.0, 1e-9);
+  // Designed for the highest trust: p_FT(Go|s) = s/2 must reach 0.5 - 0.1/0.9, s = 7/9.
+  EXPECT_EQ(d.designed_for, 0.9);
+  EXPECT_NEAR(d.scheme.nudge, 7.0 / 9.0, 1e-12);
+  EXPECT_EQ(d.scheme.b, 1.0);
 }
 
 // A Monte Carlo of meetings: draw the intent and the nudge, every HV reads the

@@ -11,7 +11,10 @@
 // least theta*) and is TA-EBP's single-receiver design for tau (DesignTaebp:
 // s*(tau), a = 1, b(tau) of eq:b). Each addressed HV drives if clear with
 // probability P(tau) = lambda + (1 - lambda) b(tau) = lambda tau / (lambda tau +
-// p* - lambda); the others never do.
+// p* - lambda); the others never do. (For lambda >= p* no persuasion is needed
+// but the HVs' intuitive reading of a small nudge is "Stop", so a higher trust
+// needs a larger nudge: the design is DesignTaebp for the HIGHEST trust, b = 1,
+// and every HV drives if clear.)
 //
 // Objective: the paper's sender utility summed over the HVs of the meeting,
 // v = +1 per DC and -1 per DR (Table "utility"), i.e. 2 sum_i P(DC_i) - n =
@@ -62,8 +65,12 @@ const char* ToString(MultiReceiverStatus status);
 struct MultiReceiverDesign {
   MultiReceiverStatus status = MultiReceiverStatus::kAddressesNone;
   std::string why;                 // one sentence: the threshold chosen and what was given up
-  double threshold_trust = 1.0;    // tau: the lowest addressed design trust (1 when none)
-  std::vector<bool> addressed;     // per HV, in input order: design trust >= tau
+  // tau, the design trust DesignTaebp is run for: the lowest addressed one for
+  // lambda < p*, the highest (whose nudge is the largest needed) for lambda >= p*;
+  // 1 when no HV is persuadable.
+  double designed_for = 1.0;
+  // Per HV, in input order: it drives if clear after the nudge (at its design trust).
+  std::vector<bool> addressed;
   int addressed_count = 0;         // k(tau)
   TaebpDesign design;              // DesignTaebp(params, tau, model); not persuadable when none
   CommittedScheme scheme;          // the public commitment (av_may_go: every HV addressed)
