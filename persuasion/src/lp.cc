@@ -131,6 +131,10 @@ namespace {
 // tol_bnd (1e-7).
 constexpr double kRowViolation = 1e-9;
 
+}  // namespace
+
+namespace internal {
+
 // 2^(k-1) with max |entry| in [2^(k-1), 2^k) (1 for an all-zero table):
 // dividing by it is exact and leaves every entry below 2 in magnitude (2^k
 // itself would overflow to inf for entries near DBL_MAX).
@@ -141,6 +145,10 @@ double PowerOfTwoScale(const Eigen::MatrixXd& table) {
   std::frexp(top, &exponent);  // top = f 2^exponent, f in [0.5, 1)
   return std::ldexp(1.0, exponent - 1);
 }
+
+}  // namespace internal
+
+namespace {
 
 // Everything the GLPK side reads and writes, as plain pointers and numbers: the
 // guarded function's frame may be unwound by longjmp, so nothing in it may have
@@ -300,6 +308,10 @@ void CheckLpSize(int n, int m) {
   }
 }
 
+}  // namespace
+
+namespace internal {
+
 // Obedience coefficients, differences first:
 //   c(a, a')(w) = p0(w) [(1 - theta) dU0(a, a') + theta D(w; a, a')],
 //   dU0(a, a') = sum_w p0(w) D(w; a, a'),
@@ -339,6 +351,10 @@ std::string ObedienceRows(const Game& game, const Eigen::MatrixXd& u, double the
   }
   return "";
 }
+
+}  // namespace internal
+
+namespace {
 
 // GLPK's outcome as the result's status; false unless optimal.
 bool SolverStatus(const LpWork& work, LpResult* result) {
@@ -426,14 +442,14 @@ LpResult SolveTrustAwarePersuasion(const Game& game, double theta, const LpOptio
   const int m = static_cast<int>(game.actions.size());
   CheckLpSize(n, m);
   const Eigen::VectorXd& p0 = game.prior;
-  const double u_scale = PowerOfTwoScale(game.receiver_utility);
-  const double v_scale = PowerOfTwoScale(game.sender_utility);
+  const double u_scale = internal::PowerOfTwoScale(game.receiver_utility);
+  const double v_scale = internal::PowerOfTwoScale(game.sender_utility);
   const Eigen::MatrixXd u = game.receiver_utility / u_scale;  // |u| < 2
   const Eigen::MatrixXd v = game.sender_utility / v_scale;    // |v| < 2
 
   LpResult result;
   std::vector<double> obedience;
-  const std::string bad_row = ObedienceRows(game, u, theta, &obedience);
+  const std::string bad_row = internal::ObedienceRows(game, u, theta, &obedience);
   if (!bad_row.empty()) {
     result.status = LpResult::Status::kSolverError;
     result.message = bad_row;
