@@ -225,6 +225,14 @@ bool StopLineEnvironment::Standing(int h) {
 // a nudged AV. Vehicles ahead on its own movement are its leaders:
 // car-following keeps it behind them, whatever its speed mode.
 bool StopLineEnvironment::WayClear(int vehicle, int partner) {
+  return WayClearAgainst(vehicle, partner, false);
+}
+
+bool StopLineEnvironment::WayClearOfStarters(int vehicle, int partner) {
+  return WayClearAgainst(vehicle, partner, true);
+}
+
+bool StopLineEnvironment::WayClearAgainst(int vehicle, int partner, bool starters) {
   const int movement = s_.vehicles[vehicle].movement;
   std::optional<junction::Mover> mine;  // read once someone is inside
   for (const Inside& x : VehiclesInside()) {
@@ -234,8 +242,10 @@ bool StopLineEnvironment::WayClear(int vehicle, int partner) {
     if (!mine) mine = MoverNow(vehicle);
     // One let past a nudged AV (Unblockable) goes though it stands yet: it
     // may start any step (issue 30: the left turn at D1 let past at 341.8 s
-    // still stood when the HV was released, then went into it).
-    const bool stays = x.still && !s_.vehicles[x.vehicle].unblocked;
+    // still stood when the HV was released, then went into it). `starters`:
+    // so may one standing clear of `vehicle` as it stands (not held by it).
+    bool stays = x.still && !s_.vehicles[x.vehicle].unblocked;
+    if (stays && starters) stays = !junction::PassedWay(*mine, x.mover, 0.0);
     if (!junction::PassedWay(x.mover, *mine, stays ? 0.0 : -1.0)) return false;
   }
   return true;
@@ -416,6 +426,15 @@ const std::vector<StopLineEnvironment::Inside>& StopLineEnvironment::VehiclesIns
 // on its way or still where it stands (the nudged AV among them), does not
 // touch it.
 std::vector<int> StopLineEnvironment::Unblockable(int vehicle, int partner) {
+  return UnblockableAgainst(vehicle, partner, false);
+}
+
+std::vector<int> StopLineEnvironment::UnblockableStarters(int vehicle, int partner) {
+  return UnblockableAgainst(vehicle, partner, true);
+}
+
+// `starters`: in `vehicle`'s way when it moves on (not only where it stands).
+std::vector<int> StopLineEnvironment::UnblockableAgainst(int vehicle, int partner, bool starters) {
   std::vector<int> out;
   const int movement = s_.vehicles[vehicle].movement;
   const std::vector<Inside>& inside = VehiclesInside();
@@ -426,7 +445,7 @@ std::vector<int> StopLineEnvironment::Unblockable(int vehicle, int partner) {
     if (bv.state != State::kFree || bv.unblocked || b.mover.front < 0) continue;  // let past already
     if (!info_.spec.Conflict(b.movement, movement)) continue;
     if (!mine) mine = MoverNow(vehicle);
-    if (junction::PassedWay(b.mover, *mine, 0.0)) continue;  // not in its way
+    if (junction::PassedWay(b.mover, *mine, starters ? -1.0 : 0.0)) continue;  // not in its way
     bool free = true;
     for (const Inside& x : inside) {
       if (&x == &b || !info_.spec.Conflict(x.movement, b.movement)) continue;

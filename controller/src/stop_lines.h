@@ -44,6 +44,7 @@ class StopLineEnvironment : public junction::Environment {
  public:
   StopLineEnvironment(RunState& s, const JunctionState& j);
   bool WayClear(int vehicle, int partner) override;
+  bool WayClearOfStarters(int vehicle, int partner) override;
   bool Standing(int vehicle) override;
   bool ExitHasRoom(int movement, int vehicle) override;
   bool MajorClear(int movement) override;
@@ -51,8 +52,11 @@ class StopLineEnvironment : public junction::Environment {
   bool PastLine(int vehicle) override;
   bool Passed(int first, int second) override;
   std::vector<int> Unblockable(int vehicle, int partner) override;
+  std::vector<int> UnblockableStarters(int vehicle, int partner) override;
 
  private:
+  bool WayClearAgainst(int vehicle, int partner, bool starters);
+  std::vector<int> UnblockableAgainst(int vehicle, int partner, bool starters);
   // A vehicle inside the junction: its slot, its movement, where it is.
   struct Inside {
     int vehicle = -1;  // -1: not one the controller knows

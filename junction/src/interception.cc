@@ -430,9 +430,11 @@ void Interception::StepMajor(double now, Environment& env, std::vector<Command>*
   // and vehicles SUMO stopped there for it block a move of the game: those
   // free to go may pass it.
   const bool av_past = !e.av_released && env.PastLine(av);
-  auto unblock = [&](int vehicle, int partner) {
+  auto unblock = [&](int vehicle, int partner, bool starters = false) {
     if (!av_past) return;
-    for (int b : env.Unblockable(vehicle, partner)) out->push_back({Command::Kind::kUnblock, b});
+    for (int b : starters ? env.UnblockableStarters(vehicle, partner)
+                          : env.Unblockable(vehicle, partner))
+      out->push_back({Command::Kind::kUnblock, b});
   };
   if (hv_dc && !e.hv_released) {
     if (av_goes) {
@@ -456,8 +458,8 @@ void Interception::StepMajor(double now, Environment& env, std::vector<Command>*
         move(Command::Kind::kHandBack, av);
       }
     } else if (e.hv_cleared || (e.hv_entered && env.Passed(hv, av))) {
-      if (!env.WayClear(av, hv)) {
-        unblock(av, hv);
+      if (!env.WayClearOfStarters(av, hv)) {
+        unblock(av, hv, true);
       } else if (env.ExitHasRoom(e.out.av_movement, av) && env.MajorClear(e.out.av_movement)) {
         e.av_released = true;
         move(Command::Kind::kRelease, av);

@@ -212,6 +212,37 @@ TEST(MajorRoadInterception, TheMovesOfEachIntentAndResponse) {
   }
 }
 
+// The waiting AV its nudge took past its line goes after the major HV only
+// once a third vehicle standing in the junction clear of it, which SUMO may
+// release as the HV passes, has passed its way too (WayClearOfStarters; the
+// random_nudge collision at B0 of the two-way grid, issue 43); such a vehicle
+// is let past it (UnblockableStarters). WayClear alone says yes throughout.
+TEST(MajorRoadInterception, TheNudgedAvWaitsForAThirdVehicleThatMayStart) {
+  struct StartersEnv : Env {
+    bool starters_clear = false;
+    int asked_starters = 0;
+    bool WayClearOfStarters(int, int) override { return starters_clear; }
+    std::vector<int> UnblockableStarters(int, int) override {
+      ++asked_starters;
+      return {7};
+    }
+  };
+  StartersEnv env;
+  Model model;  // intent Stop, the HV drives recklessly
+  Interception logic(TwoWay(), On());
+  ASSERT_EQ(logic.Step(0.0, kAtLine, env, model, kMajor).size(), 3u);
+  env.past_line = {kAv};
+  logic.NudgeDone(kAv, 0.0, 2.0, model);
+  EXPECT_TRUE(logic.Step(2.0, kAtLine, env, model, kMajor).empty());
+  logic.Entered(kHv, 3.2);
+  env.passed.insert({kHv, kAv});
+  EXPECT_EQ(Simple(logic.Step(3.3, kAtLine, env, model, kMajor)), (std::vector<Cmd>{{Kind::kUnblock, 7}}))
+      << "the third vehicle is let past the AV, which waits";
+  EXPECT_EQ(env.asked_starters, 1);
+  env.starters_clear = true;
+  EXPECT_EQ(Simple(logic.Step(3.4, kAtLine, env, model, kMajor)), (std::vector<Cmd>{{Kind::kRelease, kAv}}));
+}
+
 // A straight crossing at right angles (a along x, b along y, through the
 // origin, 30 m of approach each): a's body (5 m x 1.8 m) overlaps the band b
 // sweeps (|x| <= 0.9, from b's start until its rear has left) for fronts in

@@ -153,6 +153,14 @@ class Environment {
   // vehicle in the junction wait for a foe ahead on the crossing, and
   // waiting for it would wait for ever).
   virtual bool WayClear(int vehicle, int partner) = 0;
+  // WayClear for a still AV its nudge took past its line, going after its
+  // major-road partner: a vehicle standing still inside the junction clear of where the
+  // AV stands is not held by it, and may start any step (SUMO releases a
+  // vehicle waiting at an internal stop for the partner as the partner
+  // passes, in the step the AV would go: the random_nudge collision at B0 of
+  // the two-way grid, issue 43), so it must have passed the AV's way too.
+  // Vehicles the AV itself holds (it stands in their way) stay, as in WayClear.
+  virtual bool WayClearOfStarters(int vehicle, int partner) { return WayClear(vehicle, partner); }
   // The vehicle stands still (a held vehicle may take a step or two to stop).
   virtual bool Standing(int vehicle) = 0;
   // Keep clear: the vehicle's exit on `movement` can take it with its rear
@@ -178,6 +186,13 @@ class Environment {
   virtual std::vector<int> Unblockable(int vehicle, int partner) {
     (void)vehicle, (void)partner;
     return {};
+  }
+  // Unblockable for WayClearOfStarters: also the still vehicles clear of
+  // `vehicle` where they stand whose way crosses its way (SUMO may keep them
+  // waiting for the nudged AV by its links' priorities, not its body): let
+  // past, they go first, and the AV after them.
+  virtual std::vector<int> UnblockableStarters(int vehicle, int partner) {
+    return Unblockable(vehicle, partner);
   }
   // The major-road encounter: no major-road vehicle but `hv` (on
   // `hv_movement`) and those behind it on its way is inside or within the
