@@ -22,7 +22,7 @@ MAP_PLOT = "tools/plot results/grid_map --out docs/img"
 GRID = "build/taebp sweep configs/grid_throughput.yaml --out results/grid_throughput --jobs 2"
 GRID_PLOT = "tools/plot results/grid_throughput"
 OSM = "build/taebp run configs/osm_city.yaml"
-TWO_WAY = "build/taebp sweep configs/grid_two_way.yaml --out results/grid_two_way --jobs 2"
+TWO_WAY = "build/taebp sweep configs/grid_two_way.yaml --set scenario.major_road.enabled=false --out results/grid_two_way --jobs 2"
 TWO_WAY_PLOT = "tools/plot results/grid_two_way"
 # The theory per encounter, pooled over 20 independent seeds at one point of
 # each grid (sweep points share random streams per seed: pooling points
@@ -30,7 +30,7 @@ TWO_WAY_PLOT = "tools/plot results/grid_two_way"
 THEORY_ALL = ("build/taebp sweep configs/grid_throughput.yaml --set 'sweep={replicates: 20, grid: {}}' "
               "--set scenario.demand.flow=200 --set scenario.av_share=0.5 "
               "--set 'policies=[no_ebp, no_trust, ta_ebp]' --out results/theory_all_way --jobs 2")
-THEORY_TWO = ("build/taebp sweep configs/grid_two_way.yaml --set 'sweep={replicates: 20, grid: {}}' "
+THEORY_TWO = ("build/taebp sweep configs/grid_two_way.yaml --set scenario.major_road.enabled=false --set 'sweep={replicates: 20, grid: {}}' "
               "--set scenario.demand.flow=150 --set scenario.av_share=0.5 "
               "--set 'policies=[no_ebp, no_trust, ta_ebp]' --out results/theory_two_way --jobs 2")
 POOLED40 = ("build/taebp sweep configs/paper.yaml --set 'sweep={replicates: 40, grid: {}}' "
@@ -44,13 +44,13 @@ CITY = "build/taebp sweep configs/city_drt.yaml --out results/city_drt --jobs 2"
 CITY_MAP_RUN = "build/taebp run configs/city_drt.yaml --quiet --out results/city_map --set 'policies=[sumo_native, no_ebp, ta_ebp]'"
 CITY_MAP_PLOT = "tools/plot results/city_map"
 BOLOGNA = "build/taebp sweep configs/bologna_acosta.yaml --out results/bologna_acosta --jobs 2"
-SSM_GRID = ("build/taebp sweep configs/grid_two_way.yaml --set 'scenario.outputs.ssm={}' "
+SSM_GRID = ("build/taebp sweep configs/grid_two_way.yaml --set scenario.major_road.enabled=false --set 'scenario.outputs.ssm={}' "
             "--set 'sweep.grid={policies: [[sumo_native], [no_ebp], [no_trust], [ta_ebp]]}' "
             "--set sweep.replicates=10 --out results/ssm_grid --jobs 2")
 SSM_TWELVE = ("for s in 1 3 8 22; do for p in sumo_native no_trust ta_ebp; do build/taebp run "
-              "configs/grid_two_way.yaml --set 'scenario.outputs.ssm={}' --set scenario.seed=$s "
+              "configs/grid_two_way.yaml --set scenario.major_road.enabled=false --set 'scenario.outputs.ssm={}' --set scenario.seed=$s "
               "--set \"policies=[$p]\" --quiet --out results/ssm12/$s-$p || echo \"lost $s $p\"; done; done")
-PAIRED_SSM = ("build/taebp run configs/grid_two_way.yaml --paired --set 'policies=[no_trust, ta_ebp]' "
+PAIRED_SSM = ("build/taebp run configs/grid_two_way.yaml --set scenario.major_road.enabled=false --paired --set 'policies=[no_trust, ta_ebp]' "
               "--set scenario.duration=900 --set 'scenario.outputs.ssm={}' --out results/paired_ssm --quiet")
 # Beyond the paper (tier beyond): learned trust, dynamic trust, noise.
 LEARNED = "build/taebp run configs/learned_trust.yaml"
