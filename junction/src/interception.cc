@@ -5,6 +5,12 @@
 
 namespace taebp::junction {
 
+namespace {
+// s after the major-road HV left the junction during which a vehicle SUMO
+// held for it may still start (SUMO releases it in the step after at most).
+constexpr double kStarterGrace = 1.0;
+}  // namespace
+
 const char* ToString(Rule rule) { return rule == Rule::kAllWay ? "all_way_stop" : "two_way_stop"; }
 
 int GamePairs(const JunctionSpec& spec, bool major_road) {
@@ -458,8 +464,15 @@ void Interception::StepMajor(double now, Environment& env, std::vector<Command>*
         move(Command::Kind::kHandBack, av);
       }
     } else if (e.hv_cleared || (e.hv_entered && env.Passed(hv, av))) {
-      if (!env.WayClearOfStarters(av, hv)) {
-        unblock(av, hv, true);
+      // Vehicles SUMO held inside the junction for the HV may start as it
+      // passes them: until it has left the junction (and kStarterGrace after)
+      // the AV waits for those standing clear of it too (WayClearOfStarters);
+      // one still standing after that is held by something else (the AV
+      // itself, typically) and stays, as WayClear takes it (waiting for it
+      // longer held a DC HV at its line for minutes on the two-way grid).
+      const bool starters = !e.hv_cleared || now < e.hv_cleared_at + kStarterGrace;
+      if (!(starters ? env.WayClearOfStarters(av, hv) : env.WayClear(av, hv))) {
+        unblock(av, hv, starters);
       } else if (env.ExitHasRoom(e.out.av_movement, av) && env.MajorClear(e.out.av_movement)) {
         e.av_released = true;
         move(Command::Kind::kRelease, av);
@@ -483,7 +496,10 @@ void Interception::Cleared(int vehicle, double now) {
   last_activity_ = now;
   auto mark = [&](Active& e) {
     if (e.out.av == vehicle) e.av_entered = e.av_cleared = true;
-    if (e.out.hv == vehicle) e.hv_entered = e.hv_cleared = true;
+    if (e.out.hv == vehicle) {
+      if (!e.hv_cleared) e.hv_cleared_at = now;
+      e.hv_entered = e.hv_cleared = true;
+    }
   };
   if (encounter_) mark(*encounter_);  // its partner not yet released
   for (auto it = leaving_.begin(); it != leaving_.end();) {

@@ -243,6 +243,29 @@ TEST(MajorRoadInterception, TheNudgedAvWaitsForAThirdVehicleThatMayStart) {
   EXPECT_EQ(Simple(logic.Step(3.4, kAtLine, env, model, kMajor)), (std::vector<Cmd>{{Kind::kRelease, kAv}}));
 }
 
+// Bounded: once the HV has left the junction (and a second more), a vehicle
+// still standing was not waiting for it; the AV no longer waits for it (it
+// would wait for ever for one SUMO holds for the AV itself).
+TEST(MajorRoadInterception, TheNudgedAvStopsWaitingForStartersOnceTheHvHasLeft) {
+  struct StartersEnv : Env {
+    bool WayClearOfStarters(int, int) override { return false; }
+    std::vector<int> UnblockableStarters(int, int) override { return {}; }
+  };
+  StartersEnv env;
+  Model model;
+  Interception logic(TwoWay(), On());
+  ASSERT_EQ(logic.Step(0.0, kAtLine, env, model, kMajor).size(), 3u);
+  env.past_line = {kAv};
+  logic.NudgeDone(kAv, 0.0, 2.0, model);
+  EXPECT_TRUE(logic.Step(2.0, kAtLine, env, model, kMajor).empty());
+  logic.Entered(kHv, 3.2);
+  env.passed.insert({kHv, kAv});
+  EXPECT_TRUE(logic.Step(3.3, kAtLine, env, model, kMajor).empty()) << "waits while the HV is inside";
+  logic.Cleared(kHv, 4.0);
+  EXPECT_TRUE(logic.Step(4.5, kAtLine, env, model, kMajor).empty()) << "and a second after it left";
+  EXPECT_EQ(Simple(logic.Step(5.1, kAtLine, env, model, kMajor)), (std::vector<Cmd>{{Kind::kRelease, kAv}}));
+}
+
 // A straight crossing at right angles (a along x, b along y, through the
 // origin, 30 m of approach each): a's body (5 m x 1.8 m) overlaps the band b
 // sweeps (|x| <= 0.9, from b's start until its rear has left) for fronts in

@@ -351,6 +351,7 @@ class Interception {
     bool av_released = false, hv_released = false;
     bool av_entered = false, hv_entered = false;
     bool av_cleared = false, hv_cleared = false;
+    double hv_cleared_at = -1;  // when the HV left the junction (Cleared)
     bool av_handed_back = false, hv_handed_back = false;  // to SUMO's rules
     bool major = false;         // the major-road encounter
     bool major_moves = false;   // its first moves after the decision issued
