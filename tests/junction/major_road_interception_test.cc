@@ -212,30 +212,40 @@ TEST(MajorRoadInterception, TheMovesOfEachIntentAndResponse) {
   }
 }
 
-// The waiting AV its nudge took past its line goes after the major HV only
-// once a third vehicle standing in the junction clear of it, which SUMO may
-// release as the HV passes, has passed its way too (WayClearOfStarters; the
-// random_nudge collision at B0 of the two-way grid, issue 43); such a vehicle
-// is let past it (UnblockableStarters). WayClear alone says yes throughout.
-TEST(MajorRoadInterception, TheNudgedAvWaitsForAThirdVehicleThatMayStart) {
-  struct StartersEnv : Env {
-    bool starters_clear = false;
-    int asked_starters = 0;
-    bool WayClearOfStarters(int, int) override { return starters_clear; }
-    std::vector<int> UnblockableStarters(int, int) override {
-      ++asked_starters;
-      return {7};
-    }
-  };
-  StartersEnv env;
-  Model model;  // intent Stop, the HV drives recklessly
-  Interception logic(TwoWay(), On());
+// A world where vehicles stand inside the junction clear of the AV that may
+// start (WayClearOfStarters says no until `starters_clear`; vehicle 7 may be
+// let past), and a major-road game whose AV, intent Stop and nudged past its
+// line, waits while the HV drives recklessly, the HV inside and past the AV's
+// way at 3.2 s.
+struct StartersEnv : Env {
+  bool starters_clear = false;
+  std::vector<int> let_past = {7};
+  int asked_starters = 0;
+  bool WayClearOfStarters(int, int) override { return starters_clear; }
+  std::vector<int> UnblockableStarters(int, int) override {
+    ++asked_starters;
+    return let_past;
+  }
+};
+void HvPastTheNudgedAv(Interception& logic, StartersEnv& env, Model& model) {
   ASSERT_EQ(logic.Step(0.0, kAtLine, env, model, kMajor).size(), 3u);
   env.past_line = {kAv};
   logic.NudgeDone(kAv, 0.0, 2.0, model);
   EXPECT_TRUE(logic.Step(2.0, kAtLine, env, model, kMajor).empty());
   logic.Entered(kHv, 3.2);
   env.passed.insert({kHv, kAv});
+}
+
+// The waiting AV its nudge took past its line goes after the major HV only
+// once a third vehicle standing in the junction clear of it, which SUMO may
+// release as the HV passes, has passed its way too (WayClearOfStarters; the
+// random_nudge collision at B0 of the two-way grid, issue 43); such a vehicle
+// is let past it (UnblockableStarters). WayClear alone says yes throughout.
+TEST(MajorRoadInterception, TheNudgedAvWaitsForAThirdVehicleThatMayStart) {
+  StartersEnv env;
+  Model model;
+  Interception logic(TwoWay(), On());
+  HvPastTheNudgedAv(logic, env, model);
   EXPECT_EQ(Simple(logic.Step(3.3, kAtLine, env, model, kMajor)), (std::vector<Cmd>{{Kind::kUnblock, 7}}))
       << "the third vehicle is let past the AV, which waits";
   EXPECT_EQ(env.asked_starters, 1);
@@ -247,19 +257,11 @@ TEST(MajorRoadInterception, TheNudgedAvWaitsForAThirdVehicleThatMayStart) {
 // still standing was not waiting for it; the AV no longer waits for it (it
 // would wait for ever for one SUMO holds for the AV itself).
 TEST(MajorRoadInterception, TheNudgedAvStopsWaitingForStartersOnceTheHvHasLeft) {
-  struct StartersEnv : Env {
-    bool WayClearOfStarters(int, int) override { return false; }
-    std::vector<int> UnblockableStarters(int, int) override { return {}; }
-  };
   StartersEnv env;
+  env.let_past.clear();
   Model model;
   Interception logic(TwoWay(), On());
-  ASSERT_EQ(logic.Step(0.0, kAtLine, env, model, kMajor).size(), 3u);
-  env.past_line = {kAv};
-  logic.NudgeDone(kAv, 0.0, 2.0, model);
-  EXPECT_TRUE(logic.Step(2.0, kAtLine, env, model, kMajor).empty());
-  logic.Entered(kHv, 3.2);
-  env.passed.insert({kHv, kAv});
+  HvPastTheNudgedAv(logic, env, model);
   EXPECT_TRUE(logic.Step(3.3, kAtLine, env, model, kMajor).empty()) << "waits while the HV is inside";
   logic.Cleared(kHv, 4.0);
   EXPECT_TRUE(logic.Step(4.5, kAtLine, env, model, kMajor).empty()) << "and a second after it left";
