@@ -60,6 +60,7 @@ std::vector<std::string> PaperRows(const PolicyRun& run) {
 
 // ------------------------------------------------------------------ the paper
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(Beyond, PaperEncountersAreByteIdenticalToThoseBeforeTheBeyondFeatures) {
   // tests/data/paper_encounters.csv is `taebp run configs/paper.yaml`'s
   // encounters.csv from the revision before the beyond-the-paper code
@@ -203,6 +204,7 @@ TEST(Beyond, DynamicTrustFollowsItsMeanFieldToTheFixedPoint) {
 
 // ------------------------------------------------------------------ learned trust
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(Beyond, LearnedTrustIsSafeAndItsFailuresMatchItsPosterior) {
   const ExperimentResult r =
       RunExperiment(kSource + "/configs/learned_trust.yaml",
@@ -235,6 +237,7 @@ TEST(Beyond, LearnedTrustIsSafeAndItsFailuresMatchItsPosterior) {
 
 // ------------------------------------------------------------------ determinism
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(Beyond, SameConfigAndSeedGiveIdenticalFiles) {
   TempDir dir;
   const std::string cfg = dir.Write(

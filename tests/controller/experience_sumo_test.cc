@@ -63,6 +63,7 @@ Tally Replay(const PolicyRun& run, double forgetting = 1.0) {
   return t;
 }
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(ExperienceInSumo, HvsLearnFromSumosDisplacementAlwaysNudgeIsUnlearnedGuardedTaebpNeverCollides) {
   const ExperimentResult r =
       RunExperiment(kInfluence, {"scenario.duration=3600", "scenario.seed=3",
@@ -108,6 +109,7 @@ TEST(ExperienceInSumo, ThePapersSchemeAgainstALearnerSitsOnTheKnifeEdge) {
 // told the rule. Every decision replayed with the forgetting learner; TA-EBP
 // collides at most 0.01 per encounter and keeps DC at least 0.05 above full
 // revelation's. The 8-hour figures are on docs/influence.md.
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(ExperienceInSumo, TheRobustDesignAgainstAForgettingLearnerIsSafeAndBeatsFullReveal) {
   const ExperimentResult r = RunExperiment(
       kInfluence, {"scenario.duration=3600", "scenario.seed=3", "model.experience.forgetting=0.95",
@@ -134,6 +136,7 @@ TEST(ExperienceInSumo, TheRobustDesignAgainstAForgettingLearnerIsSafeAndBeatsFul
 // 200, by a hash of each HV's id): each HV's theory is the path for its own
 // k; the guarded design, which assumes k = 20, still never collides (at s*
 // its test is free of k: persuasion.ExperiencePath.GuardedForOneK...).
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(ExperienceInSumo, HvsOfDifferentStrengthsFollowTheirOwnPaths) {
   const ExperimentResult r = RunExperiment(
       kInfluence, {"scenario.duration=3600", "scenario.seed=3", "model.experience.strengths=[2, 200]",
@@ -161,6 +164,7 @@ TEST(ExperienceInSumo, HvsOfDifferentStrengthsFollowTheirOwnPaths) {
 // readings; the runs have no theory (the level is random); the robust design,
 // whose nudge s_max reads above s* even with the noise, still never collides,
 // and the noise reaches the learner (most readings differ from SUMO's).
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(ExperienceInSumo, NoisyLearnersFileWhatTheyPerceivedAndTheRobustDesignHolds) {
   const ExperimentResult r = RunExperiment(
       kInfluence, {"scenario.duration=3600", "scenario.seed=3",

@@ -221,6 +221,7 @@ INSTANTIATE_TEST_SUITE_P(
 // The default (encounter_pairs: colliding): every encounter is the paper's
 // game, so SUMO's collision is exactly "the AV went and the HV drove
 // recklessly", and the meetings that were not a game are counted per junction.
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(NetworkGame, EveryEncounterIsTheGameCollisionIffAvGoesAndHvDrivesRecklessly) {
   const ExperimentConfig cfg =
       GridConfig({"scenario.demand.flow=250", "scenario.duration=1500", "model.trust=0.6",

@@ -91,6 +91,7 @@ TEST(NetworkDemand, RoutesScaleMultipliesTheDemand) {
 
 // ------------------------------------------------------------------ AV share
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(NetworkAvShare, AvFractionOfDepartedVehiclesAgreesWithTheShare) {
   for (double p : {0.3, 0.75}) {
     SCOPED_TRACE("av_share " + std::to_string(p));
@@ -118,6 +119,7 @@ TEST(NetworkAvShare, AvFractionOfDepartedVehiclesAgreesWithTheShare) {
   }
 }
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(NetworkAvShare, ZeroAndOneGiveOnlyHvsOrOnlyAvs) {
   for (const std::string& policy : {std::string("sumo_native"), std::string("ta_ebp")}) {
     for (double p : {0.0, 1.0}) {
@@ -140,6 +142,7 @@ TEST(NetworkAvShare, ZeroAndOneGiveOnlyHvsOrOnlyAvs) {
   }
 }
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(NetworkAvShare, SameSeedSameAssignmentAndTrustPerVehicleAcrossPolicies) {
   // Each vehicle's kind and trust depend on (seed, id) only: across policies
   // (whose traffic differs) an id is always the same kind, an HV always has
@@ -329,6 +332,7 @@ TEST(NetworkConflicts, TwoWayStopGridEncountersAreBetweenStopLinksThatConflict) 
   std::cout << "\n";
 }
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(NetworkConflicts, AllWayGridEncountersConflictInSumosMatrix) {
   const ExperimentConfig cfg = GridConfig({"scenario.duration=600", "policies=[ta_ebp]"});
   const Scenario sc = BuildScenario(cfg, "");
@@ -457,6 +461,7 @@ std::string Tripinfo(const ExperimentConfig& cfg, const Scenario& sc, const std:
   return r.sumo_tripinfo_xml;
 }
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(SumoDecides, WhereNoAvHvPairMeetsEveryPolicyGivesSumoNativesTripinfo) {
   const TempDir dir("identity");
   // A priority_stop grid with randomTrips.py demand from its fringe.

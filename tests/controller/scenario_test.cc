@@ -121,6 +121,7 @@ void ExpectEncounterFollowsTheLibrary(const EncounterRecord& e, const per::Commi
   EXPECT_NEAR(e.theory_collision, theory.collision_rate, 1e-12);
 }
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST_P(ScenarioPoint, EveryEncounterFollowsTheLibraryAndRatesAgreeWithTheory) {
   std::vector<std::string> overrides = GetParam().overrides;
   overrides.push_back("scenario.duration=" + std::to_string(kDuration));

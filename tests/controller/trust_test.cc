@@ -286,6 +286,7 @@ TEST(Penetration, RequiredLengthPlacesTheVehiclesAndTrafficFlows) {
 // and No Trust (a vehicle released into a full loop stopped in the junction
 // while that loop's head waited for the junction). The keep-clear rule
 // (release only into a loop with room) must keep every mix flowing.
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(Penetration, UnbalancedMixesOnThePaperTrackNeverGridlock) {
   for (int avs : {2, 6, 10, 14}) {
     for (const char* policy : {"no_trust", "ta_ebp"}) {

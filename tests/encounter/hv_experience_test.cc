@@ -92,6 +92,7 @@ TEST(HvExperience, LearnsAtTheReportedDisplacementNotTheCommandedNudge) {
 // ta_ebp guarded: the first encounter's design is the guard (b = 0: one false
 // alarm would break the tie), and over many encounters no nudge is ever read
 // as DR; with design: paper the knife edge shows.
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(HvExperience, GuardedTaebpNeverLetsANudgeReadAsDr) {
   const per::LinearLikelihood model(2.0);
   const per::AvHvParams params{0.2, 3.0};

@@ -298,6 +298,7 @@ TEST(LongRunTrust, PaperSettingByHand) {
   ASSERT_EQ(ne.Attractors(), std::vector<double>{1.0});
 }
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(LongRunTrust, TaebpClosedFormMatchesTheScanOverAGrid) {
   const LinearLikelihood linear(2.0);
   const LogisticLikelihood logistic(2.0, 4.0, 1.0);

@@ -486,6 +486,7 @@ void ExpectCalibrated(const LearningRun& run) {
       << "failures " << run.failures << " predicted " << run.predicted_failures;
 }
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(LearnedTrustRun, DecayingRiskRegretGrowsLikeLogT) {
   // Beta(2, 2) puts 16 % of the HVs below theta* (probed, then left alone).
   ExplorationSchedule schedule;  // delta = 0.01, decay = 1
@@ -509,6 +510,7 @@ TEST(LearnedTrustRun, DecayingRiskRegretGrowsLikeLogT) {
   EXPECT_GT(run.unpersuadable, 0);
 }
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(LearnedTrustRun, ConstantRiskLevelIsCalibratedAndWithinDelta) {
   ExplorationSchedule schedule;
   schedule.decay = INFINITY;  // eps = delta for ever

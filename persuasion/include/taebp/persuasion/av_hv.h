@@ -5,7 +5,7 @@
 #pragma once
 
 #include "taebp/persuasion/likelihood.h"
-#include "taebp/persuasion/persuasion.h"
+#include "taebp/persuasion/tolerance.h"
 
 namespace taebp::persuasion {
 

@@ -25,7 +25,7 @@
 #include "taebp/persuasion/av_hv.h"
 #include "taebp/persuasion/likelihood.h"
 #include "taebp/persuasion/outcomes.h"
-#include "taebp/persuasion/persuasion.h"
+#include "taebp/persuasion/tolerance.h"
 
 #include <optional>
 #include <string>
