@@ -127,6 +127,7 @@ per::MajorRoadParams Params() {
 // sumo_native's tripinfo byte for byte and forms nothing. On, the same
 // demand forms major-road encounters, all of that kind, and the option
 // changes nothing for sumo_native.
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(MajorRoad, FormsOnlyWhenTheOptionIsOnAndOffEveryTripIsSumoNatives) {
   const TempDir dir("taebp_major");
   const std::string net = MajorRoadNet(dir);
@@ -340,6 +341,7 @@ PolicyRun RunOnShortApproach(const std::string& policy, double duration,
 // lane's front vehicle forms nothing here; a premise read as "not on the
 // path" upstream, or an HV cleared before it reached the junction, turns
 // this red.
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(MajorRoad, AnHvStillUpstreamOfAShortApproachLaneIsMet) {
   struct Case {
     std::string policy;
@@ -387,6 +389,7 @@ TEST(MajorRoad, AnHvStillUpstreamOfAShortApproachLaneIsMet) {
 // distance (the internal lane's length counted), and not inside C. Found on
 // SUMO's DRT Berlin import, where an HV on such a node was taken as inside C
 // and as past the AV, which was released into it: a TA-EBP collision.
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(MajorRoad, AnHvOnAnUpstreamNodesInternalLaneIsNotInsideTheJunction) {
   for (const char* policy : {"ta_ebp", "no_trust"}) {
     SCOPED_TRACE(policy);
@@ -419,6 +422,7 @@ TEST(MajorRoad, AnHvOnAnUpstreamNodesInternalLaneIsNotInsideTheJunction) {
 // where the HV yielded or the AV waited; TA-EBP never collides. (Before
 // merges were excluded, SUMO's car following braked major HVs merging into
 // the AV's exit behind it: predicted collisions that did not happen.)
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(MajorRoad, OnATwoWayGridWithTurnsSumoAgreesWithThePredictionOnEveryPair) {
   const std::string yaml = std::string(
                                "scenario:\n"

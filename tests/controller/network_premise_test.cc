@@ -126,6 +126,7 @@ std::ostream& operator<<(std::ostream& os, const Mix& m) { return os << m.name; 
 // went and the HV drove recklessly, none under TA-EBP.
 class PremiseOnOtherVehicles : public ::testing::TestWithParam<Mix> {};
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST_P(PremiseOnOtherVehicles, SumoCollidesExactlyWherePredicted) {
   const Mix& mix = GetParam();
   TempDir dir("taebp_premise");

@@ -249,6 +249,7 @@ MovementCheck CheckEncounterMovements(const PolicyRun& r, const net::NetFile& ne
   return out;
 }
 
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(NetworkConflicts, FourWayAllWayStopWithTurnsEncountersConflictInSumosMatrix) {
   TempDir dir("taebp_network");
   const std::string net = test::FourWay(dir, "x", "allway_stop");
@@ -295,6 +296,7 @@ TEST(NetworkConflicts, FourWayAllWayStopWithTurnsEncountersConflictInSumosMatrix
 
 // Three seeds pooled: a two-way-stop grid at this demand saturates after a
 // while (minor roads wait for 5 s gaps), so one long run adds few encounters.
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(NetworkConflicts, TwoWayStopGridEncountersAreBetweenStopLinksThatConflict) {
   MovementCheck c;
   long other = 0;

@@ -94,6 +94,7 @@ TEST(Safety, GridTwoWayNoGameMoveHitsAThirdVehicleWhereSumoNativeHasNoCollision)
 // point where TA-EBP's careful HV (d270, released at t = 341.9 s) met the
 // left turn let past the AV a step before (d247 at D1, which stood 0.8 s
 // more and then went). Seed 2 of flow 200, AV share 0.25, 1200 s: about 5 s.
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(Safety, AVehicleLetPastTheNudgedAvIsTrafficUntilItHasPassed) {
   const ExperimentConfig cfg = LoadExperimentConfig(
       kSource + "/configs/grid_two_way.yaml",
@@ -110,6 +111,7 @@ TEST(Safety, AVehicleLetPastTheNudgedAvIsTrafficUntilItHasPassed) {
 // A 3x3 all-way grid with a nudge long enough (s_max 6 m) to reach the
 // HV's path from many stop lines: before the rule was policy-independent,
 // No EBP (no nudge) formed games No Trust and TA-EBP refused.
+// taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(Safety, TheFirstGameIsTheSamePairAtTheSameTimeUnderEveryPolicy) {
   const std::string yaml =
       "scenario:\n"
