@@ -60,6 +60,8 @@ junction::Mover Sized(junction::Mover m, const Vehicle& v) {
   m.width = v.width;
   m.accel = v.accel;
   m.max_speed = v.max_speed;
+  m.decel = v.decel;
+  m.emergency_decel = v.emergency_decel;
   return m;
 }
 
@@ -188,14 +190,14 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
   // movement's internal lanes empty, its exit clear for a while.
   const MovementInfo& hm = info.movements[at.movement];
   if (!HvWayClear(hm, v)) return {Kind::kNotYet, 0};
-  // The premise at the decision, on the geometry. A merge (the HV's movement
-  // ends on the AV's exit lane) is not predictable: SUMO's car following
-  // makes the HV brake for the AV ahead of it on the merging lanes whatever
-  // its speed mode (checked: predicted collisions SUMO did not have).
-  // From every Go position a policy may command (PremiseForEveryPolicy).
+  // The premise at the decision, on the geometry, from every Go position a
+  // policy may command (PremiseForEveryPolicy). On a merge (the HV's movement
+  // ends on the AV's exit lane) SUMO's car following brakes the one behind
+  // for the one ahead once a front is on the shared exit lane: predicted
+  // from the follower's deceleration and emergency deceleration
+  // (PredictBothProceed), uncertain only where the two differ.
   const junction::Mover hv_dec = Cruising(g.hv, front_decision, v);
-  Premise premise = PremiseForEveryPolicy(g.av, g.line, hv_dec, LargestNudge(), s_.dt);
-  if (info.movements[av_movement].to_lane == hm.to_lane) premise = Premise::kUncertainMerge;
+  const Premise premise = PremiseForEveryPolicy(g.av, g.line, hv_dec, LargestNudge(), s_.dt);
   if (premise != Premise::kHolds && (!all || premise == Premise::kUncertainMerge)) {
     if (s_.measuring()) {
       JunctionRun& run = s_.junctions[a.junction].run;
@@ -297,14 +299,8 @@ bool EncounterGame::Game(int av, int hv, int av_movement, int hv_movement) {
   const Vehicle& a = s_.vehicles[av];
   const Vehicle& h = s_.vehicles[hv];
   const JunctionInfo& info = s_.topo.junctions()[a.junction];
-  junction::Mover ma = info.movements[av_movement].mover;
-  junction::Mover mh = info.movements[hv_movement].mover;
-  for (auto [m, v] : {std::pair{&ma, &a}, std::pair{&mh, &h}}) {
-    m->length = v->length;
-    m->width = v->width;
-    m->accel = v->accel;
-    m->max_speed = v->max_speed;
-  }
+  junction::Mover ma = Sized(info.movements[av_movement].mover, a);
+  junction::Mover mh = Sized(info.movements[hv_movement].mover, h);
   mh.front = mh.entry - h.line_gap;
   const double line = ma.entry - a.line_gap;
   const Premise rule = PremiseForEveryPolicy(ma, line, mh, LargestNudge(), s_.dt);
