@@ -62,6 +62,7 @@ junction::Mover Sized(junction::Mover m, const Vehicle& v) {
   m.max_speed = v.max_speed;
   m.decel = v.decel;
   m.emergency_decel = v.emergency_decel;
+  m.sigma = v.sigma;
   return m;
 }
 
@@ -73,6 +74,20 @@ junction::Mover Cruising(junction::Mover m, double front, double v) {
   m.max_speed = v;
   m.limits.clear();
   return m;
+}
+
+// Does SUMO slow the major-road HV at `front` with speed `v` on its way
+// through the junction: a lane's limit ahead (a turn's) below the one it
+// drives on (its commanded speed is capped by SUMO's safe speed, which
+// keeps the lanes' limits; the cruising kinematics keeps v)?
+bool SlowsOnItsWay(const junction::Mover& m, double front) {
+  if (m.limits.empty()) return false;
+  double now = m.limits.front().second;  // upstream of its approach: the approach's
+  for (const auto& [from, limit] : m.limits)
+    if (from <= front) now = limit;
+  for (const auto& [from, limit] : m.limits)
+    if (from > front && from < m.exit + m.length && limit < now - 0.1) return true;
+  return false;
 }
 
 Premise FromPrediction(junction::BothProceed p) {
@@ -196,8 +211,13 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
   // for the one ahead once a front is on the shared exit lane: predicted
   // from the follower's deceleration and emergency deceleration
   // (PredictBothProceed), uncertain only where the two differ.
+  // A merge the HV turns into slows it for the turn, which the cruising
+  // kinematics does not: uncertain (checked: predicted collisions SUMO did
+  // not have, right-turning HVs behind the AV).
   const junction::Mover hv_dec = Cruising(g.hv, front_decision, v);
-  const Premise premise = PremiseForEveryPolicy(g.av, g.line, hv_dec, LargestNudge(), s_.dt);
+  Premise premise = PremiseForEveryPolicy(g.av, g.line, hv_dec, LargestNudge(), s_.dt);
+  if (info.movements[av_movement].to_lane == hm.to_lane && SlowsOnItsWay(g.hv, front_decision))
+    premise = Premise::kUncertainMerge;
   if (premise != Premise::kHolds && (!all || premise == Premise::kUncertainMerge)) {
     if (s_.measuring()) {
       JunctionRun& run = s_.junctions[a.junction].run;

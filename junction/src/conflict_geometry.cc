@@ -146,6 +146,7 @@ bool MergeTouches(MergeSide lead, MergeSide follow, double decel, int delay, dou
 // The verdict on a merge once a front is on the shared exit lane (the
 // leader's: the one farther past its exit).
 BothProceed PredictMerge(const MergeSide& a, const MergeSide& b, double dt) {
+  if (a.m->sigma > 0 || b.m->sigma > 0) return BothProceed::kUncertain;
   const bool a_leads = a.s.x - a.m->exit >= b.s.x - b.m->exit;
   const MergeSide& lead = a_leads ? a : b;
   const MergeSide& follow = a_leads ? b : a;

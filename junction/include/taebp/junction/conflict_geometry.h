@@ -34,6 +34,9 @@ struct Mover {
   // Its SUMO type's deceleration and emergency deceleration (m/s^2): how hard
   // SUMO's car following may brake it behind a leader on a merge.
   double decel = 4.5, emergency_decel = 9.0;
+  // Its SUMO type's driver imperfection (Krauss's sigma): > 0, SUMO dawdles
+  // it at random, slower than this kinematics.
+  double sigma = 0;
   double speed = 0;   // m/s at release (0: from rest; a major-road HV keeps its speed:
                       //   accel 0, no limits, max_speed = speed)
 };
@@ -64,7 +67,9 @@ struct Mover {
 //   (SUMO's car following brakes at least that much once it must);
 // otherwise (they touch braking at decel but not at the strongest)
 // kUncertain. A touch before any front is on the exit lane is kCollide as
-// on a crossing. The leader drives on at full acceleration.
+// on a crossing. The leader drives on at full acceleration. A merge that
+// does not touch before then is kUncertain when either dawdles (sigma > 0):
+// who is on the exit lane first, and how far ahead, is then SUMO's draw.
 // BothProceedCollide: kCollide.
 enum class BothProceed { kCollide, kClear, kUncertain };
 BothProceed PredictBothProceed(const Mover& a, const Mover& b, double dt);
