@@ -117,22 +117,31 @@ bool BodiesOverlap(const Arcs& arcs_a, const Mover& a, double xa, const Arcs& ar
 }
 
 // A merge from the step the leader's front is on the shared exit lane: the
-// leader drives on, the follower brakes at `decel` from `delay` steps on.
-// Do the bodies touch before both rears have left the junction (or the
-// follower stands, or neither moves any more)?
+// leader drives on, the follower brakes at `decel` from `delay` steps on,
+// until both rears have left the junction (or the follower stands, or
+// neither moves any more). kSeen: the bodies touch with the follower's front
+// on the exit lane too, a rear-end on one lane, which SUMO's lane check
+// reports; kUnseen: they touch only while the follower's front is still on
+// its own lanes, beside the leader partly on the exit lane, which SUMO 1.15
+// was seen to report between cars but to miss between a car and a 12 m
+// truck turning beside it; kNone: never.
+enum class Touch { kNone, kUnseen, kSeen };
 struct MergeSide {
   const Mover* m;
   const Arcs* arcs;
   Motion s;
 };
-bool MergeTouches(MergeSide lead, MergeSide follow, double decel, int delay, double dt) {
+Touch MergeTouches(MergeSide lead, MergeSide follow, double decel, int delay, double dt) {
+  Touch touch = Touch::kNone;
   for (int step = 0; step < 100000; ++step) {
-    if (BodiesOverlap(*lead.arcs, *lead.m, lead.s.x, *follow.arcs, *follow.m, follow.s.x))
-      return true;
+    if (BodiesOverlap(*lead.arcs, *lead.m, lead.s.x, *follow.arcs, *follow.m, follow.s.x)) {
+      if (follow.s.x >= follow.m->exit) return Touch::kSeen;
+      touch = Touch::kUnseen;
+    }
     const bool lead_off = lead.s.x - lead.m->length >= lead.m->exit;
-    if (lead_off && follow.s.x - follow.m->length >= follow.m->exit) return false;
-    if (step >= delay && follow.s.v <= 0) return false;  // stands; the leader moves away
-    if (lead.s.v <= 0 && lead.m->accel <= 0 && follow.s.v <= 0) return false;
+    if (lead_off && follow.s.x - follow.m->length >= follow.m->exit) break;
+    if (step >= delay && follow.s.v <= 0) break;  // stands; the leader moves away
+    if (lead.s.v <= 0 && lead.m->accel <= 0 && follow.s.v <= 0) break;
     Drive(*lead.m, lead.s, dt);
     if (step >= delay) {
       Brake(*follow.m, follow.s, decel, dt);
@@ -140,21 +149,23 @@ bool MergeTouches(MergeSide lead, MergeSide follow, double decel, int delay, dou
       Drive(*follow.m, follow.s, dt);
     }
   }
-  return false;
+  return touch;
 }
 
 // The verdict on a merge once a front is on the shared exit lane (the
-// leader's: the one farther past its exit).
+// leader's: the one farther past its exit): kCollide when even the hardest
+// braking ends in a rear-end on the exit lane, kClear when the weakest
+// braking never touches, else kUncertain.
 BothProceed PredictMerge(const MergeSide& a, const MergeSide& b, double dt) {
   if (a.m->sigma > 0 || b.m->sigma > 0) return BothProceed::kUncertain;
   const bool a_leads = a.s.x - a.m->exit >= b.s.x - b.m->exit;
   const MergeSide& lead = a_leads ? a : b;
   const MergeSide& follow = a_leads ? b : a;
   const double strongest = std::max(follow.m->decel, follow.m->emergency_decel);
-  const bool hard = MergeTouches(lead, follow, strongest, 0, dt);
-  const bool soft = MergeTouches(lead, follow, follow.m->decel, 1, dt);
-  if (hard && soft) return BothProceed::kCollide;
-  if (!hard && !soft) return BothProceed::kClear;
+  const Touch hard = MergeTouches(lead, follow, strongest, 0, dt);
+  const Touch soft = MergeTouches(lead, follow, follow.m->decel, 1, dt);
+  if (hard == Touch::kSeen && soft != Touch::kNone) return BothProceed::kCollide;
+  if (hard == Touch::kNone && soft == Touch::kNone) return BothProceed::kClear;
   return BothProceed::kUncertain;
 }
 

@@ -118,6 +118,13 @@ TEST(NetworkGame, MergesCollideInSumoExactlyWhereTheFollowersBrakingSays) {
   for (const auto& [k, v] : n) std::cout << " " << k << " " << v << ";";
   std::cout << "\n";
   EXPECT_GT(n["stop holds collided"], 5) << "merges predicted to collide";
+  // Drivers that do not dawdle (sigma 0): the follower's braking decides
+  // most merges (before issue 43 every merge touching once a front was on
+  // the exit lane was uncertain); those left uncertain touch only beside the
+  // leader (measured: 5 here, all collided in SUMO, while 12 m trucks turning
+  // beside a car did not: PremiseOnOtherVehicles).
+  const long certain = n["stop holds collided"] + n["stop no_collision passed"];
+  EXPECT_LE(3 * (n["stop uncertain_merge collided"] + n["stop uncertain_merge passed"]), certain);
   EXPECT_GT(n["stop no_collision passed"] + n["major no_collision passed"], 2)
       << "merges predicted to pass";
 }

@@ -91,10 +91,11 @@ TEST(BothProceedCollide, AMergeTheLeaderReachesFirstDoesNotCollide) {
 // its exit, its rear (4 m back) still on the junction; b 2 m before its own
 // exit, its front corner inside a's body, both accelerating alike (the touch
 // holds from the first step). On a crossing SUMO's junction check sees it:
-// kCollide. On a merge the two share the exit lane a's front is on, where b
-// follows a by SUMO's car following, but the bodies already overlap when it
-// first sees a: no braking undoes that, kCollide too.
-TEST(BothProceedCollide, AMergeTouchingWhenTheLeaderReachesTheExitCollides) {
+// kCollide. On a merge the two share the exit lane a's front is on: b, beside
+// a and not yet on that lane, brakes for a and stops before it reaches it;
+// a touch only beside the leader is not one SUMO's checks were seen to
+// report: kUncertain (BothProceedCollide: false).
+TEST(BothProceedCollide, AMergeTouchingOnlyBesideTheLeaderIsUncertain) {
   Mover a = Straight(1, 0);  // along y = 0, exit at arc 35 (x = 5)
   a.path = {{-30, 0}, {35, 0}};  // ending where the merge's path ends: one exit lane
   a.front = a.exit + 1.0;        // front at x = 6, rear at x = 1
@@ -113,10 +114,11 @@ TEST(BothProceedCollide, AMergeTouchingWhenTheLeaderReachesTheExitCollides) {
   merge.entry = 30 - 10 / c;
   merge.exit = 30;
   merge.front = 28;
-  EXPECT_EQ(PredictBothProceed(a, merge, 0.1), BothProceed::kCollide);
-  EXPECT_EQ(PredictBothProceed(merge, a, 0.1), BothProceed::kCollide);
+  EXPECT_EQ(PredictBothProceed(a, merge, 0.1), BothProceed::kUncertain);
+  EXPECT_EQ(PredictBothProceed(merge, a, 0.1), BothProceed::kUncertain);
+  EXPECT_FALSE(BothProceedCollide(a, merge, 0.1));
   // Arriving at the join together (both fronts on the junction when they
-  // touch) is certain too.
+  // touch) is certain.
   Mover together = Straight(1, 0);
   together.path = {{-30, 0}, {35, 0}};
   merge.front = merge.entry + 10 / c - 10.0;
@@ -154,7 +156,8 @@ Mover Joining(double before, double decel, double emergency_decel) {
   return b;
 }
 
-// Too close to stop even at its emergency deceleration: kCollide; far enough
+// Too close to stop even at its emergency deceleration (it runs into a's
+// rear on the exit lane): kCollide; far enough
 // to stop at its deceleration a step late: kClear; in between (it stops only
 // braking harder than its deceleration, as SUMO may or may not): kUncertain.
 // Either order of the movers gives the same verdict.

@@ -56,20 +56,25 @@ struct Mover {
 // first front is on the shared exit lane (the leader's) SUMO's car following
 // makes the other (the follower) brake for it, by at most its emergency
 // deceleration a step (MSCFModel::finalizeSpeed), by at most its
-// deceleration while a speed command holds it (speed mode bit 4). From that
+// deceleration while a speed command holds it (speed mode value 4, "regard
+// maximum deceleration", set in the controller's 55). From that
 // step on both are followed until both rears have left the junction (the
 // encounter is over) or the follower stands, in two ways:
 // - the follower braking at max(decel, emergency_decel) from the next step
-//   (the earliest and hardest SUMO can brake it): the bodies still touch ->
-//   kCollide;
+//   (the earliest and hardest SUMO can brake it) still runs into the
+//   leader's rear with its own front on the exit lane (a rear-end on one
+//   lane, which SUMO's lane check reports) -> kCollide;
 // - the follower braking at decel from one step later (the latest and
 //   weakest braking that would stop it): the bodies never touch -> kClear
 //   (SUMO's car following brakes at least that much once it must);
-// otherwise (they touch braking at decel but not at the strongest)
-// kUncertain. A touch before any front is on the exit lane is kCollide as
-// on a crossing. The leader drives on at full acceleration. A merge that
-// does not touch before then is kUncertain when either dawdles (sigma > 0):
-// who is on the exit lane first, and how far ahead, is then SUMO's draw.
+// otherwise kUncertain: it stops only braking harder than its decel, or the
+// bodies touch only while the follower's front is still beside the leader,
+// off the exit lane (SUMO 1.15 was seen to report such touches between cars
+// but to miss them between a car and a 12 m truck turning beside it). A
+// touch before any front is on the exit lane is kCollide as on a crossing.
+// The leader drives on at full acceleration. A merge that does not touch
+// before then is kUncertain when either dawdles (sigma > 0): who is on the
+// exit lane first, and how far ahead, is then SUMO's random draw.
 // BothProceedCollide: kCollide.
 enum class BothProceed { kCollide, kClear, kUncertain };
 BothProceed PredictBothProceed(const Mover& a, const Mover& b, double dt);
