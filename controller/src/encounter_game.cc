@@ -60,6 +60,9 @@ junction::Mover Sized(junction::Mover m, const Vehicle& v) {
   m.width = v.width;
   m.accel = v.accel;
   m.max_speed = v.max_speed;
+  m.decel = v.decel;
+  m.emergency_decel = v.emergency_decel;
+  m.sigma = v.sigma;
   return m;
 }
 
@@ -71,6 +74,20 @@ junction::Mover Cruising(junction::Mover m, double front, double v) {
   m.max_speed = v;
   m.limits.clear();
   return m;
+}
+
+// Does SUMO slow the major-road HV at `front` with speed `v` on its way
+// through the junction: a lane's limit ahead (a turn's) below the one it
+// drives on (its commanded speed is capped by SUMO's safe speed, which
+// keeps the lanes' limits; the cruising kinematics keeps v)?
+bool SlowsOnItsWay(const junction::Mover& m, double front) {
+  if (m.limits.empty()) return false;
+  double now = m.limits.front().second;  // upstream of its approach: the approach's
+  for (const auto& [from, limit] : m.limits)
+    if (from <= front) now = limit;
+  for (const auto& [from, limit] : m.limits)
+    if (from > front && from < m.exit + m.length && limit < now - 0.1) return true;
+  return false;
 }
 
 Premise FromPrediction(junction::BothProceed p) {
@@ -184,18 +201,24 @@ junction::MajorVerdict EncounterGame::MajorRoad(int av, const junction::MajorAt&
                         (w.conflict_max_distance + v * kAllBeyond - lower)
           : lower + 0.5 * (w.conflict_max_distance - lower);
   if (ap.hv_distance > engage) return {Kind::kNotYet, 0};
-  // Nothing ahead of the HV on its way that would make it brake: its
-  // movement's internal lanes empty, its exit clear for a while.
+  // Nothing ahead of the HV on its way that would make it brake or that it
+  // could clip: the internal lanes of every movement from its lane empty,
+  // its exit clear for a while.
   const MovementInfo& hm = info.movements[at.movement];
-  if (!HvWayClear(hm, v)) return {Kind::kNotYet, 0};
-  // The premise at the decision, on the geometry. A merge (the HV's movement
-  // ends on the AV's exit lane) is not predictable: SUMO's car following
-  // makes the HV brake for the AV ahead of it on the merging lanes whatever
-  // its speed mode (checked: predicted collisions SUMO did not have).
-  // From every Go position a policy may command (PremiseForEveryPolicy).
+  if (!HvWayClear(info, hm, v)) return {Kind::kNotYet, 0};
+  // The premise at the decision, on the geometry, from every Go position a
+  // policy may command (PremiseForEveryPolicy). On a merge (the HV's movement
+  // ends on the AV's exit lane) SUMO's car following brakes the one behind
+  // for the one ahead once a front is on the shared exit lane: predicted
+  // from the follower's deceleration and emergency deceleration
+  // (PredictBothProceed), uncertain only where the two differ.
+  // A merge the HV turns into slows it for the turn, which the cruising
+  // kinematics does not: uncertain (checked: predicted collisions SUMO did
+  // not have, right-turning HVs behind the AV).
   const junction::Mover hv_dec = Cruising(g.hv, front_decision, v);
   Premise premise = PremiseForEveryPolicy(g.av, g.line, hv_dec, LargestNudge(), s_.dt);
-  if (info.movements[av_movement].to_lane == hm.to_lane) premise = Premise::kUncertainMerge;
+  if (info.movements[av_movement].to_lane == hm.to_lane && SlowsOnItsWay(g.hv, front_decision))
+    premise = Premise::kUncertainMerge;
   if (premise != Premise::kHolds && (!all || premise == Premise::kUncertainMerge)) {
     if (s_.measuring()) {
       JunctionRun& run = s_.junctions[a.junction].run;
@@ -238,9 +261,19 @@ const EncounterGame::MajorGeometry& EncounterGame::GeometryOf(int av, const junc
 
 // Nothing ahead of the major-road HV (at speed v) on its way that would make
 // it brake: its movement's internal lanes empty, its exit clear for a while.
-bool EncounterGame::HvWayClear(const MovementInfo& hm, double v) const {
-  for (const std::string& in : hm.internal)
-    if (s_.sumo.LaneVehicleNumber(in) > 0) return false;
+// The vehicle ahead of the HV (it is its lane's front) may still be inside
+// the junction on another movement from its lane: their paths share the
+// junction's entry, and the HV, its right of way off, was seen to run into
+// the rear of a right turn crawling ahead of it onto its exit (two-way grid,
+// seed 3, No Trust: the major HV at 1.7 m/s behind a right turn at 0.8 m/s,
+// SUMO's collision on the HV's straight internal lane). So every movement
+// from its lane must have left the junction, not its own alone.
+bool EncounterGame::HvWayClear(const JunctionInfo& info, const MovementInfo& hm, double v) const {
+  for (const MovementInfo& m : info.movements) {
+    if (m.from_lane != hm.from_lane) continue;
+    for (const std::string& in : m.internal)
+      if (s_.sumo.LaneVehicleNumber(in) > 0) return false;
+  }
   if (s_.sumo.LaneVehicleNumber(hm.to_lane) > 0) {
     const std::vector<std::string> ids = s_.sumo.LaneVehicleIDs(hm.to_lane);
     if (!ids.empty() && s_.sumo.LanePosition(ids.front()) - s_.sumo.Length(ids.front()) < 30.0 &&
@@ -297,14 +330,8 @@ bool EncounterGame::Game(int av, int hv, int av_movement, int hv_movement) {
   const Vehicle& a = s_.vehicles[av];
   const Vehicle& h = s_.vehicles[hv];
   const JunctionInfo& info = s_.topo.junctions()[a.junction];
-  junction::Mover ma = info.movements[av_movement].mover;
-  junction::Mover mh = info.movements[hv_movement].mover;
-  for (auto [m, v] : {std::pair{&ma, &a}, std::pair{&mh, &h}}) {
-    m->length = v->length;
-    m->width = v->width;
-    m->accel = v->accel;
-    m->max_speed = v->max_speed;
-  }
+  junction::Mover ma = Sized(info.movements[av_movement].mover, a);
+  junction::Mover mh = Sized(info.movements[hv_movement].mover, h);
   mh.front = mh.entry - h.line_gap;
   const double line = ma.entry - a.line_gap;
   const Premise rule = PremiseForEveryPolicy(ma, line, mh, LargestNudge(), s_.dt);

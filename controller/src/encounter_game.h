@@ -72,7 +72,7 @@ class EncounterGame : public junction::EncounterModel {
   };
   std::map<std::pair<int, int>, MajorGeometry> major_geometry_;
   const MajorGeometry& GeometryOf(int av, const junction::MajorAt& at, int av_movement);
-  bool HvWayClear(const MovementInfo& hm, double v) const;
+  bool HvWayClear(const JunctionInfo& info, const MovementInfo& hm, double v) const;
   // The premise of a major-road pair at the HV's decision, on where SUMO has
   // the two then (the AV going from where it stands, the HV at its speed).
   Premise MajorPremiseNow(int av, int hv) const;

@@ -123,6 +123,9 @@ struct NetworkController::Impl {
     v.min_gap = s.sumo.MinGap(id);
     v.width = s.sumo.Width(id);
     v.accel = s.sumo.Accel(id);
+    v.decel = s.sumo.Decel(id);
+    v.emergency_decel = s.sumo.EmergencyDecel(id);
+    v.sigma = s.sumo.Imperfection(id);
     v.max_speed = s.sumo.MaxSpeed(id);
     for (const std::string& e : s.sumo.Route(id)) v.route.push_back(s.topo.EdgeIndex(e));
     v.route_pos = std::max(0, s.sumo.RouteIndex(id));

@@ -306,10 +306,8 @@ bool StopLineEnvironment::NudgedAvInConflictWith(int movement) {
 // point goes once the opposing road is clear, and a move released with
 // SUMO's right of way off would hit it: issue 30), unless an AV nudged past
 // its line stands in its way (SUMO holds it for that AV; waiting for it
-// would wait for ever). Approaching, a halted vehicle is not.
+// would wait for ever). Approaching: MajorComes.
 bool StopLineEnvironment::MajorClear(int movement) {
-  // A halted major vehicle approaching is yielding (SUMO's rules): it starts
-  // only when SUMO sees the way clear, so it counts as no traffic.
   auto moving = [&](const std::string& id) { return s_.sumo.Speed(id) >= kHaltSpeed; };
   for (int k : info_.movements[movement].major_foes) {
     const MovementInfo& mk = info_.movements[k];
@@ -317,23 +315,35 @@ bool StopLineEnvironment::MajorClear(int movement) {
       for (const std::string& id : s_.sumo.LaneVehicleIDs(in))
         if (moving(id) || !NudgedAvInConflictWith(k)) return false;
     }
-    for (const auto& [lane, offset] : mk.feeders) {
-      const std::vector<std::string> ids = s_.sumo.LaneVehicleIDs(lane);
-      if (ids.empty()) continue;
-      const std::string& front = ids.back();
-      const double speed = s_.sumo.Speed(front);
-      if (speed < kHaltSpeed) continue;
-      const net::Lane* l = s_.net.FindLane(lane);
-      const double dist = offset + (l ? l->length : 0) - s_.sumo.LanePosition(front);
-      if (dist < kMajorNear) return false;
-      // Time to reach the line accelerating from its speed now: within the
-      // critical gap, no gap.
-      const double reach =
-          (-speed + std::sqrt(speed * speed + 2.0 * s_.sc.accel * dist)) / s_.sc.accel;
-      if (reach < s_.sc.critical_gap) return false;
-    }
+    for (const auto& [lane, offset] : mk.feeders)
+      if (MajorComes(k, lane, offset, s_.sc.critical_gap)) return false;
   }
   return true;
+}
+
+// The front vehicle of `lane` (feeding major movement `k`, `offset` m before
+// its approach lane's end) may enter on `k` within `gap` s. At its line it
+// may, halted or not: `k` has the right of way over the movement asked
+// about, so SUMO starts it whenever its own foes and its exit let it and
+// does not hold it for a move of the game (on the two-way grid, seed 3, No
+// Trust: a major left turn halted at its line for its full exit was taken
+// for a yielding vehicle, the reckless HV was released beside it, and when
+// the exit had room both started in the same step and collided), unless an
+// AV nudged past its line stands in its way (SUMO holds it for that AV).
+// Farther back, a halted front is yielding or queued and comes to the line
+// only by moving; a moving one comes when it reaches the line, accelerating
+// from its speed now, within `gap`.
+bool StopLineEnvironment::MajorComes(int k, const std::string& lane, double offset, double gap) {
+  const std::vector<std::string> ids = s_.sumo.LaneVehicleIDs(lane);
+  if (ids.empty()) return false;
+  const std::string& front = ids.back();
+  const double speed = s_.sumo.Speed(front);
+  const net::Lane* l = s_.net.FindLane(lane);
+  const double dist = offset + (l ? l->length : 0) - s_.sumo.LanePosition(front);
+  if (dist < kMajorNear) return speed >= kHaltSpeed || !NudgedAvInConflictWith(k);
+  if (speed < kHaltSpeed) return false;
+  const double reach = (-speed + std::sqrt(speed * speed + 2.0 * s_.sc.accel * dist)) / s_.sc.accel;
+  return reach < gap;
 }
 
 // The major-road encounter: MajorClear, but the HV of the encounter and the
@@ -353,20 +363,8 @@ bool StopLineEnvironment::MajorClearBut(int movement, int hv, int hv_movement, d
       for (const std::string& id : s_.sumo.LaneVehicleIDs(in))
         if (id != h.id && moving(id)) return false;
     }
-    for (const auto& [lane, offset] : mk.feeders) {
-      if (mine(lane)) continue;
-      const std::vector<std::string> ids = s_.sumo.LaneVehicleIDs(lane);
-      if (ids.empty()) continue;
-      const std::string& front = ids.back();
-      const double speed = s_.sumo.Speed(front);
-      if (speed < kHaltSpeed) continue;
-      const net::Lane* l = s_.net.FindLane(lane);
-      const double dist = offset + (l ? l->length : 0) - s_.sumo.LanePosition(front);
-      if (dist < kMajorNear) return false;
-      const double reach =
-          (-speed + std::sqrt(speed * speed + 2.0 * s_.sc.accel * dist)) / s_.sc.accel;
-      if (reach < s_.sc.critical_gap + extra) return false;
-    }
+    for (const auto& [lane, offset] : mk.feeders)
+      if (!mine(lane) && MajorComes(k, lane, offset, s_.sc.critical_gap + extra)) return false;
   }
   return true;
 }

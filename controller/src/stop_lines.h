@@ -72,6 +72,9 @@ class StopLineEnvironment : public junction::Environment {
   // An AV nudged past its line stands here on a movement in conflict with
   // `movement` (MajorClear).
   bool NudgedAvInConflictWith(int movement);
+  // The front vehicle of `lane`, feeding major movement `k`, may enter
+  // within `gap` s (MajorClear, MajorClearBut).
+  bool MajorComes(int k, const std::string& lane, double offset, double gap);
 
   RunState& s_;
   const JunctionInfo& info_;

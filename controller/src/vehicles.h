@@ -34,6 +34,7 @@ struct Vehicle {
   double trust = 0;
   double length = 5, min_gap = 2;
   double width = 1.8, accel = 2.6, max_speed = 13.89;  // its SUMO type's (the game's premise)
+  double decel = 4.5, emergency_decel = 9.0, sigma = 0;  // its SUMO type's (a merge's premise)
   std::vector<int> route;  // edge indices (Topology::EdgeIndex)
   int route_pos = 0;       // route index already counted
   State state = State::kFree;

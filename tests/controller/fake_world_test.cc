@@ -126,6 +126,9 @@ class FakeWorld : public SumoWorld {
   double MinGap(const std::string&) override { return 2.5; }
   double Width(const std::string&) override { return 1.8; }
   double Accel(const std::string&) override { return 2.6; }
+  double Decel(const std::string&) override { return 4.5; }
+  double EmergencyDecel(const std::string&) override { return 9.0; }
+  double Imperfection(const std::string&) override { return 0.0; }
   double MaxSpeed(const std::string&) override { return 13.89; }
   double SpeedFactor(const std::string&) override { return 1.0; }
 

@@ -188,17 +188,24 @@ PolicyRun RunOn(const std::string& policy, double duration,
 // with the HV's front moved 0.5 m) is held to neither, and must stay rare: a
 // prediction that called every pair grazing would otherwise pass.
 struct BothProceeded {
-  long pairs = 0, grazing = 0;
+  long pairs = 0, grazing = 0, uncertain = 0;
   void Check(const EncounterRecord& e, const std::string& where) {
     ++pairs;
     if (e.premise == Premise::kGrazing) {
       ++grazing;
       return;
     }
+    // A merge formed certain whose verdict at the decision is not (the HV
+    // moved on the merge's margin): held to nothing, and rare.
+    if (e.premise == Premise::kUncertainMerge) {
+      ++uncertain;
+      return;
+    }
     EXPECT_EQ(e.collision, e.both_proceed_collides) << "both proceeded, " << where;
   }
   ~BothProceeded() {
     EXPECT_LE(grazing * 10, pairs) << grazing << " of " << pairs << " both-proceed pairs grazing";
+    EXPECT_LE(uncertain * 10, pairs) << uncertain << " of " << pairs << " uncertain at the decision";
   }
 };
 
@@ -419,9 +426,11 @@ TEST(MajorRoad, AnHvOnAnUpstreamNodesInternalLaneIsNotInsideTheJunction) {
 // (b) on a netgenerate two-way-stop grid with turning demand, AVs and HVs
 // everywhere: both kinds of encounter form; on every pair where both
 // proceeded SUMO collided exactly where the geometry predicted, and never
-// where the HV yielded or the AV waited; TA-EBP never collides. (Before
-// merges were excluded, SUMO's car following braked major HVs merging into
-// the AV's exit behind it: predicted collisions that did not happen.)
+// where the HV yielded or the AV waited; TA-EBP never collides. Merges (the
+// HV's movement ending on the AV's exit lane) are games too, decided by the
+// follower's braking (PredictBothProceed), except where the HV turns into
+// the merge (SUMO slows it for the turn: once predicted collisions that did
+// not happen).
 // taebp-test: study (the plain half only, once; tests/CMakeLists.txt)
 TEST(MajorRoad, OnATwoWayGridWithTurnsSumoAgreesWithThePredictionOnEveryPair) {
   const std::string yaml = std::string(
@@ -439,7 +448,7 @@ TEST(MajorRoad, OnATwoWayGridWithTurnsSumoAgreesWithThePredictionOnEveryPair) {
                            kModel + "policies: [no_trust, ta_ebp]\n";
   const ExperimentConfig cfg = ParseExperimentConfig(yaml, "major_road_test grid");
   const Scenario sc = BuildScenario(cfg, "");
-  long major = 0, both = 0;
+  long major = 0, both = 0, merges = 0;
   for (const std::string policy : {"no_trust", "ta_ebp"}) {
     SCOPED_TRACE(policy);
     const PolicyRun r = RunPolicy(cfg, policy, sc);
@@ -451,6 +460,8 @@ TEST(MajorRoad, OnATwoWayGridWithTurnsSumoAgreesWithThePredictionOnEveryPair) {
                                 std::to_string(e.time);
       ++kinds[e.major_road];
       collisions += e.collision;
+      const auto exit_of = [](const std::string& m) { return m.substr(m.find('>')); };
+      merges += e.major_road && exit_of(e.av_movement) == exit_of(e.hv_movement);
       if (e.av_first && !e.hv_dc) {
         ++both;
         if (e.major_road) {
@@ -461,7 +472,6 @@ TEST(MajorRoad, OnATwoWayGridWithTurnsSumoAgreesWithThePredictionOnEveryPair) {
       } else {
         EXPECT_FALSE(e.collision) << where;
       }
-      if (e.major_road) { EXPECT_NE(e.premise, Premise::kUncertainMerge) << where; }
     }
     major += kinds[1];
     EXPECT_GT(kinds[0], 10) << "encounters at stop lines";
@@ -471,6 +481,8 @@ TEST(MajorRoad, OnATwoWayGridWithTurnsSumoAgreesWithThePredictionOnEveryPair) {
               << " major road, " << collisions << " collisions\n";
   }
   EXPECT_GT(both, 10);
+  EXPECT_GT(merges, 0) << "no major-road merge was a game";
+  std::cout << "major-road merges that were games: " << merges << "\n";
 }
 
 // (d) The HV's decision follows the nudge SUMO realised: under TA-EBP the

@@ -87,13 +87,15 @@ TEST(BothProceedCollide, AMergeTheLeaderReachesFirstDoesNotCollide) {
   EXPECT_FALSE(BothProceedCollide(ahead, merging(0.0), 0.1));
 }
 
-// The same touch, certain or not: a's front already 1 m past its exit, its
-// rear (4 m back) still on the junction; b 2 m before its own exit, its front
-// corner inside a's body, both accelerating alike (the touch holds from the
-// first step). On a crossing SUMO's junction check sees it: kCollide. On a
-// merge the two share the exit lane a's front is on, where b follows a by
-// SUMO's car following: kUncertain (BothProceedCollide: false).
-TEST(BothProceedCollide, AMergeTouchingAfterAFrontIsOnTheExitIsUncertain) {
+// The same touch on a crossing and on a merge: a's front already 1 m past
+// its exit, its rear (4 m back) still on the junction; b 2 m before its own
+// exit, its front corner inside a's body, both accelerating alike (the touch
+// holds from the first step). On a crossing SUMO's junction check sees it:
+// kCollide. On a merge the two share the exit lane a's front is on: b, beside
+// a and not yet on that lane, brakes for a and stops before it reaches it;
+// a touch only beside the leader is not one SUMO's checks were seen to
+// report: kUncertain (BothProceedCollide: false).
+TEST(BothProceedCollide, AMergeTouchingOnlyBesideTheLeaderIsUncertain) {
   Mover a = Straight(1, 0);  // along y = 0, exit at arc 35 (x = 5)
   a.path = {{-30, 0}, {35, 0}};  // ending where the merge's path ends: one exit lane
   a.front = a.exit + 1.0;        // front at x = 6, rear at x = 1
@@ -116,11 +118,66 @@ TEST(BothProceedCollide, AMergeTouchingAfterAFrontIsOnTheExitIsUncertain) {
   EXPECT_EQ(PredictBothProceed(merge, a, 0.1), BothProceed::kUncertain);
   EXPECT_FALSE(BothProceedCollide(a, merge, 0.1));
   // Arriving at the join together (both fronts on the junction when they
-  // touch) stays certain.
+  // touch) is certain.
   Mover together = Straight(1, 0);
   together.path = {{-30, 0}, {35, 0}};
   merge.front = merge.entry + 10 / c - 10.0;
   EXPECT_EQ(PredictBothProceed(together, merge, 0.1), BothProceed::kCollide);
+}
+
+// A merge decided by SUMO's car following. a: the straight line y = 0, its
+// exit lane from x = 5 (arc 35) on, crawling at 2 m/s (its limit) with its
+// front 0.1 m before the exit: in the first step its front is on the exit
+// lane, its rear 4.9 m before the join. b: joining a's line at (5, 0) from 30
+// degrees below (the same exit lane), at 13.89 m/s without accelerating, its
+// front `before` m before the join. From then b follows a: closing at
+// 11.89 m/s on a's rear, it must shed that within about before - 4.9 m:
+// 11.89^2 / (2 * 9) = 7.9 m at 9 m/s^2, 15.7 m (+ a step's 1.4 m) at
+// 4.5 m/s^2.
+Mover Crawler() {
+  Mover a = Straight(1, 0);
+  a.path = {{-30, 0}, {35, 0}};
+  a.front = a.exit - 0.1;
+  a.speed = 2.0;
+  a.max_speed = 2.0;
+  return a;
+}
+Mover Joining(double before, double decel, double emergency_decel) {
+  Mover b;
+  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+  b.path = {{5 - 30 * c, -30 * s}, {5, 0}, {35, 0}};
+  b.entry = 30 - 10 / c;
+  b.exit = 30;
+  b.front = 30 - before;
+  b.speed = b.max_speed = 13.89;
+  b.accel = 0;
+  b.decel = decel;
+  b.emergency_decel = emergency_decel;
+  return b;
+}
+
+// Too close to stop even at its emergency deceleration (it runs into a's
+// rear on the exit lane): kCollide; far enough
+// to stop at its deceleration a step late: kClear; in between (it stops only
+// braking harder than its deceleration, as SUMO may or may not): kUncertain.
+// Either order of the movers gives the same verdict.
+TEST(BothProceedCollide, AMergeIsDecidedByTheFollowersBraking) {
+  const Mover a = Crawler();
+  for (const auto& [before, want] :
+       {std::pair{8.0, BothProceed::kCollide}, std::pair{18.0, BothProceed::kUncertain},
+        std::pair{25.0, BothProceed::kClear}}) {
+    const Mover b = Joining(before, 4.5, 9.0);
+    EXPECT_EQ(PredictBothProceed(a, b, 0.1), want) << before;
+    EXPECT_EQ(PredictBothProceed(b, a, 0.1), want) << before;
+    EXPECT_EQ(BothProceedCollide(a, b, 0.1), want == BothProceed::kCollide) << before;
+  }
+  // The uncertain one decided by the type: a follower that brakes at most
+  // 4.5 m/s^2 collides, one that brakes at 9 m/s^2 as a rule stops.
+  EXPECT_EQ(PredictBothProceed(a, Joining(18.0, 4.5, 4.5), 0.1), BothProceed::kCollide);
+  EXPECT_EQ(PredictBothProceed(a, Joining(18.0, 9.0, 9.0), 0.1), BothProceed::kClear);
+  // Without braking (no decel at all) the far one collides too: the verdict
+  // comes from the braking, not from the geometry alone.
+  EXPECT_EQ(PredictBothProceed(a, Joining(25.0, 0.0, 0.0), 0.1), BothProceed::kCollide);
 }
 
 // SUMO 1.15 netgenerate grid, junction B1 (4-way all-way stop, 3.2 m lanes):

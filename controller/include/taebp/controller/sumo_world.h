@@ -82,6 +82,9 @@ class SumoWorld {
   virtual double MinGap(const std::string& veh) = 0;
   virtual double Width(const std::string& veh) = 0;
   virtual double Accel(const std::string& veh) = 0;
+  virtual double Decel(const std::string& veh) = 0;           // car following's (m/s^2)
+  virtual double EmergencyDecel(const std::string& veh) = 0;  // the hardest it brakes (m/s^2)
+  virtual double Imperfection(const std::string& veh) = 0;    // Krauss's sigma (0: none)
   virtual double MaxSpeed(const std::string& veh) = 0;
   virtual double SpeedFactor(const std::string& veh) = 0;  // at most this times a lane's limit
 

@@ -31,6 +31,12 @@ struct Mover {
   double front = 0;   // arc length of the front at release
   double length = 5.0, width = 1.8;
   double accel = 2.6, max_speed = 13.89;
+  // Its SUMO type's deceleration and emergency deceleration (m/s^2): how hard
+  // SUMO's car following may brake it behind a leader on a merge.
+  double decel = 4.5, emergency_decel = 9.0;
+  // Its SUMO type's driver imperfection (Krauss's sigma): > 0, SUMO dawdles
+  // it at random, slower than this kinematics.
+  double sigma = 0;
   double speed = 0;   // m/s at release (0: from rest; a major-road HV keeps its speed:
                       //   accel 0, no limits, max_speed = speed)
 };
@@ -46,11 +52,30 @@ struct Mover {
 // behind each other, or cross where one has passed before the other comes,
 // do not collide. `dt`: SUMO's step length.
 //
-// The prediction is certain except on a merge (both paths end on the same
-// exit lane) whose bodies first touch after one front is on the exit lane:
-// SUMO's car following then makes the one behind brake for the one ahead,
-// and whether they still touch depends on its braking (a truck stops in
-// time, a bicycle does not): kUncertain. BothProceedCollide: kCollide.
+// On a merge (both paths end on the same exit lane), from the step the
+// first front is on the shared exit lane (the leader's) SUMO's car following
+// makes the other (the follower) brake for it, by at most its emergency
+// deceleration a step (MSCFModel::finalizeSpeed), by at most its
+// deceleration while a speed command holds it (speed mode value 4, "regard
+// maximum deceleration", set in the controller's 55). From that
+// step on both are followed until both rears have left the junction (the
+// encounter is over) or the follower stands, in two ways:
+// - the follower braking at max(decel, emergency_decel) from the next step
+//   (the earliest and hardest SUMO can brake it) still runs into the
+//   leader's rear with its own front on the exit lane (a rear-end on one
+//   lane, which SUMO's lane check reports) -> kCollide;
+// - the follower braking at decel from one step later (the latest and
+//   weakest braking that would stop it): the bodies never touch -> kClear
+//   (SUMO's car following brakes at least that much once it must);
+// otherwise kUncertain: it stops only braking harder than its decel, or the
+// bodies touch only while the follower's front is still beside the leader,
+// off the exit lane (SUMO 1.15 was seen to report such touches between cars
+// but to miss them between a car and a 12 m truck turning beside it). A
+// touch before any front is on the exit lane is kCollide as on a crossing.
+// The leader drives on at full acceleration. A merge that does not touch
+// before then is kUncertain when either dawdles (sigma > 0): who is on the
+// exit lane first, and how far ahead, is then SUMO's random draw.
+// BothProceedCollide: kCollide.
 enum class BothProceed { kCollide, kClear, kUncertain };
 BothProceed PredictBothProceed(const Mover& a, const Mover& b, double dt);
 bool BothProceedCollide(const Mover& a, const Mover& b, double dt);
