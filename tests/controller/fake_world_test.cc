@@ -9,7 +9,10 @@
 //   the two are released in the paper's order (the reckless HV disregarding
 //   the AV's right of way alone, junctionModel.ignoreIDs; the AV handed back under SUMO's rules,
 //   mode 31, once the HV is inside the junction), and a third vehicle on a
-//   conflicting movement is held meanwhile and handed back afterwards.
+//   conflicting movement is held meanwhile and handed back afterwards;
+// - on a two-way stop, a major vehicle halted at its line is traffic for a
+//   move of the game (one halted farther back is not, nor one SUMO holds
+//   for an AV nudged past its line).
 #include "taebp/config/config.h"
 #include "taebp/controller/network_controller.h"
 #include "taebp/controller/sumo_world.h"
@@ -223,6 +226,31 @@ class FakeJunction : public ::testing::Test {
     return c;
   }
 
+  // The AV `id` creeps at the speed last commanded (a nudge), onto `inside`
+  // past the end of its lane.
+  void Creep(const std::string& id, const std::string& inside) {
+    double v = 0;
+    for (const std::string& cmd : world_.CommandsFor(id))
+      if (cmd.rfind("speed ", 0) == 0) v = std::stod(cmd.substr(cmd.rfind(' ') + 1));
+    Car& car = world_.cars.at(id);
+    if (v <= 0) {
+      car.speed = 0;
+      return;
+    }
+    const double length = net_.FindLane(car.lane)->length;
+    car.pos += v * 0.1;
+    car.odometer += v * 0.1;
+    car.speed = v;
+    if (car.lane != inside && car.pos > length) {
+      car.lane = inside;
+      car.pos -= length;
+    }
+  }
+  bool HasCommand(const std::string& id, const std::string& cmd) const {
+    const std::vector<std::string> cs = world_.CommandsFor(id);
+    return std::find(cs.begin(), cs.end(), cmd) != cs.end();
+  }
+
   // One step: the world's, then the controller's.
   void Step(NetworkController& c) {
     c.Step();
@@ -352,6 +380,63 @@ TEST_F(FakeJunction, TheGameIsExecutedInTheWorldAndBothAreHandedBackInThePapersO
   EXPECT_FALSE(e.collision) << "no collision reported by the world";
   EXPECT_EQ(run.held, 3);  // the two and the third vehicle
   EXPECT_THAT(world_.commands, Not(Contains(::testing::HasSubstr("ignore h2"))));
+}
+
+// A two-way stop (the east-west road major, north and south stopped). The
+// AV stands still at the north line (No EBP), the HV at the south line reads
+// the prior and drives recklessly while the AV waits: a move of the game,
+// released with SUMO's right of way off only when the major road is clear
+// (StopLineEnvironment::MajorClear). A major vehicle halted at its line has
+// the right of way over the HV's left turn: SUMO starts it whenever its own
+// exit lets it, so it is traffic (released beside it, both started in the
+// same step on the two-way grid, seed 3, No Trust). Halted farther back it
+// is queued or yielding and comes only by moving: no traffic.
+TEST_F(FakeJunction, AMajorVehicleStandingAtItsLineIsTrafficForAReleasedMove) {
+  net_path_ = test::FourWay(dir_, "two_way", "priority_stop");
+  net_ = net::NetFile::Load(net_path_);
+  const std::string released = "speed h1 -1";
+  for (const bool at_line : {true, false}) {
+    SCOPED_TRACE(at_line ? "the major vehicle at its line" : "the major vehicle upstream");
+    world_ = FakeWorld{};
+    auto c = Controller("no_ebp");
+    Car major = AtLine("m1", "HV", "WC", "CE");  // straight on, across the HV's left turn
+    if (!at_line) major.pos -= 20.0;
+    world_.Depart(major);
+    world_.Depart(AtLine("a1", "AV", "NC", "CS"));
+    world_.Depart(AtLine("h1", "HV", "SC", "CW"));
+    for (int k = 0; k < 5; ++k) Step(*c);
+    ASSERT_THAT(world_.CommandsFor("h1"), Contains("speed h1 0")) << "the game was held";
+    if (!at_line) {
+      EXPECT_THAT(world_.CommandsFor("h1"), Contains(released));
+      continue;
+    }
+    EXPECT_THAT(world_.CommandsFor("h1"), Not(Contains(released)));
+    // The major vehicle goes through and leaves: the way is clear.
+    world_.Move("m1", Internal("WC_0", "CE_0"), 2.0, 5.0);
+    Step(*c);
+    EXPECT_THAT(world_.CommandsFor("h1"), Not(Contains(released))) << "inside, moving";
+    world_.Arrive("m1");
+    Step(*c);
+    EXPECT_THAT(world_.CommandsFor("h1"), Contains(released));
+  }
+  // An AV nudged past its line (Always Nudge) stands in the way of a major
+  // vehicle that comes to a halt at its line meanwhile: SUMO holds it for
+  // the AV, so it is no traffic (waiting for it would wait for ever). The
+  // HV reads the nudge and drives if clear; the AV, drawn to go, is released.
+  world_ = FakeWorld{};
+  auto c = Controller("always_nudge");
+  world_.Depart(AtLine("a1", "AV", "NC", "CS"));
+  world_.Depart(AtLine("h1", "HV", "SC", "CW"));
+  const std::string av_inside = Internal("NC_0", "CS_0");
+  for (int k = 0; k < 100 && !HasCommand("a1", "speed a1 -1"); ++k) {
+    Step(*c);
+    Creep("a1", av_inside);
+    if (world_.cars.at("a1").lane == av_inside && !world_.cars.count("m1"))
+      world_.Depart(AtLine("m1", "HV", "WC", "CE"));
+  }
+  ASSERT_TRUE(world_.cars.count("m1")) << "the AV was nudged past its line";
+  EXPECT_THAT(world_.CommandsFor("a1"), Contains("mode a1 55")) << "a move of the game";
+  EXPECT_THAT(world_.CommandsFor("a1"), Contains("speed a1 -1"));
 }
 
 }  // namespace
