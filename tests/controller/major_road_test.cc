@@ -2,16 +2,12 @@
 // SUMO through taebp::RunPolicy, on a hand-written two-way stop: a one-way
 // major road W -> E (priority 2) crossed by a two-way minor road N <-> S
 // (priority 1, stop signs), AVs on the minor road only, HVs on the major road
-// only. So no AV-HV pair ever waits at two stop lines: every encounter there
-// is the major-road kind.
-//   (a) it forms only with the option on; off, every policy's trips are
-//       sumo_native's, byte for byte;
-//   (b) on every pair where the AV went and the HV kept its way, SUMO
-//       collided exactly where the geometry predicted it, and nowhere else;
-//   (c) DC and collision rates of No Trust and TA-EBP inside 99.9 % Wilson
-//       intervals around the major-road theory (the paper's game at r_eff);
-//   (d) the HV's decision follows the nudge SUMO realised.
-// And the loader's checks of the option.
+// only, so every encounter there is the major-road kind. (a) It forms only with
+// the option on; off, every policy's trips are sumo_native's, byte for byte.
+// (b) Where the AV went and the HV kept its way, SUMO collided exactly where the
+// geometry predicted it, and nowhere else. (c) DC and collision rates of No Trust
+// and TA-EBP lie inside 99.9 % Wilson intervals around the major-road theory (the
+// paper's game at r_eff). (d) The HV follows the nudge SUMO realised. Loader checks.
 #include "taebp/config/config.h"
 #include "taebp/controller/policy_run.h"
 #include "taebp/persuasion/likelihood.h"
