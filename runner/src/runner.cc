@@ -199,7 +199,7 @@ void FillProvenance(const std::string& config_path, ExperimentResult* result) {
   prov.taebp_version = TaebpVersion();
   prov.warnings = result->warnings;
   if (config.scenario.outputs.ssm && sumo::CurrentBackend() == sumo::Backend::kLibsumo)
-    prov.sumo_patches.push_back("MSDevice_SSM.cpp:1870 assertion as in SUMO's release builds: " +
+    prov.sumo_patches.push_back("MSDevice_SSM.cpp:1870 and 1172 assertions as in SUMO's release builds: " +
                                 sumo::SsmReleaseBehaviour());
 }
 

@@ -303,7 +303,7 @@ def test_no_run_is_lost_to_sumos_assertion(tmp_path, overrides):
     assert "SUMO aborted" not in r.stderr
     summary = json.load(open(tmp_path / "run" / "summary.json"))
     assert summary["provenance"]["sumo_patches"] == [
-        "MSDevice_SSM.cpp:1870 assertion as in SUMO's release builds: applied"]
+        "MSDevice_SSM.cpp:1870 and 1172 assertions as in SUMO's release builds: applied"]
     for policy, p in summary["policies"].items():
         assert p["ssm_device_warnings"] > 0, policy
         assert p["simulated_seconds"] == pytest.approx(600)

@@ -36,7 +36,10 @@ Backend CurrentBackend();
 // saw inside their conflict area at once never leave it in the same step
 // (MSDevice_SSM.cpp:1870); Debian builds SUMO with assertions on, so such a
 // run aborted. Upstream's release builds (NDEBUG) have no assertion there and
-// classify the encounter as both having left. This makes the SUMO library of
+// classify the encounter as both having left. The same for determinePET's
+// check of the previous type of an encounter both have left
+// (MSDevice_SSM.cpp:1172: a collided merge without a crossing point reaches it).
+// This makes the SUMO library of
 // this process do the same, after checking that its code is Debian 12's sumo
 // 1.15.0 build byte for byte (sumo_ssm_release.cc; docs/ssm.md). Returns
 // "applied" or why not (then the device may still abort).
