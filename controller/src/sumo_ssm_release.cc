@@ -53,7 +53,7 @@ namespace taebp::sumo {
 namespace {
 
 // One assertion's check: where it is, the bytes there in Debian 12's build,
-// and the jump's replacement at kOriginal + jump.
+// and the jump's replacement at original + jump.
 struct Site {
   const char* function;
   std::size_t at;  // from the function's start
